@@ -1,0 +1,23 @@
+"""Contact laws for shroud interfaces: normal-contact laws N(δ, δ̇) and friction laws μ(|v|).
+
+Laws are small immutable objects that validate their parameters and carry their math as a
+static function of plain floats, so a solver can compile them. This package knows nothing of
+blades or groups; ``shroudnet`` composes a law of each kind with a gap and an angle.
+
+Normal laws: ``LinearSpring`` (the paper's eqs. 2–3), ``Hertz``, ``KelvinVoigt``,
+``HuntCrossley``, ``ConstantLoad``. Friction laws: ``Coulomb``, ``ExponentialFriction``
+(the paper's eq. 4), ``Stribeck``, and ``Regularised`` (a tanh-smoothed wrapper).
+"""
+
+from ._checks import check_real as check_real
+from .base import FrictionLaw as FrictionLaw
+from .base import NormalLaw as NormalLaw
+from .friction import Coulomb as Coulomb
+from .friction import ExponentialFriction as ExponentialFriction
+from .friction import Regularised as Regularised
+from .friction import Stribeck as Stribeck
+from .normal import ConstantLoad as ConstantLoad
+from .normal import Hertz as Hertz
+from .normal import HuntCrossley as HuntCrossley
+from .normal import KelvinVoigt as KelvinVoigt
+from .normal import LinearSpring as LinearSpring

@@ -1,0 +1,91 @@
+"""The two contracts a contact law fulfils: normal-contact laws and friction laws.
+
+A law is plain math with its parameters attached. It knows nothing of blades, interfaces or
+graphs; an interface composes a gap and an angle with one law of each kind.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from typing import ClassVar
+
+
+@dataclass(frozen=True)
+class NormalLaw:
+    """Base of normal-contact laws, N(δ, δ̇) ≥ 0.
+
+    ``δ`` is the penetration [m] (positive when the shrouds overlap) and ``δ̇`` its rate [m/s].
+    An implementer provides:
+
+    1. a frozen dataclass (``@dataclass(frozen=True)``) deriving from ``NormalLaw`` whose
+       fields are the law's parameters, each a real number in SI units;
+    2. ``__post_init__`` that validates every field with a message naming the field and its
+       allowed range (``contact_laws.check_real`` does it in one line);
+    3. a ``@staticmethod normal_force(penetration, rate, *parameters)`` taking the fields in
+       declaration order and returning the normal force [N]. It is called only while the
+       contact is closed (δ > 0); it must return a finite N ≥ 0 and be written in plain
+       arithmetic on floats (``math`` functions, ``max``, ``min``, ``if``) so that numba can
+       compile it into the integrator's loop;
+    4. optionally ``opens = False`` as a class attribute for a contact that never opens,
+       whatever the penetration (a preloaded contact such as ``ConstantLoad``).
+
+    A law is evaluated with ``law(penetration, rate)``.
+    """
+
+    opens: ClassVar[bool] = True
+
+    @staticmethod
+    def normal_force(penetration: float, rate: float, *parameters: float) -> float:
+        raise NotImplementedError
+
+    def parameters(self) -> tuple[float, ...]:
+        """The law's parameters in declaration order, as passed to ``normal_force``."""
+        return tuple(float(getattr(self, f.name)) for f in fields(self))
+
+    def __call__(self, penetration: float, rate: float = 0.0) -> float:
+        return type(self).normal_force(float(penetration), float(rate), *self.parameters())
+
+
+@dataclass(frozen=True)
+class FrictionLaw:
+    """Base of friction laws, given by a friction coefficient μ(|v|) ≥ 0.
+
+    While an interface slips with slip velocity ``v`` [m/s] the friction force is
+    ``f = μ(|v|) N sgn(v)`` (paper eqs. 5–6); while it sticks, any ``|f| ≤ μ_s N`` with the
+    static coefficient ``μ_s = μ(0)``. An implementer provides:
+
+    1. a frozen dataclass deriving from ``FrictionLaw`` whose fields are the law's
+       parameters, each a real number in SI units;
+    2. ``__post_init__`` that validates every field, naming it and its allowed range;
+    3. a ``@staticmethod coefficient(slip_speed, *parameters)`` taking ``|v| ≥ 0`` and the
+       fields in declaration order and returning μ ≥ 0, written in plain arithmetic that numba
+       can compile. It must not exceed its value at zero speed: μ(0) is the static limit.
+
+    A law is evaluated with ``law(slip_speed)``; ``law.static_coefficient`` is μ(0).
+    """
+
+    @staticmethod
+    def coefficient(slip_speed: float, *parameters: float) -> float:
+        raise NotImplementedError
+
+    def parameters(self) -> tuple[float, ...]:
+        """The law's parameters in declaration order, as passed to ``coefficient``."""
+        return tuple(float(getattr(self, f.name)) for f in fields(self))
+
+    @property
+    def static_coefficient(self) -> float:
+        """μ_s = μ(0): the largest ratio |f|/N a stuck interface can hold."""
+        return self(0.0)
+
+    @property
+    def regularisation_velocity(self) -> float:
+        """0 for exact (set-valued) friction at v = 0; > 0 [m/s] for a smoothed law."""
+        return 0.0
+
+    @property
+    def exact(self) -> "FrictionLaw":
+        """The law whose ``coefficient`` gives μ(|v|): the law itself unless it is smoothed."""
+        return self
+
+    def __call__(self, slip_speed: float) -> float:
+        return type(self).coefficient(abs(float(slip_speed)), *self.parameters())

@@ -1,0 +1,140 @@
+"""Normal-contact laws N(δ, δ̇): the force pressing two shrouds apart while they overlap.
+
+Each ``normal_force`` is called only while the contact is closed (penetration δ > 0).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+from ._checks import check_real
+from .base import NormalLaw
+
+
+@dataclass(frozen=True, kw_only=True)
+class LinearSpring(NormalLaw):
+    """N = k_c δ: a linear contact spring, the paper's eqs. (2)–(3).
+
+    Parameters
+    ----------
+    stiffness : float
+        Contact stiffness k_c > 0 [N/m].
+    """
+
+    stiffness: float
+
+    def __post_init__(self):
+        check_real("LinearSpring", "stiffness", self.stiffness, low=0.0, low_open=True, unit="N/m")
+
+    @staticmethod
+    def normal_force(penetration, rate, stiffness):
+        return stiffness * penetration
+
+
+@dataclass(frozen=True, kw_only=True)
+class Hertz(NormalLaw):
+    """N = k δ^n: Hertzian contact (n = 3/2 for two elastic spheres).
+
+    Parameters
+    ----------
+    stiffness : float
+        k > 0 [N/m^n].
+    exponent : float
+        n in [1, 3]; 1.5 is the Hertz point contact, 1 recovers ``LinearSpring``.
+    """
+
+    stiffness: float
+    exponent: float = 1.5
+
+    def __post_init__(self):
+        check_real("Hertz", "stiffness", self.stiffness, low=0.0, low_open=True, unit="N/m^n")
+        check_real("Hertz", "exponent", self.exponent, low=1.0, high=3.0)
+
+    @staticmethod
+    def normal_force(penetration, rate, stiffness, exponent):
+        return stiffness * penetration**exponent
+
+
+@dataclass(frozen=True, kw_only=True)
+class KelvinVoigt(NormalLaw):
+    """N = max(0, k δ + c δ̇): a spring and a dashpot in parallel.
+
+    The force is clipped at zero so that a separating contact never pulls the shrouds
+    together.
+
+    Parameters
+    ----------
+    stiffness : float
+        k > 0 [N/m].
+    damping : float
+        c ≥ 0 [N·s/m].
+    """
+
+    stiffness: float
+    damping: float
+
+    def __post_init__(self):
+        check_real("KelvinVoigt", "stiffness", self.stiffness, low=0.0, low_open=True, unit="N/m")
+        check_real("KelvinVoigt", "damping", self.damping, low=0.0, unit="N·s/m")
+
+    @staticmethod
+    def normal_force(penetration, rate, stiffness, damping):
+        return max(0.0, stiffness * penetration + damping * rate)
+
+
+@dataclass(frozen=True, kw_only=True)
+class HuntCrossley(NormalLaw):
+    """N = max(0, k δ^n (1 + d δ̇)): Hunt–Crossley contact, damping that vanishes with δ.
+
+    Unlike Kelvin–Voigt the force is continuous at first touch. With a coefficient of
+    restitution e and an impact speed v₀, Lankarani–Nikravesh give d ≈ 3(1 − e²)/(4 v₀).
+
+    Parameters
+    ----------
+    stiffness : float
+        k > 0 [N/m^n].
+    damping : float
+        d ≥ 0 [s/m].
+    exponent : float
+        n in [1, 3].
+    """
+
+    stiffness: float
+    damping: float
+    exponent: float = 1.5
+
+    def __post_init__(self):
+        check_real("HuntCrossley", "stiffness", self.stiffness, low=0.0, low_open=True,
+                   unit="N/m^n")
+        check_real("HuntCrossley", "damping", self.damping, low=0.0, unit="s/m")
+        check_real("HuntCrossley", "exponent", self.exponent, low=1.0, high=3.0)
+
+    @staticmethod
+    def normal_force(penetration, rate, stiffness, damping, exponent):
+        return max(0.0, stiffness * penetration**exponent * (1.0 + damping * rate))
+
+
+@dataclass(frozen=True, kw_only=True)
+class ConstantLoad(NormalLaw):
+    """N = F: a contact held closed by a preload (e.g. a centrifugally loaded damper).
+
+    The contact never opens, whatever the relative displacement: only its tangential
+    state (stick or slip) changes.
+
+    Parameters
+    ----------
+    force : float
+        F ≥ 0 [N].
+    """
+
+    opens: ClassVar[bool] = False
+    force: float
+
+    def __post_init__(self):
+        check_real("ConstantLoad", "force", self.force, low=0.0, unit="N")
+
+    @staticmethod
+    def normal_force(penetration, rate, force):
+        return force

@@ -1,0 +1,44 @@
+"""shroudnet: nonlinear forced vibration of shrouded blade groups that rub and impact.
+
+Vocabulary, used the same way throughout:
+
+blade
+    A node of the group: a lumped mass m on a spring k(Ω) with damping c, displaced by x
+    in the tangential direction. A fixed node (disc, casing, damper platform) has x ≡ 0.
+interface
+    An edge of the group: two shrouds that may touch, with a gap Δ, a contact angle α, a
+    normal-contact law and a friction law (``contact_laws``).
+gap, penetration
+    Δ is the clearance at rest (negative: preload); penetration δ = (x_i − x_j − Δ) sin α.
+normal force, friction force
+    N = N(δ, δ̇) ≥ 0 while the contact is closed; f = μ(|v|) N sgn(v) while slipping, any
+    |f| ≤ μ_s N while stuck.
+slip velocity
+    v = (ẋ_i − ẋ_j) cos α.
+stick cluster
+    Blades joined by stuck interfaces, moving as one body.
+engine order, excitation period
+    l, the number of excitation cycles per revolution; T_e = 2π/(l Ω).
+
+Units are SI throughout, except rotating speeds, given in rev/min where a name ends in
+``_rpm``. Equation numbers refer to the reference paper, *Dynamic analysis of integrally
+shrouded group blades with rubbing and impact*.
+"""
+
+from . import scenes as scenes
+from .blade import Blade as Blade
+from .blade import ConstantFrequency as ConstantFrequency
+from .blade import FrequencyTable as FrequencyTable
+from .blade import Southwell as Southwell
+from .clusters import stick_clusters as stick_clusters
+from .dynamics import Assembly as Assembly
+from .dynamics import assemble as assemble
+from .excitation import AntiPhase as AntiPhase
+from .excitation import Excitation as Excitation
+from .excitation import ExplicitPhases as ExplicitPhases
+from .excitation import TravellingWave as TravellingWave
+from .group import BladeGroup as BladeGroup
+from .interface import Interface as Interface
+from .modes import Mode as Mode
+from .scene import Scene as Scene
+from .scene import SceneArrays as SceneArrays

@@ -1,0 +1,253 @@
+"""Dynamics assembly for a fixed set of interface modes (DESIGN §2, paper eqs. 1–7).
+
+With blade displacements x, the incidence matrix B (row e: +1 at the left blade i, −1 at the
+right blade j) and the interface forces F_e = N_e sin α_e + f_e cos α_e,
+
+    M ẍ + C ẋ + K x = Q(t) − Bᵀ F.                                   (paper eq. 7)
+
+Open interfaces carry no force. A slipping interface carries its normal law's N and
+f = μ(|v|) N sgn(v) (eqs. 2–6). Stuck interfaces join their blades into stick clusters that
+move as one body: a cluster's acceleration is the sum of the forces on its blades (stuck
+interfaces cancel inside) over its total mass, and the static friction forces follow from
+each blade's equilibrium. For the paper's chain these are eqs. (10)–(22). A cluster holding a
+cycle (an all-stuck ring) is statically indeterminate: we take the friction forces of
+minimum Euclidean norm, which leave no force circulating round the cycle.
+
+The array functions here are compiled with numba and take no Python objects, so the
+integrator's loop calls them directly; ``assemble`` wraps them for a ``Scene``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from .clusters import cluster_labels
+from .modes import Mode
+from .scene import Scene, SceneArrays
+
+OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)
+
+
+@njit(cache=True)
+def excitation_forces(t, amplitudes, phases, excitation_frequency):
+    """Q_i(t) = q0 + Σ_n q_n sin(n l Ω t + φ_i) [N] (paper §2)."""
+    q = np.full(len(phases), amplitudes[0])
+    for n in range(1, len(amplitudes)):
+        if amplitudes[n] != 0.0:
+            q += amplitudes[n] * np.sin(n * excitation_frequency * t + phases)
+    return q
+
+
+@njit(cache=True)
+def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle):
+    """Penetration δ = (u − Δ) sin α [m], its rate δ̇ [m/s] and slip velocity u̇ cos α [m/s].
+
+    u = x_i − x_j is the relative displacement of the left and right blades; a fixed node
+    has x = 0.
+    """
+    n = len(left)
+    penetration = np.empty(n)
+    rate = np.empty(n)
+    slip_velocity = np.empty(n)
+    for e in range(n):
+        u = 0.0
+        du = 0.0
+        if left[e] >= 0:
+            u += x[left[e]]
+            du += v[left[e]]
+        if right[e] >= 0:
+            u -= x[right[e]]
+            du -= v[right[e]]
+        penetration[e] = (u - gap[e]) * sin_angle[e]
+        rate[e] = du * sin_angle[e]
+        slip_velocity[e] = du * cos_angle[e]
+    return penetration, rate, slip_velocity
+
+
+@njit(cache=True)
+def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, stuck):
+    """R_i = Q_i − c_i ẋ_i − k_i x_i − (Bᵀ F)_i over the interfaces that are not stuck [N]."""
+    resultant = q - damping * v - stiffness * x
+    for e in range(len(left)):
+        if stuck[e]:
+            continue
+        if left[e] >= 0:
+            resultant[left[e]] -= interface_force[e]
+        if right[e] >= 0:
+            resultant[right[e]] += interface_force[e]
+    return resultant
+
+
+@njit(cache=True)
+def cluster_accelerations(mass, resultant, labels, grounded):
+    """ẍ_i = Σ_cluster R / Σ_cluster m for every blade of a cluster; 0 in a grounded one."""
+    n_clusters = len(grounded)
+    cluster_mass = np.zeros(n_clusters)
+    cluster_force = np.zeros(n_clusters)
+    for i in range(len(mass)):
+        cluster_mass[labels[i]] += mass[i]
+        cluster_force[labels[i]] += resultant[i]
+    acceleration = np.empty(len(mass))
+    for i in range(len(mass)):
+        c = labels[i]
+        acceleration[i] = 0.0 if grounded[c] else cluster_force[c] / cluster_mass[c]
+    return acceleration
+
+
+@njit(cache=True)
+def static_friction(mass, resultant, acceleration, normal_force, sin_angle, cos_angle,
+                    left, right, stuck, labels):
+    """Static friction f_e [N] on each stuck interface from its cluster's equilibrium.
+
+    Every blade i of a cluster obeys Σ_e B_ei (N_e sin α_e + f_e cos α_e) = R_i − m_i ẍ_i,
+    summed over its stuck interfaces. A tree cluster determines f exactly; a cluster with
+    a cycle gets the least-squares solution of minimum norm. Zero on other interfaces.
+    """
+    n_blades = len(mass)
+    friction = np.zeros(len(left))
+    n_clusters = labels.max() + 1 if n_blades > 0 else 0
+    row = np.empty(n_blades, dtype=np.int64)
+    for c in range(n_clusters):
+        n_rows = 0
+        for i in range(n_blades):
+            if labels[i] == c:
+                row[i] = n_rows
+                n_rows += 1
+        edges = np.empty(len(left), dtype=np.int64)
+        n_edges = 0
+        for e in range(len(left)):
+            end = left[e] if left[e] >= 0 else right[e]
+            if stuck[e] and labels[end] == c:
+                edges[n_edges] = e
+                n_edges += 1
+        if n_edges == 0:
+            continue
+        matrix = np.zeros((n_rows, n_edges))
+        rhs = np.zeros(n_rows)
+        for i in range(n_blades):
+            if labels[i] == c:
+                rhs[row[i]] = resultant[i] - mass[i] * acceleration[i]
+        for k in range(n_edges):
+            e = edges[k]
+            push = normal_force[e] * sin_angle[e]
+            if left[e] >= 0:
+                matrix[row[left[e]], k] += cos_angle[e]
+                rhs[row[left[e]]] -= push
+            if right[e] >= 0:
+                matrix[row[right[e]], k] -= cos_angle[e]
+                rhs[row[right[e]]] += push
+        solution = np.linalg.lstsq(matrix, rhs, -1.0)[0]
+        for k in range(n_edges):
+            friction[edges[k]] = solution[k]
+    return friction
+
+
+@njit(cache=True)
+def event_guards(modes, penetration, slip_velocity, normal_force, friction_force, static_mu,
+                 opens, can_stick):
+    """Guards: per interface, values that stay ≥ 0 while its mode holds and cross 0 at a switch.
+
+    contact: −δ while open (crosses 0 as the contact closes), δ while closed (as it opens);
+    +inf for a contact that never opens. motion: ±v while slipping with exact friction
+    (crosses 0 as the slip velocity reaches zero); μ_s N − |f| while stuck (the breakaway
+    margin); +inf otherwise.
+    """
+    n = len(modes)
+    contact = np.full(n, np.inf)
+    motion = np.full(n, np.inf)
+    for e in range(n):
+        mode = modes[e]
+        if opens[e]:
+            contact[e] = -penetration[e] if mode == OPEN else penetration[e]
+        if mode == STICK:
+            motion[e] = static_mu[e] * normal_force[e] - abs(friction_force[e])
+        elif can_stick[e] and mode == SLIP_POSITIVE:
+            motion[e] = slip_velocity[e]
+        elif can_stick[e] and mode == SLIP_NEGATIVE:
+            motion[e] = -slip_velocity[e]
+    return contact, motion
+
+
+def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
+    """Normal force N_e and sliding friction f_e [N] from each interface's laws.
+
+    Open interfaces carry nothing; stuck ones carry N and no sliding friction (their static
+    friction comes from ``static_friction``). Exact laws slip with f = ±μ(|v|) N by the sign
+    of the mode (paper eqs. 5–6); regularised ones with f = μ(|v|) N tanh(v/v_ε).
+    This is the plain-Python evaluation of the laws; it calls each law object.
+    """
+    normal = np.zeros(arrays.n_interfaces)
+    friction = np.zeros(arrays.n_interfaces)
+    for e, law in enumerate(arrays.normal_laws):
+        if modes[e] == OPEN:
+            continue
+        normal[e] = law(penetration[e], rate[e])
+        friction_law = arrays.friction_laws[e]
+        if friction_law is None or modes[e] == STICK:
+            continue
+        sliding = friction_law(slip_velocity[e]) * normal[e]
+        if arrays.regularisation[e] > 0.0:
+            friction[e] = sliding * math.tanh(slip_velocity[e] / arrays.regularisation[e])
+        else:
+            friction[e] = sliding if modes[e] == SLIP_POSITIVE else -sliding
+    return normal, friction
+
+
+class Assembly(NamedTuple):
+    """The forces and accelerations of a scene in a given state and set of modes."""
+
+    acceleration: np.ndarray     # ẍ_i [m/s²], by blade position
+    normal_force: np.ndarray     # N_e [N], by interface
+    friction_force: np.ndarray   # f_e [N]: sliding, or static on stuck interfaces
+    interface_force: np.ndarray  # F_e = N_e sin α_e + f_e cos α_e [N], −F_e on i, +F_e on j
+    cluster: np.ndarray          # stick-cluster label of each blade
+    grounded: np.ndarray         # per cluster: joined to a fixed node
+    contact_guard: np.ndarray    # see event_guards
+    motion_guard: np.ndarray     # see event_guards
+
+
+def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
+    """Assemble the dynamics of ``scene`` at time ``t`` [s] in state (x [m], ẋ [m/s]).
+
+    ``modes`` gives each interface's ``Mode``. A stuck interface must have zero slip
+    velocity (its blades move together); the result's ``motion_guard`` tells whether each
+    static friction force is admissible (|f| ≤ μ_s N).
+    """
+    a = scene.arrays
+    x, v = _state(x, a.n_blades, "x"), _state(v, a.n_blades, "v")
+    modes = np.asarray(modes, dtype=np.int64)
+    if modes.shape != (a.n_interfaces,) or not np.isin(modes, list(Mode)).all():
+        raise ValueError(f"modes must hold {a.n_interfaces} values of shroudnet.Mode, "
+                         f"got {modes}")
+    stuck = modes == STICK
+    if np.any(stuck & ~a.can_stick):
+        raise ValueError("modes: STICK on an interface that cannot stick (no exact friction "
+                         f"law, or α = π/2): {np.flatnonzero(stuck & ~a.can_stick)}")
+    penetration, rate, slip_velocity = interface_kinematics(
+        x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle)
+    normal, friction = law_forces(a, penetration, rate, slip_velocity, modes)
+    interface_force = normal * a.sin_angle + friction * a.cos_angle
+    q = excitation_forces(float(t), a.amplitudes, a.phases, a.excitation_frequency)
+    labels, grounded = cluster_labels(a.n_blades, a.left, a.right, stuck)
+    resultant = resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right,
+                                 interface_force, stuck)
+    acceleration = cluster_accelerations(a.mass, resultant, labels, grounded)
+    friction = np.where(stuck, static_friction(a.mass, resultant, acceleration, normal,
+                                               a.sin_angle, a.cos_angle, a.left, a.right,
+                                               stuck, labels), friction)
+    interface_force = normal * a.sin_angle + friction * a.cos_angle
+    contact, motion = event_guards(modes, penetration, slip_velocity, normal, friction,
+                                   a.static_mu, a.opens, a.can_stick)
+    return Assembly(acceleration, normal, friction, interface_force, labels, grounded,
+                    contact, motion)
+
+
+def _state(values, n, name):
+    array = np.asarray(values, dtype=float)
+    if array.shape != (n,) or not np.isfinite(array).all():
+        raise ValueError(f"{name} must hold {n} finite numbers (one per blade), got {values}")
+    return np.ascontiguousarray(array)
