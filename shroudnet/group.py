@@ -2,8 +2,9 @@
 
 Every node carries the attribute ``blade`` (a ``Blade``, or None for a fixed node: the disc,
 the casing, a damper platform, whose displacement is x ≡ 0). Every edge carries
-``interface`` (an ``Interface``) and ``left`` (the name of its left blade i, so that
-u = x_left − x_right; see ``shroudnet.interface``).
+``interface`` (an ``Interface``), ``left`` (the name of its left blade i, so that
+u = x_left − x_right; see ``shroudnet.interface``) and ``index`` (its position in the
+interface arrays: the order of ``connect`` calls).
 """
 
 from __future__ import annotations
@@ -62,7 +63,8 @@ class BladeGroup:
             raise ValueError(f"connect({left!r}, {right!r}): these nodes are already connected")
         if self.graph.nodes[left]["blade"] is None and self.graph.nodes[right]["blade"] is None:
             raise ValueError(f"connect({left!r}, {right!r}): both nodes are fixed")
-        self.graph.add_edge(left, right, interface=interface, left=left)
+        self.graph.add_edge(left, right, interface=interface, left=left,
+                            index=self.graph.number_of_edges())
         return self
 
     def _add_node(self, name: Hashable, blade: Blade | None) -> None:
@@ -111,8 +113,9 @@ class BladeGroup:
     @property
     def interfaces(self) -> list[tuple[Hashable, Hashable, Interface]]:
         """(left, right, interface) for every edge, in the order they were connected."""
+        edges = sorted(self.graph.edges(data=True), key=lambda edge: edge[2]["index"])
         return [(data["left"], b if data["left"] == a else a, data["interface"])
-                for a, b, data in self.graph.edges(data=True)]
+                for a, b, data in edges]
 
     def blade(self, name: Hashable) -> Blade:
         """The ``Blade`` at node ``name``."""
