@@ -99,50 +99,53 @@ def cluster_accelerations(mass, resultant, labels, grounded):
 
 
 @njit(cache=True)
-def static_friction(mass, resultant, acceleration, normal_force, sin_angle, cos_angle,
-                    left, right, stuck, labels):
-    """Static friction f_e [N] on each stuck interface from its cluster's equilibrium.
+def static_friction_operator(n_blades, left, right, cos_angle, stuck):
+    """The linear map P from blade force imbalances to static friction on stuck interfaces.
 
-    Every blade i of a cluster obeys Σ_e B_ei (N_e sin α_e + f_e cos α_e) = R_i − m_i ẍ_i,
-    summed over its stuck interfaces. A tree cluster determines f exactly; a cluster with
-    a cycle gets the least-squares solution of minimum norm. Zero on other interfaces.
+    Every blade i of a cluster obeys Σ_e B_ei (N_e sin α_e + f_e cos α_e) = R_i − m_i ẍ_i
+    over its stuck interfaces e, i.e. G f = b with G_ie = B_ei cos α_e. P is the
+    pseudo-inverse of G, so f = P b: exact for a tree cluster, the least-squares solution of
+    minimum norm where a cycle makes the cluster indeterminate. G is block-diagonal by
+    cluster, so P treats clusters independently. It depends only on the set of stuck
+    interfaces and is computed once per mode change.
+
+    Returns
+    -------
+    operator : float array (n_stuck, n_blades)
+    stuck_interfaces : int64 array (n_stuck,)
     """
-    n_blades = len(mass)
+    stuck_interfaces = np.flatnonzero(stuck)
+    matrix = np.zeros((n_blades, len(stuck_interfaces)))
+    for k in range(len(stuck_interfaces)):
+        e = stuck_interfaces[k]
+        if left[e] >= 0:
+            matrix[left[e], k] += cos_angle[e]
+        if right[e] >= 0:
+            matrix[right[e], k] -= cos_angle[e]
+    if len(stuck_interfaces) == 0 or n_blades == 0:
+        return np.zeros((len(stuck_interfaces), n_blades)), stuck_interfaces
+    return np.linalg.pinv(matrix), stuck_interfaces
+
+
+@njit(cache=True)
+def static_friction(operator, stuck_interfaces, mass, resultant, acceleration, normal_force,
+                    sin_angle, left, right):
+    """Static friction f_e [N] on each stuck interface, zero elsewhere.
+
+    f = P b with b_i = R_i − m_i ẍ_i − Σ_e B_ei N_e sin α_e over the stuck interfaces
+    (see ``static_friction_operator``).
+    """
+    imbalance = resultant - mass * acceleration
+    for e in stuck_interfaces:
+        push = normal_force[e] * sin_angle[e]
+        if left[e] >= 0:
+            imbalance[left[e]] -= push
+        if right[e] >= 0:
+            imbalance[right[e]] += push
     friction = np.zeros(len(left))
-    n_clusters = labels.max() + 1 if n_blades > 0 else 0
-    row = np.empty(n_blades, dtype=np.int64)
-    for c in range(n_clusters):
-        n_rows = 0
-        for i in range(n_blades):
-            if labels[i] == c:
-                row[i] = n_rows
-                n_rows += 1
-        edges = np.empty(len(left), dtype=np.int64)
-        n_edges = 0
-        for e in range(len(left)):
-            end = left[e] if left[e] >= 0 else right[e]
-            if stuck[e] and labels[end] == c:
-                edges[n_edges] = e
-                n_edges += 1
-        if n_edges == 0:
-            continue
-        matrix = np.zeros((n_rows, n_edges))
-        rhs = np.zeros(n_rows)
-        for i in range(n_blades):
-            if labels[i] == c:
-                rhs[row[i]] = resultant[i] - mass[i] * acceleration[i]
-        for k in range(n_edges):
-            e = edges[k]
-            push = normal_force[e] * sin_angle[e]
-            if left[e] >= 0:
-                matrix[row[left[e]], k] += cos_angle[e]
-                rhs[row[left[e]]] -= push
-            if right[e] >= 0:
-                matrix[row[right[e]], k] -= cos_angle[e]
-                rhs[row[right[e]]] += push
-        solution = np.linalg.lstsq(matrix, rhs, -1.0)[0]
-        for k in range(n_edges):
-            friction[edges[k]] = solution[k]
+    solution = operator @ imbalance
+    for k in range(len(stuck_interfaces)):
+        friction[stuck_interfaces[k]] = solution[k]
     return friction
 
 
@@ -236,9 +239,11 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     resultant = resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right,
                                  interface_force, stuck)
     acceleration = cluster_accelerations(a.mass, resultant, labels, grounded)
-    friction = np.where(stuck, static_friction(a.mass, resultant, acceleration, normal,
-                                               a.sin_angle, a.cos_angle, a.left, a.right,
-                                               stuck, labels), friction)
+    operator, stuck_interfaces = static_friction_operator(a.n_blades, a.left, a.right,
+                                                          a.cos_angle, stuck)
+    friction = np.where(stuck, static_friction(operator, stuck_interfaces, a.mass, resultant,
+                                               acceleration, normal, a.sin_angle, a.left,
+                                               a.right), friction)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
     contact, motion = event_guards(modes, penetration, slip_velocity, normal, friction,
                                    a.static_mu, a.opens, a.can_stick)
