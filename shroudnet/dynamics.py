@@ -33,27 +33,25 @@ OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)
 
 
 @njit(cache=True)
-def excitation_forces(t, amplitudes, phases, excitation_frequency):
-    """Q_i(t) = q0 + Σ_n q_n sin(n l Ω t + φ_i) [N] (paper §2)."""
-    q = np.full(len(phases), amplitudes[0])
-    for n in range(1, len(amplitudes)):
-        if amplitudes[n] != 0.0:
-            q += amplitudes[n] * np.sin(n * excitation_frequency * t + phases)
-    return q
+def excitation_forces(t, amplitudes, phases, excitation_frequency, out):
+    """Q_i(t) = q0 + Σ_n q_n sin(n l Ω t + φ_i) [N] (paper §2), written into ``out``."""
+    for i in range(len(phases)):
+        q = amplitudes[0]
+        for n in range(1, len(amplitudes)):
+            if amplitudes[n] != 0.0:
+                q += amplitudes[n] * math.sin(n * excitation_frequency * t + phases[i])
+        out[i] = q
 
 
 @njit(cache=True)
-def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle):
+def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle,
+                         penetration, rate, slip_velocity):
     """Penetration δ = (u − Δ) sin α [m], its rate δ̇ [m/s] and slip velocity u̇ cos α [m/s].
 
     u = x_i − x_j is the relative displacement of the left and right blades; a fixed node
-    has x = 0.
+    has x = 0. Written into the last three arrays.
     """
-    n = len(left)
-    penetration = np.empty(n)
-    rate = np.empty(n)
-    slip_velocity = np.empty(n)
-    for e in range(n):
+    for e in range(len(left)):
         u = 0.0
         du = 0.0
         if left[e] >= 0:
@@ -65,13 +63,17 @@ def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle):
         penetration[e] = (u - gap[e]) * sin_angle[e]
         rate[e] = du * sin_angle[e]
         slip_velocity[e] = du * cos_angle[e]
-    return penetration, rate, slip_velocity
 
 
 @njit(cache=True)
-def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, stuck):
-    """R_i = Q_i − c_i ẋ_i − k_i x_i − (Bᵀ F)_i over the interfaces that are not stuck [N]."""
-    resultant = q - damping * v - stiffness * x
+def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, stuck,
+                     resultant):
+    """R_i = Q_i − c_i ẋ_i − k_i x_i − (Bᵀ F)_i over the interfaces that are not stuck [N].
+
+    Written into ``resultant``.
+    """
+    for i in range(len(x)):
+        resultant[i] = q[i] - damping[i] * v[i] - stiffness[i] * x[i]
     for e in range(len(left)):
         if stuck[e]:
             continue
@@ -79,23 +81,31 @@ def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, 
             resultant[left[e]] -= interface_force[e]
         if right[e] >= 0:
             resultant[right[e]] += interface_force[e]
-    return resultant
 
 
 @njit(cache=True)
-def cluster_accelerations(mass, resultant, labels, grounded):
-    """ẍ_i = Σ_cluster R / Σ_cluster m for every blade of a cluster; 0 in a grounded one."""
+def cluster_mass(mass, labels, n_clusters):
+    """Σ m [kg] of each stick cluster."""
+    total = np.zeros(n_clusters)
+    for i in range(len(mass)):
+        total[labels[i]] += mass[i]
+    return total
+
+
+@njit(cache=True)
+def cluster_accelerations(resultant, labels, grounded, masses, cluster_force, acceleration):
+    """ẍ_i = Σ_cluster R / Σ_cluster m for every blade of a cluster; 0 in a grounded one.
+
+    ``masses`` are the clusters' masses (``cluster_mass``); ``cluster_force`` is scratch
+    space of at least n_clusters; the result is written into ``acceleration``.
+    """
     n_clusters = len(grounded)
-    cluster_mass = np.zeros(n_clusters)
-    cluster_force = np.zeros(n_clusters)
-    for i in range(len(mass)):
-        cluster_mass[labels[i]] += mass[i]
+    cluster_force[:n_clusters] = 0.0
+    for i in range(len(resultant)):
         cluster_force[labels[i]] += resultant[i]
-    acceleration = np.empty(len(mass))
-    for i in range(len(mass)):
+    for i in range(len(resultant)):
         c = labels[i]
-        acceleration[i] = 0.0 if grounded[c] else cluster_force[c] / cluster_mass[c]
-    return acceleration
+        acceleration[i] = 0.0 if grounded[c] else cluster_force[c] / masses[c]
 
 
 @njit(cache=True)
@@ -151,19 +161,18 @@ def static_friction(operator, stuck_interfaces, mass, resultant, acceleration, n
 
 @njit(cache=True)
 def event_guards(modes, penetration, slip_velocity, normal_force, friction_force, static_mu,
-                 opens, can_stick):
+                 opens, can_stick, contact, motion):
     """Guards: per interface, values that stay ≥ 0 while its mode holds and cross 0 at a switch.
 
     contact: −δ while open (crosses 0 as the contact closes), δ while closed (as it opens);
     +inf for a contact that never opens. motion: ±v while slipping with exact friction
     (crosses 0 as the slip velocity reaches zero); μ_s N − |f| while stuck (the breakaway
-    margin); +inf otherwise.
+    margin); +inf otherwise. Written into ``contact`` and ``motion``.
     """
-    n = len(modes)
-    contact = np.full(n, np.inf)
-    motion = np.full(n, np.inf)
-    for e in range(n):
+    for e in range(len(modes)):
         mode = modes[e]
+        contact[e] = np.inf
+        motion[e] = np.inf
         if opens[e]:
             contact[e] = -penetration[e] if mode == OPEN else penetration[e]
         if mode == STICK:
@@ -172,7 +181,6 @@ def event_guards(modes, penetration, slip_velocity, normal_force, friction_force
             motion[e] = slip_velocity[e]
         elif can_stick[e] and mode == SLIP_NEGATIVE:
             motion[e] = -slip_velocity[e]
-    return contact, motion
 
 
 def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
@@ -230,23 +238,30 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     if np.any(stuck & ~a.can_stick):
         raise ValueError("modes: STICK on an interface that cannot stick (no exact friction "
                          f"law, or α = π/2): {np.flatnonzero(stuck & ~a.can_stick)}")
-    penetration, rate, slip_velocity = interface_kinematics(
-        x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle)
+    n, m = a.n_blades, a.n_interfaces
+    penetration, rate, slip_velocity = np.empty(m), np.empty(m), np.empty(m)
+    interface_kinematics(x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle,
+                         penetration, rate, slip_velocity)
     normal, friction = law_forces(a, penetration, rate, slip_velocity, modes)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
-    q = excitation_forces(float(t), a.amplitudes, a.phases, a.excitation_frequency)
-    labels, grounded = cluster_labels(a.n_blades, a.left, a.right, stuck)
-    resultant = resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right,
-                                 interface_force, stuck)
-    acceleration = cluster_accelerations(a.mass, resultant, labels, grounded)
+    q = np.empty(n)
+    excitation_forces(float(t), a.amplitudes, a.phases, a.excitation_frequency, q)
+    labels, grounded = cluster_labels(n, a.left, a.right, stuck)
+    resultant = np.empty(n)
+    resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right, interface_force, stuck,
+                     resultant)
+    acceleration = np.empty(n)
+    cluster_accelerations(resultant, labels, grounded,
+                          cluster_mass(a.mass, labels, len(grounded)), np.empty(n), acceleration)
     operator, stuck_interfaces = static_friction_operator(a.n_blades, a.left, a.right,
                                                           a.cos_angle, stuck)
     friction = np.where(stuck, static_friction(operator, stuck_interfaces, a.mass, resultant,
                                                acceleration, normal, a.sin_angle, a.left,
                                                a.right), friction)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
-    contact, motion = event_guards(modes, penetration, slip_velocity, normal, friction,
-                                   a.static_mu, a.opens, a.can_stick)
+    contact, motion = np.empty(m), np.empty(m)
+    event_guards(modes, penetration, slip_velocity, normal, friction, a.static_mu, a.opens,
+                 a.can_stick, contact, motion)
     return Assembly(acceleration, normal, friction, interface_force, labels, grounded,
                     contact, motion)
 
