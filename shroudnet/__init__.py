@@ -42,3 +42,11 @@ from .interface import Interface as Interface
 from .modes import Mode as Mode
 from .scene import Scene as Scene
 from .scene import SceneArrays as SceneArrays
+from .simulate import FixedStep as FixedStep
+from .simulate import ZenoGuard as ZenoGuard
+from .simulate import simulate as simulate
+from .simulation import EnergyLedger as EnergyLedger
+from .simulation import EventKind as EventKind
+from .simulation import EventLog as EventLog
+from .simulation import Simulation as Simulation
+from .simulation import SimulationError as SimulationError

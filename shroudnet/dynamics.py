@@ -134,7 +134,7 @@ def static_friction_operator(n_blades, left, right, cos_angle, stuck):
             matrix[right[e], k] -= cos_angle[e]
     if len(stuck_interfaces) == 0 or n_blades == 0:
         return np.zeros((len(stuck_interfaces), n_blades)), stuck_interfaces
-    return np.linalg.pinv(matrix), stuck_interfaces
+    return np.ascontiguousarray(np.linalg.pinv(matrix)), stuck_interfaces
 
 
 @njit(cache=True)

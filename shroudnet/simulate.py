@@ -1,0 +1,184 @@
+"""``simulate``: the one entry point that turns a scene into a trajectory."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from contact_laws import check_real
+
+from .kernel import kernel_scene, load_kernel
+from .modes import Mode
+from .scene import Scene
+from .simulation import EnergyLedger, EventKind, EventLog, Simulation, SimulationError
+
+_FINISHED, _ZENO, _INCONSISTENT, _NOT_FINITE = 0, 1, 2, 3
+
+
+@dataclass(frozen=True, kw_only=True)
+class FixedStep:
+    """Classical fourth-order Runge–Kutta on a fixed grid, switches located by bisection.
+
+    This is the paper's scheme. The global error falls as h⁴ between switches.
+
+    Parameters
+    ----------
+    steps_per_period : int
+        Steps per excitation period T_e, ≥ 8.
+    """
+
+    steps_per_period: int = 1000
+
+    def __post_init__(self):
+        if isinstance(self.steps_per_period, bool) or not isinstance(self.steps_per_period, int) \
+                or self.steps_per_period < 8:
+            raise ValueError(f"FixedStep.steps_per_period must be an int >= 8, "
+                             f"got {self.steps_per_period!r}")
+
+
+@dataclass(frozen=True, kw_only=True)
+class ZenoGuard:
+    """Stop a run when switches pile up: ``events`` of them within ``window`` periods.
+
+    Chattering and Zeno behaviour (infinitely many switches in finite time) otherwise make
+    an event-driven integrator crawl. The run stops with a ``SimulationError`` naming the
+    time and the interface.
+    """
+
+    events: int = 200
+    window: float = 1e-6
+
+    def __post_init__(self):
+        if isinstance(self.events, bool) or not isinstance(self.events, int) or self.events < 2:
+            raise ValueError(f"ZenoGuard.events must be an int >= 2, got {self.events!r}")
+        check_real("ZenoGuard", "window", self.window, low=0.0, low_open=True, unit="periods")
+
+
+def simulate(scene: Scene, periods: int, *, method: FixedStep = FixedStep(),
+             samples_per_period: int = 100, event_tolerance: float = 1e-10,
+             zeno: ZenoGuard = ZenoGuard(), initial=None,
+             event_capacity: int = 1_000_000) -> Simulation:
+    """Integrate ``scene`` over ``periods`` excitation periods T_e = 2π/(l Ω).
+
+    Every switch of an interface (contact closing or opening, slip velocity reaching zero,
+    breakaway) is located to within ``event_tolerance`` and the integration restarts there
+    in a consistent set of modes.
+
+    Parameters
+    ----------
+    scene : Scene
+    periods : int
+        Number of excitation periods, ≥ 1.
+    method : FixedStep
+        The integrator and its accuracy knob.
+    samples_per_period : int
+        Output samples per period; must divide the method's steps per period.
+    event_tolerance : float
+        Width of the time bracket of each located switch, in excitation periods.
+    zeno : ZenoGuard
+        When to stop a run whose switches pile up.
+    initial : (x0, v0), optional
+        Initial displacements [m] and velocities [m/s] by blade position; default at rest.
+    event_capacity : int
+        Most events kept in the log (counts stay exact beyond it).
+
+    Raises
+    ------
+    SimulationError
+        On Zeno or chattering behaviour, a mode set with no consistent choice, or a
+        non-finite state; the message names the time and the interface.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"simulate needs a shroudnet.Scene, got {scene!r}")
+    if isinstance(periods, bool) or not isinstance(periods, int) or periods < 1:
+        raise ValueError(f"periods must be an int >= 1, got {periods!r}")
+    if not isinstance(method, FixedStep):
+        raise TypeError(f"method must be FixedStep(...), got {method!r}")
+    steps = method.steps_per_period
+    if isinstance(samples_per_period, bool) or not isinstance(samples_per_period, int) \
+            or samples_per_period < 1 or steps % samples_per_period:
+        raise ValueError(f"samples_per_period must be an int dividing steps_per_period = "
+                         f"{steps}, got {samples_per_period!r}")
+    check_real("simulate", "event_tolerance", event_tolerance, low=0.0, low_open=True,
+               high=1e-3, unit="periods")
+    n = len(scene.blades)
+    x0, v0 = (np.zeros(n), np.zeros(n)) if initial is None else (
+        _initial(initial[0], n, "x0"), _initial(initial[1], n, "v0"))
+
+    period = scene.excitation_period
+    kernel = load_kernel(scene)
+    ks = kernel_scene(scene)
+    (status, t_stop, interface, t, x, v, normal, friction, modes, work, log_t, log_e, log_k,
+     counts) = kernel.run_fixed_step(
+        ks, x0, v0, 0.0, period / steps, periods * steps, steps // samples_per_period,
+        event_tolerance * period, zeno.events, zeno.window * period, event_capacity)
+    if status != _FINISHED:
+        raise SimulationError(_stop_message(scene, status, t_stop, interface, period, zeno))
+
+    events = EventLog(time=log_t, interface=log_e, kind=log_k,
+                      counts={k.name.lower(): int(counts[k]) for k in EventKind})
+    ledger = _ledger(scene, x, v, modes, work)
+    settings = {"method": type(method).__name__, **asdict(method), "periods": periods,
+                "samples_per_period": samples_per_period, "event_tolerance": event_tolerance,
+                "zeno": asdict(zeno)}
+    return Simulation(scene=scene, settings=settings, t=t, x=x, v=v, normal_force=normal,
+                      friction_force=friction, modes=modes, events=events, energy=ledger,
+                      work=work, samples_per_period=samples_per_period)
+
+
+def _initial(values, n, name):
+    array = np.asarray(values, dtype=float)
+    if array.shape != (n,) or not np.isfinite(array).all():
+        raise ValueError(f"initial {name} must hold {n} finite numbers, got {values!r}")
+    return array
+
+
+def _stop_message(scene, status, t, interface, period, zeno):
+    where = ""
+    if interface >= 0:
+        left, right, _ = scene.group.interfaces[interface]
+        where = f" on interface {interface} ({left!r}, {right!r})"
+    when = f"at t = {t:.9g} s (period {t / period:.6f})"
+    if status == _ZENO:
+        return (f"Zeno or chattering behaviour {when}{where}: {zeno.events} switches within "
+                f"{zeno.window:g} periods. Loosen the contact (smaller stiffness, some "
+                "damping), use a Regularised friction law, or widen ZenoGuard if this is "
+                "expected.")
+    if status == _INCONSISTENT:
+        return (f"no consistent set of stick and slip modes {when}{where}: the friction "
+                "limits of coupled stuck interfaces conflict.")
+    return f"the state became non-finite {when}{where}; reduce the step or the stiffness."
+
+
+def _contact_energy(law, penetration):
+    """∫₀^δ N(s, 0) ds [J] by 16-point Gauss–Legendre quadrature."""
+    nodes, weights = np.polynomial.legendre.leggauss(16)
+    s = 0.5 * penetration * (nodes + 1.0)
+    return 0.5 * penetration * sum(w * law(si, 0.0) for si, w in zip(s, weights))
+
+
+def _stored(scene, x, v, modes):
+    a = scene.arrays
+    kinetic = 0.5 * np.sum(a.mass * v * v)
+    strain = 0.5 * np.sum(a.stiffness * x * x)
+    u = np.where(a.left >= 0, x[a.left], 0.0) - np.where(a.right >= 0, x[a.right], 0.0)
+    penetration = (u - a.gap) * a.sin_angle
+    contact = sum(_contact_energy(law, penetration[e])
+                  for e, law in enumerate(a.normal_laws) if modes[e] != Mode.OPEN)
+    return kinetic + strain, contact
+
+
+def _ledger(scene, x, v, modes, work) -> EnergyLedger:
+    mechanical_0, contact_0 = _stored(scene, x[0], v[0], modes[0])
+    mechanical_1, contact_1 = _stored(scene, x[-1], v[-1], modes[-1])
+    excitation, damping, friction, contact_work, lock = work[-1] - work[0]
+    contact_stored = contact_1 - contact_0
+    stored = mechanical_1 - mechanical_0 + contact_stored
+    contact_loss = contact_work - contact_stored
+    friction_loss = friction + lock
+    residual = excitation - damping - friction_loss - contact_loss - stored
+    return EnergyLedger(excitation_work=float(excitation), damping_loss=float(damping),
+                        friction_loss=float(friction_loss), contact_loss=float(contact_loss),
+                        stored_change=float(stored), residual=float(residual))

@@ -1,0 +1,160 @@
+"""Trajectories: closed-form limits, convergence, energy balance, stick admissibility."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from contact_laws import Coulomb, ExponentialFriction, KelvinVoigt, LinearSpring
+from shroudnet import (Blade, BladeGroup, EventKind, Excitation, FixedStep, Interface, Mode,
+                       Scene, SimulationError, ZenoGuard, simulate)
+from shroudnet.scenes import three_blade_paper
+
+
+def linear_response(scene, t):
+    """Steady state of m ẍ + c ẋ + k x = q0 + q1 sin(ω t + φ) for every blade, in closed form."""
+    a = scene.arrays
+    w = a.excitation_frequency
+    q0, q1 = a.amplitudes[0], a.amplitudes[1]
+    amplitude = q1 / np.hypot(a.stiffness - a.mass * w**2, a.damping * w)
+    lag = np.arctan2(a.damping * w, a.stiffness - a.mass * w**2)
+    angle = w * np.asarray(t)[:, None] + a.phases - lag
+    return q0 / a.stiffness + amplitude * np.sin(angle), amplitude * w * np.cos(angle)
+
+
+def test_without_contact_each_blade_is_the_closed_form_linear_oscillator():
+    scene = three_blade_paper(gap=1.0, q1=50.0, speed_rpm=6000.0, q0=3.0)
+    x0, v0 = linear_response(scene, [0.0])
+    sim = simulate(scene, 20, method=FixedStep(steps_per_period=400),
+                   initial=(x0[0], v0[0]))
+    x, v = linear_response(scene, sim.t)
+    scale = np.abs(x).max()
+    assert np.abs(sim.x - x).max() < 1e-6 * scale
+    assert np.abs(sim.v - v).max() < 1e-6 * np.abs(v).max()
+    assert sum(sim.events.counts.values()) == 0
+
+
+def test_fixed_step_scheme_converges_with_fourth_order():
+    """Largest error over every sample against the closed form: it falls as h⁴."""
+    scene = three_blade_paper(gap=1.0, q1=50.0, speed_rpm=5000.0)
+    x0, v0 = linear_response(scene, [0.0])
+    errors = []
+    for n in [16, 32, 64, 128]:
+        sim = simulate(scene, 3, method=FixedStep(steps_per_period=n), samples_per_period=16,
+                       initial=(x0[0], v0[0]))
+        errors.append(np.abs(sim.x - linear_response(scene, sim.t)[0]).max())
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all((orders > 3.6) & (orders < 4.4)), orders
+
+
+def test_paper_run_logs_its_events_and_closes_the_energy_ledger():
+    scene = three_blade_paper(gamma1=2.2, speed_rpm=6000.0, q1=50.0)
+    sim = simulate(scene, 30)
+    counts = sim.events.counts
+    assert counts["closing"] > 0 and counts["separation"] > 0 and counts["reversal"] > 0
+    assert len(sim.events) == sum(counts.values())
+    assert np.all(np.diff(sim.events.time) >= 0)
+    ledger = sim.energy
+    assert all(math.isfinite(value) for value in vars(ledger).values())
+    assert ledger.friction_loss > 0 and ledger.damping_loss > 0
+    assert abs(ledger.residual) < 1e-6 * ledger.friction_loss
+    assert np.isfinite(sim.x).all() and np.isfinite(sim.friction_force).all()
+
+
+def _sticky_scene(alpha=0.3, mu=0.8, q1=20.0, n=3):
+    """μ_s above tan α, so that interfaces stick (DESIGN §5)."""
+    blade = Blade(mass=0.082, damping=4.0, stiffness=1.5e5)
+    shroud = Interface(gap=-5e-6, angle=alpha, normal=LinearSpring(stiffness=3e5),
+                       friction=Coulomb(mu=mu))
+    excitation = Excitation(engine_order=2, amplitudes=(0.0, q1), phases=[0.0, 2.0, 4.0][:n])
+    return Scene(group=BladeGroup.chain(n, blade, shroud), excitation=excitation,
+                 speed_rpm=6000.0)
+
+
+def test_stuck_interfaces_respect_the_friction_limit_and_slip_follows_its_mode():
+    sim = simulate(_sticky_scene(), 30, method=FixedStep(steps_per_period=1000),
+                   samples_per_period=1000)
+    counts = sim.events.counts
+    assert counts["sticking"] > 0 and counts["breakaway"] > 0
+    a = sim.scene.arrays
+    stuck = sim.modes == Mode.STICK
+    limit = a.static_mu * sim.normal_force
+    assert np.all(np.abs(sim.friction_force[stuck]) <= limit[stuck] * (1 + 1e-6) + 1e-12)
+    du = (np.where(a.left >= 0, sim.v[:, a.left], 0.0)
+          - np.where(a.right >= 0, sim.v[:, a.right], 0.0))
+    slip = du * a.cos_angle
+    vscale = np.abs(slip).max()
+    assert np.all(slip[sim.modes == Mode.SLIP_POSITIVE] >= -1e-6 * vscale)
+    assert np.all(slip[sim.modes == Mode.SLIP_NEGATIVE] <= 1e-6 * vscale)
+    assert np.all(np.abs(slip[stuck]) <= 1e-12 * vscale)
+    assert abs(sim.energy.residual) < 1e-6 * sim.energy.friction_loss
+
+
+@settings(max_examples=6, deadline=None)
+@given(n=st.integers(2, 4), ring=st.booleans(), alpha=st.floats(0.1, 1.4),
+       mu=st.floats(0.1, 1.5), q1=st.floats(5.0, 60.0), gap=st.floats(-5e-6, 2e-5),
+       damped=st.booleans(), exponential=st.booleans())
+def test_energy_ledger_closes_for_random_groups(n, ring, alpha, mu, q1, gap, damped,
+                                                exponential):
+    blade = Blade(mass=0.08, damping=3.0, stiffness=1.5e5)
+    normal = KelvinVoigt(stiffness=4e5, damping=30.0) if damped else LinearSpring(stiffness=4e5)
+    friction = (ExponentialFriction(mu_static=mu, mu_kinetic=0.6 * mu, beta=5.0)
+                if exponential else Coulomb(mu=mu))
+    shroud = Interface(gap=gap, angle=alpha, normal=normal, friction=friction)
+    n = max(n, 3) if ring else n
+    group = (BladeGroup.ring if ring else BladeGroup.chain)(n, blade, shroud)
+    excitation = Excitation(engine_order=2, amplitudes=(0.0, q1),
+                            phases=list(np.linspace(0.0, 5.0, n)))
+    sim = simulate(Scene(group=group, excitation=excitation, speed_rpm=6000.0), 10,
+                   method=FixedStep(steps_per_period=1000))
+    ledger = sim.energy
+    dissipated = ledger.damping_loss + ledger.friction_loss + ledger.contact_loss
+    assert abs(ledger.residual) < 1e-6 * dissipated
+    if damped and sum(sim.events.counts.values()):
+        assert ledger.contact_loss >= -1e-9
+
+
+def test_poincare_and_energy_density_of_a_linear_response():
+    scene = three_blade_paper(gap=1.0, q1=50.0)
+    x0, v0 = linear_response(scene, [0.0])
+    sim = simulate(scene, 12, initial=(x0[0], v0[0]), samples_per_period=50,
+                   method=FixedStep(steps_per_period=500))
+    points = sim.poincare("blade2", skip=2)
+    assert points.shape == (11, 2)
+    for column in (0, 1):
+        spread = np.ptp(points[:, column])
+        assert spread < 1e-6 * np.abs(points[:, column]).max()
+    amplitude = np.hypot(x0[0][1], v0[0][1] / scene.arrays.excitation_frequency)
+    # The mean square of a sinusoid over whole periods is half its amplitude squared.
+    assert sim.energy_density(1, skip=2) == pytest.approx(amplitude**2 / 2, rel=1e-6)
+    with pytest.raises(ValueError, match="skip must be in"):
+        sim.poincare(1, skip=13)
+    assert sim.poincare(1, skip=12).shape == (1, 2)
+
+
+def test_zeno_guard_stops_with_the_time_and_the_interface():
+    scene = three_blade_paper(gamma1=2.2, speed_rpm=6000.0, q1=50.0)
+    with pytest.raises(SimulationError, match=r"Zeno or chattering behaviour at t = .* "
+                                              r"on interface \d \('blade\d', 'blade\d'\)"):
+        simulate(scene, 20, zeno=ZenoGuard(events=3, window=0.9))
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(periods=0), r"periods must be an int >= 1"),
+    (dict(periods=2, samples_per_period=7), r"samples_per_period must be an int dividing"),
+    (dict(periods=2, event_tolerance=0.0), r"simulate\.event_tolerance must be in \(0"),
+    (dict(periods=2, initial=([0.0], [0.0])), r"initial x0 must hold 3 finite numbers"),
+])
+def test_bad_arguments_fail_before_any_work(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        simulate(three_blade_paper(), **kwargs)
+
+
+def test_method_knobs_are_checked():
+    with pytest.raises(ValueError, match=r"FixedStep\.steps_per_period must be an int >= 8"):
+        FixedStep(steps_per_period=4)
+    with pytest.raises(ValueError, match=r"ZenoGuard\.events must be an int >= 2"):
+        ZenoGuard(events=1)
+    assert EventKind.BREAKAWAY.name == "BREAKAWAY"
