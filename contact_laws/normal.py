@@ -5,7 +5,6 @@ Each ``normal_force`` is called only while the contact is closed (penetration δ
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import ClassVar
 

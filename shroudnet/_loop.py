@@ -259,7 +259,7 @@ def resolve(t, x, v, modes, contact_before, motion_before, s, w):
 
 
 @njit(cache=True)
-def initial_modes(t, x, v, s, w):
+def initial_modes(x, v, s, w):
     """Modes at the start: closed where δ > 0 (or the law never opens), stuck where possible."""
     modes = np.zeros(len(s.gap), dtype=np.int64)
     interface_kinematics(x, v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
@@ -338,7 +338,7 @@ def run_fixed_step(s, x0, v0, t0, step, n_steps, steps_per_sample, event_toleran
     v_new = np.empty(n_blades)
     energy = np.zeros(5)  # excitation, damping, friction, contact work; projection loss [J]
     step_energy = np.zeros(4)
-    modes, candidates = initial_modes(t0, x, v, s, w)
+    modes, candidates = initial_modes(x, v, s, w)
     status, lost, topology = settle(t0, x, v, modes, candidates, s, w)
     energy[4] += lost
     evaluate_guards(t0, x, v, modes, topology, s, w)
