@@ -11,6 +11,7 @@ by numba with its on-disk cache, so a second process does not compile again.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import importlib.util
 import inspect
@@ -94,19 +95,27 @@ def _flags(arrays) -> dict[str, bool]:
     }
 
 
-def _exact_frictions(arrays):
-    return [f.exact for f in arrays.friction_laws if f is not None]
+def _law_classes(arrays) -> tuple[list[type], list[type]]:
+    """The scene's normal and (exact) friction law classes, in the kernel's index order."""
+    frictions = [f.exact for f in arrays.friction_laws if f is not None]
+    return _classes(arrays.normal_laws), _classes(frictions)
+
+
+@functools.cache
+def _loop_sources() -> tuple[str, str]:
+    """The loop's source, and everything compiled into it (read once per process)."""
+    loop = _LOOP_SOURCE.read_text()
+    compiled_in = "\n".join(inspect.getsource(m) for m in (dynamics, clusters, kernel_types))
+    return loop, compiled_in
 
 
 def load_kernel(scene: Scene) -> ModuleType:
     """The compiled kernel module for the laws and effects of ``scene``."""
     arrays = scene.arrays
-    normal_classes = _classes(arrays.normal_laws)
-    friction_classes = _classes(_exact_frictions(arrays))
-    flags = _flags(arrays)
-    source = _header(normal_classes, friction_classes, flags) + _LOOP_SOURCE.read_text()
-    identity = "\n".join([source, inspect.getsource(dynamics), inspect.getsource(clusters),
-                          inspect.getsource(kernel_types)]
+    normal_classes, friction_classes = _law_classes(arrays)
+    loop, compiled_in = _loop_sources()
+    source = _header(normal_classes, friction_classes, _flags(arrays)) + loop
+    identity = "\n".join([source, compiled_in]
                          + [_signature(c, "normal") for c in normal_classes]
                          + [_signature(c, "friction") for c in friction_classes])
     key = hashlib.sha256(identity.encode()).hexdigest()[:20]
@@ -124,10 +133,9 @@ def load_kernel(scene: Scene) -> ModuleType:
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module
     spec.loader.exec_module(module)
-    for index, law_class in enumerate(normal_classes):
-        setattr(module, f"_normal_{index}", njit(law_class.normal_force))
-    for index, law_class in enumerate(friction_classes):
-        setattr(module, f"_friction_{index}", njit(law_class.coefficient))
+    for kind, classes in (("normal", normal_classes), ("friction", friction_classes)):
+        for index, law_class in enumerate(classes):
+            setattr(module, f"_{kind}_{index}", njit(_law_function(law_class, kind)))
     _LOADED[key] = module
     return module
 
@@ -135,8 +143,7 @@ def load_kernel(scene: Scene) -> ModuleType:
 def kernel_scene(scene: Scene) -> KernelScene:
     """The scene's arrays with each law given as (index of its class, parameter row)."""
     a = scene.arrays
-    normal_classes = _classes(a.normal_laws)
-    friction_classes = _classes(_exact_frictions(a))
+    normal_classes, friction_classes = _law_classes(a)
     normal_kind = np.array([normal_classes.index(type(law)) for law in a.normal_laws],
                            dtype=np.int64)
     friction_kind = np.array([-1 if f is None else friction_classes.index(type(f.exact))

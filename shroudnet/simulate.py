@@ -8,12 +8,11 @@ import numpy as np
 
 from contact_laws import check_real
 
+from .dynamics import interface_kinematics
 from .kernel import kernel_scene, load_kernel
 from .modes import Mode
 from .scene import Scene
 from .simulation import EnergyLedger, EventKind, EventLog, Simulation, SimulationError
-
-_FINISHED, _ZENO, _INCONSISTENT, _NOT_FINITE = 0, 1, 2, 3
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -113,8 +112,9 @@ def simulate(scene: Scene, periods: int, *, method: FixedStep = FixedStep(),
      counts) = kernel.run_fixed_step(
         ks, x0, v0, 0.0, period / steps, periods * steps, steps // samples_per_period,
         event_tolerance * period, zeno.events, zeno.window * period, event_capacity)
-    if status != _FINISHED:
-        raise SimulationError(_stop_message(scene, status, t_stop, interface, period, zeno))
+    if status != kernel.FINISHED:
+        raise SimulationError(_stop_message(kernel, scene, status, t_stop, interface, period,
+                                            zeno))
 
     events = EventLog(time=log_t, interface=log_e, kind=log_k,
                       counts={k.name.lower(): int(counts[k]) for k in EventKind})
@@ -134,18 +134,18 @@ def _initial(values, n, name):
     return array
 
 
-def _stop_message(scene, status, t, interface, period, zeno):
+def _stop_message(kernel, scene, status, t, interface, period, zeno):
     where = ""
     if interface >= 0:
         left, right, _ = scene.group.interfaces[interface]
         where = f" on interface {interface} ({left!r}, {right!r})"
     when = f"at t = {t:.9g} s (period {t / period:.6f})"
-    if status == _ZENO:
+    if status == kernel.ZENO:
         return (f"Zeno or chattering behaviour {when}{where}: {zeno.events} switches within "
                 f"{zeno.window:g} periods. Loosen the contact (smaller stiffness, some "
                 "damping), use a Regularised friction law, or widen ZenoGuard if this is "
                 "expected.")
-    if status == _INCONSISTENT:
+    if status == kernel.INCONSISTENT:
         return (f"no consistent set of stick and slip modes {when}{where}: the friction "
                 "limits of coupled stuck interfaces conflict.")
     return f"the state became non-finite {when}{where}; reduce the step or the stiffness."
@@ -162,8 +162,9 @@ def _stored(scene, x, v, modes):
     a = scene.arrays
     kinetic = 0.5 * np.sum(a.mass * v * v)
     strain = 0.5 * np.sum(a.stiffness * x * x)
-    u = np.where(a.left >= 0, x[a.left], 0.0) - np.where(a.right >= 0, x[a.right], 0.0)
-    penetration = (u - a.gap) * a.sin_angle
+    penetration, rate, slip = (np.empty(a.n_interfaces) for _ in range(3))
+    interface_kinematics(x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle,
+                         penetration, rate, slip)
     contact = sum(_contact_energy(law, penetration[e])
                   for e, law in enumerate(a.normal_laws) if modes[e] != Mode.OPEN)
     return kinetic + strain, contact
