@@ -42,6 +42,7 @@ from .interface import Interface as Interface
 from .modes import Mode as Mode
 from .scene import Scene as Scene
 from .scene import SceneArrays as SceneArrays
+from .simulate import Adaptive as Adaptive
 from .simulate import FixedStep as FixedStep
 from .simulate import ZenoGuard as ZenoGuard
 from .simulate import simulate as simulate

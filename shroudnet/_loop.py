@@ -1,4 +1,4 @@
-"""The event-driven integration loop, compiled once per combination of laws and effects.
+"""The event-driven integration loops, compiled once per combination of laws and effects.
 
 This file is not imported as it stands. ``shroudnet.kernel`` writes a module made of a
 generated header followed by this source, so that numba can cache it on disk. The header
@@ -10,10 +10,17 @@ defines, for the laws present in a scene:
   ``HAS_REGULARISED``, compile-time constants that remove the code of absent effects.
 
 A step reads as five phases: advance (one Runge–Kutta step with fixed modes), detect (a
-guard of ``event_guards`` changed sign), locate (bisection on the step size to within the
-event tolerance, keeping the end just past the switch), resolve (the new consistent set of
-modes) and regroup (stick clusters, the static friction operator, and one velocity for each
-cluster).
+guard of ``event_guards`` changed sign), locate (bisection to within the event tolerance,
+keeping the end just past the switch), resolve (the new consistent set of modes) and
+regroup (stick clusters, the static friction operator, and one velocity for each cluster).
+Two drivers share everything but the advance and the state inside a step:
+``run_fixed_step`` (classical RK4 on a grid; a state inside a step is integrated anew) and
+``run_adaptive`` (Dormand–Prince 5(4) with error control; a state inside a step comes from
+its dense output).
+
+The state carries, beside x and ẋ, the work done so far: excitation, damping, friction and
+contact work from the powers ``derivative`` returns (integrated by the same Runge–Kutta
+weights), and the kinetic energy removed when velocities are projected onto stick clusters.
 """
 
 import math
@@ -22,25 +29,81 @@ import numpy as np
 from numba import njit
 
 from shroudnet.clusters import cluster_labels
+from shroudnet.compiled import njit_without_refcounts
 from shroudnet.dynamics import (cluster_accelerations, cluster_mass, event_guards,
                                 excitation_forces, interface_kinematics, resultant_forces,
                                 static_friction, static_friction_operator)
-from shroudnet.kernel_types import Topology, Work
+from shroudnet.kernel_types import Events, Output, Topology, Work
 
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = 0, 1, 2, 3
 CLOSING, SEPARATION, STICKING, REVERSAL, BREAKAWAY = 0, 1, 2, 3, 4
-FINISHED, ZENO, INCONSISTENT, NOT_FINITE = 0, 1, 2, 3
+FINISHED, ZENO, INCONSISTENT, NOT_FINITE, STEP_TOO_SMALL = 0, 1, 2, 3, 4
 
 #: Relative slack on |f| ≤ μ_s N when a mode set is settled.
 FRICTION_SLACK = 1e-9
+#: Work columns of the state: excitation, damping, friction, contact; then projection loss.
+N_POWERS = 4
+N_WORK = 5
 
+# Dormand–Prince 5(4) (Dormand & Prince 1980) with Shampine's dense output of order 4,
+# as in Hairer, Nørsett & Wanner, Solving ODEs I, §II.5–6.
+DP_C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0])
+DP_A = np.array([
+    [0.0, 0.0, 0.0, 0.0, 0.0],
+    [1 / 5, 0.0, 0.0, 0.0, 0.0],
+    [3 / 40, 9 / 40, 0.0, 0.0, 0.0],
+    [44 / 45, -56 / 15, 32 / 9, 0.0, 0.0],
+    [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0],
+    [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656],
+])
+DP_B = np.array([35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84, 0.0])
+#: Fifth- minus fourth-order weights: the local error estimate is h Σ DP_E_j k_j.
+DP_E = np.array([-71 / 57600, 0.0, 71 / 16695, -71 / 1920, 17253 / 339200, -22 / 525,
+                 1 / 40])
+#: Dense output: y(t + θh) = y + h Σ_j k_j Σ_p DP_P[j, p] θ^(p+1).
+DP_P = np.array([
+    [1.0, -8048581381 / 2820520608, 8663915743 / 2820520608, -12715105075 / 11282082432],
+    [0.0, 0.0, 0.0, 0.0],
+    [0.0, 131558114200 / 32700410799, -68118460800 / 10900136933,
+     87487479700 / 32700410799],
+    [0.0, -1754552775 / 470086768, 14199869525 / 1410260304, -10690763975 / 1880347072],
+    [0.0, 127303824393 / 49829197408, -318862633887 / 49829197408,
+     701980252875 / 199316789632],
+    [0.0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
+    [0.0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423],
+])
+#: Points inside an adaptive step where the kinematic guards are checked, so that a contact
+#: that closes and opens again within one step is not missed.
+DIP_POINTS = np.array([0.25, 0.5, 0.75])
+
+
+# ---- allocation (once per run or per mode change) -------------------------------------
 
 @njit(cache=True)
 def new_work(n_blades, n_interfaces):
     b, m = n_blades, n_interfaces
-    return Work(np.empty(b), np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m),
-                np.empty(m), np.empty(b), np.empty(b), np.empty(m), np.empty(m),
-                np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b))
+    return Work(np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b),
+                np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b),
+                np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m),
+                np.empty(m), np.empty(m),
+                np.zeros((7, b)), np.zeros((7, b)), np.zeros((7, N_POWERS)),
+                np.zeros(N_WORK), np.zeros(N_WORK))
+
+
+@njit(cache=True)
+def new_events(capacity, zeno_events):
+    return Events(np.empty(capacity), np.empty(capacity, dtype=np.int64),
+                  np.empty(capacity, dtype=np.int8), np.zeros(5, dtype=np.int64),
+                  np.full(max(zeno_events, 1), -np.inf), np.zeros(1, dtype=np.int64))
+
+
+@njit(cache=True)
+def new_output(n_samples, n_blades, n_interfaces):
+    return Output(np.empty(n_samples), np.empty((n_samples, n_blades)),
+                  np.empty((n_samples, n_blades)), np.empty((n_samples, n_interfaces)),
+                  np.empty((n_samples, n_interfaces)),
+                  np.empty((n_samples, n_interfaces), dtype=np.int8),
+                  np.empty((n_samples, N_WORK)))
 
 
 @njit(cache=True)
@@ -54,7 +117,9 @@ def regroup(s, modes):
                     operator, stuck_interfaces)
 
 
-@njit(cache=True)
+# ---- the right-hand side and the guards (every stage of every step) -------------------
+
+@njit_without_refcounts
 def law_forces(s, modes, w):
     """N and sliding f on every interface from its laws, into w.normal and w.friction."""
     for e in range(len(modes)):
@@ -77,7 +142,7 @@ def law_forces(s, modes, w):
             w.friction[e] = -sliding
 
 
-@njit(cache=True)
+@njit_without_refcounts
 def derivative(t, x, v, modes, topology, s, w, acceleration):
     """ẍ into ``acceleration``; returns the powers (excitation, damping, friction, contact) [W].
 
@@ -90,7 +155,8 @@ def derivative(t, x, v, modes, topology, s, w, acceleration):
     law_forces(s, modes, w)
     for e in range(len(modes)):
         w.force[e] = w.normal[e] * s.sin_angle[e] + w.friction[e] * s.cos_angle[e]
-    excitation_forces(t, s.amplitudes, s.phases, s.excitation_frequency, w.q)
+    excitation_forces(t, s.amplitudes, s.cos_phase, s.sin_phase, s.excitation_frequency,
+                      w.q)
     resultant_forces(x, v, w.q, s.damping, s.stiffness, s.left, s.right, w.force,
                      topology.stuck, w.resultant)
     cluster_accelerations(w.resultant, topology.labels, topology.grounded, topology.masses,
@@ -108,26 +174,35 @@ def derivative(t, x, v, modes, topology, s, w, acceleration):
     return excitation, damping, friction, contact
 
 
-@njit(cache=True)
-def evaluate_guards(t, x, v, modes, topology, s, w):
-    """Forces, static friction and guards at a point, into w (friction includes static)."""
-    derivative(t, x, v, modes, topology, s, w, w.a1)
+@njit_without_refcounts
+def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
+    """``derivative``, then static friction and guards into w (w.friction includes static).
+
+    Returns the powers, as ``derivative``.
+    """
+    powers = derivative(t, x, v, modes, topology, s, w, acceleration)
     if HAS_STICK and len(topology.stuck_interfaces) > 0:
-        static = static_friction(topology.operator, topology.stuck_interfaces, s.mass,
-                                 w.resultant, w.a1, w.normal, s.sin_angle, s.left, s.right)
-        for e in topology.stuck_interfaces:
-            w.friction[e] = static[e]
+        static_friction(topology.operator, topology.stuck_interfaces, s.mass, w.resultant,
+                        acceleration, w.normal, s.sin_angle, s.left, s.right, w.imbalance,
+                        w.friction)
     event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu, s.opens,
                  s.can_stick, w.contact, w.motion)
+    return powers
 
 
-@njit(cache=True)
+@njit_without_refcounts
+def set_powers(row, powers):
+    for k in range(N_POWERS):
+        row[k] = powers[k]
+
+
+@njit_without_refcounts
 def crossed(before, after):
     """A guard changed sign: it is negative now and was not, or it fell further below zero."""
     return after < 0.0 and (before >= 0.0 or after < before)
 
 
-@njit(cache=True)
+@njit_without_refcounts
 def any_crossed(contact_before, motion_before, w):
     for e in range(len(contact_before)):
         if crossed(contact_before[e], w.contact[e]) or crossed(motion_before[e], w.motion[e]):
@@ -135,32 +210,152 @@ def any_crossed(contact_before, motion_before, w):
     return False
 
 
-@njit(cache=True)
-def rk4_step(t, x, v, h, modes, topology, s, w, x_out, v_out, energy):
-    """One classical Runge–Kutta step of size h with fixed modes; adds work done to energy."""
-    a1, a2, a3, a4, xt, vt = w.a1, w.a2, w.a3, w.a4, w.xt, w.vt
-    p1 = derivative(t, x, v, modes, topology, s, w, a1)
+# ---- fixed step: classical Runge–Kutta --------------------------------------------------
+
+@njit_without_refcounts
+def rk4_step(t, x, v, energy, h, modes, topology, s, w, x_out, v_out, energy_out):
+    """One classical Runge–Kutta step of size h with fixed modes, into the ``_out`` arrays.
+
+    The first stage is the acceleration and powers at (t, x, v) held in w.a_start and
+    w.stage_p[0], so a step costs three evaluations of ``derivative`` (plus the guards at
+    its end).
+    """
+    a1, a2, a3, a4 = w.a_start, w.stage_a[1], w.stage_a[2], w.stage_a[3]
+    xt, vt, p = w.xt, w.vt, w.stage_p
     for i in range(len(x)):
         xt[i] = x[i] + 0.5 * h * v[i]
         vt[i] = v[i] + 0.5 * h * a1[i]
-    p2 = derivative(t + 0.5 * h, xt, vt, modes, topology, s, w, a2)
+    set_powers(p[1], derivative(t + 0.5 * h, xt, vt, modes, topology, s, w, a2))
     for i in range(len(x)):
         xt[i] = x[i] + 0.5 * h * (v[i] + 0.5 * h * a1[i])
         vt[i] = v[i] + 0.5 * h * a2[i]
-    p3 = derivative(t + 0.5 * h, xt, vt, modes, topology, s, w, a3)
+    set_powers(p[2], derivative(t + 0.5 * h, xt, vt, modes, topology, s, w, a3))
     for i in range(len(x)):
         xt[i] = x[i] + h * (v[i] + 0.5 * h * a2[i])
         vt[i] = v[i] + h * a3[i]
-    p4 = derivative(t + h, xt, vt, modes, topology, s, w, a4)
+    set_powers(p[3], derivative(t + h, xt, vt, modes, topology, s, w, a4))
     for i in range(len(x)):
         v2 = v[i] + 0.5 * h * a1[i]
         v3 = v[i] + 0.5 * h * a2[i]
         v4 = v[i] + h * a3[i]
         x_out[i] = x[i] + h / 6.0 * (v[i] + 2.0 * v2 + 2.0 * v3 + v4)
         v_out[i] = v[i] + h / 6.0 * (a1[i] + 2.0 * a2[i] + 2.0 * a3[i] + a4[i])
-    for k in range(4):
-        energy[k] += h / 6.0 * (p1[k] + 2.0 * p2[k] + 2.0 * p3[k] + p4[k])
+    for k in range(N_POWERS):
+        energy_out[k] = energy[k] + h / 6.0 * (p[0, k] + 2.0 * p[1, k] + 2.0 * p[2, k]
+                                               + p[3, k])
+    energy_out[N_POWERS] = energy[N_POWERS]
 
+
+# ---- adaptive step: Dormand–Prince 5(4) -------------------------------------------------
+
+@njit_without_refcounts
+def dp5_step(t, x, v, energy, h, modes, topology, s, w, rtol, atol_x, atol_v):
+    """One Dormand–Prince step of size h: the new state into w.x_new, w.v_new, w.e_new.
+
+    Stage 1 is w.a_start / w.stage_p[0] (first same as last); stage 7 is evaluated with
+    the guards at the step's end, into w.a_end. Returns the RMS of the local error over
+    x and ẋ scaled by atol + rtol·|y| (≤ 1 accepts the step).
+    """
+    n = len(x)
+    sv, sa, sp = w.stage_v, w.stage_a, w.stage_p
+    for i in range(n):
+        sv[0, i] = v[i]
+        sa[0, i] = w.a_start[i]
+    for j in range(1, 6):
+        for i in range(n):
+            dx = 0.0
+            dv = 0.0
+            for k in range(j):
+                dx += DP_A[j, k] * sv[k, i]
+                dv += DP_A[j, k] * sa[k, i]
+            w.xt[i] = x[i] + h * dx
+            w.vt[i] = v[i] + h * dv
+            sv[j, i] = w.vt[i]
+        set_powers(sp[j], derivative(t + DP_C[j] * h, w.xt, w.vt, modes, topology, s, w,
+                                     sa[j]))
+    for i in range(n):
+        dx = 0.0
+        dv = 0.0
+        for k in range(6):
+            dx += DP_B[k] * sv[k, i]
+            dv += DP_B[k] * sa[k, i]
+        w.x_new[i] = x[i] + h * dx
+        w.v_new[i] = v[i] + h * dv
+        sv[6, i] = w.v_new[i]
+    for c in range(N_POWERS):
+        de = 0.0
+        for k in range(6):
+            de += DP_B[k] * sp[k, c]
+        w.e_new[c] = energy[c] + h * de
+    w.e_new[N_POWERS] = energy[N_POWERS]
+    set_powers(sp[6], evaluate_guards(t + h, w.x_new, w.v_new, modes, topology, s, w,
+                                      w.a_end))
+    for i in range(n):
+        sa[6, i] = w.a_end[i]
+    error = 0.0
+    for i in range(n):
+        ex = 0.0
+        ev = 0.0
+        for k in range(7):
+            ex += DP_E[k] * sv[k, i]
+            ev += DP_E[k] * sa[k, i]
+        scale_x = atol_x + rtol * max(abs(x[i]), abs(w.x_new[i]))
+        scale_v = atol_v + rtol * max(abs(v[i]), abs(w.v_new[i]))
+        error += (h * ex / scale_x) ** 2 + (h * ev / scale_v) ** 2
+    return math.sqrt(error / (2 * n))
+
+
+@njit_without_refcounts
+def dense_state(theta, h, x, v, energy, w, x_out, v_out, energy_out):
+    """The state at t + θh from the dense output of the last ``dp5_step``."""
+    b0 = theta
+    b1 = theta * theta
+    b2 = b1 * theta
+    b3 = b2 * theta
+    sv, sa, sp = w.stage_v, w.stage_a, w.stage_p
+    for i in range(len(x)):
+        dx = 0.0
+        dv = 0.0
+        for k in range(7):
+            weight = DP_P[k, 0] * b0 + DP_P[k, 1] * b1 + DP_P[k, 2] * b2 + DP_P[k, 3] * b3
+            dx += weight * sv[k, i]
+            dv += weight * sa[k, i]
+        x_out[i] = x[i] + h * dx
+        v_out[i] = v[i] + h * dv
+    for c in range(N_POWERS):
+        de = 0.0
+        for k in range(7):
+            weight = DP_P[k, 0] * b0 + DP_P[k, 1] * b1 + DP_P[k, 2] * b2 + DP_P[k, 3] * b3
+            de += weight * sp[k, c]
+        energy_out[c] = energy[c] + h * de
+    energy_out[N_POWERS] = energy[N_POWERS]
+
+
+@njit_without_refcounts
+def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
+    """The first of ``DIP_POINTS`` at which a contact or slip guard has crossed, else 2.
+
+    Contact closing and opening, and the slip velocity of a sliding interface, are
+    functions of the state alone, so they are checked on the dense output without
+    evaluating forces.
+    """
+    for theta in DIP_POINTS:
+        dense_state(theta, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
+        interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
+                             w.penetration, w.rate, w.slip)
+        for e in range(len(modes)):
+            if s.opens[e]:
+                guard = -w.penetration[e] if modes[e] == OPEN else w.penetration[e]
+                if crossed(contact_before[e], guard):
+                    return theta
+            if s.can_stick[e] and (modes[e] == SLIP_POSITIVE or modes[e] == SLIP_NEGATIVE):
+                guard = w.slip[e] if modes[e] == SLIP_POSITIVE else -w.slip[e]
+                if crossed(motion_before[e], guard):
+                    return theta
+    return 2.0
+
+
+# ---- resolving a switch (allocates: once per event) -------------------------------------
 
 @njit(cache=True)
 def project_velocities(s, topology, v):
@@ -214,7 +409,7 @@ def settle(t, x, v, modes, candidates, s, w):
         topology = regroup(s, modes)
         v_trial[:] = v
         lost = project_velocities(s, topology, v_trial)
-        evaluate_guards(t, x, v_trial, modes, topology, s, w)
+        evaluate_guards(t, x, v_trial, modes, topology, s, w, w.a_end)
         worst = -1
         worst_ratio = 1.0 + FRICTION_SLACK
         for e in topology.stuck_interfaces:
@@ -231,7 +426,7 @@ def settle(t, x, v, modes, candidates, s, w):
         for e in range(n):
             if candidates[e] and modes[e] != STICK and not tried[e]:
                 direction = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
-                if direction * relative_acceleration(s, e, w.a1) < 0.0:
+                if direction * relative_acceleration(s, e, w.a_end) < 0.0:
                     restick = e
                     break
         if restick < 0:
@@ -290,21 +485,181 @@ def event_kind(before, after):
 
 
 @njit(cache=True)
-def log_switches(t, old, modes, log, counts, recent, n_events):
-    """Record every interface whose mode changed; returns (n_events, the last one's index)."""
+def log_switches(t, old, modes, events):
+    """Record every interface whose mode changed; returns the last one's index (or −1)."""
     last = -1
     for e in range(len(modes)):
         if modes[e] != old[e]:
             kind = event_kind(old[e], modes[e])
-            counts[kind] += 1
-            if n_events < len(log[0]):
-                log[0][n_events] = t
-                log[1][n_events] = e
-                log[2][n_events] = kind
-            n_events += 1
-            recent[n_events % len(recent)] = t
+            events.counts[kind] += 1
+            n = events.n_events[0]
+            if n < len(events.time):
+                events.time[n] = t
+                events.interface[n] = e
+                events.kind[n] = kind
+            events.n_events[0] = n + 1
+            events.recent[(n + 1) % len(events.recent)] = t
             last = e
-    return n_events, last
+    return last
+
+
+@njit(cache=True)
+def switch(t, x, v, energy, modes, contact_before, motion_before, s, w, events, zeno_events,
+           zeno_window):
+    """Resolve the switch located at (t, x, v), log it and restart there.
+
+    On return the guards at the restart are in contact_before / motion_before and its
+    acceleration and powers in w.a_start / w.stage_p[0]. Returns (status, the interface
+    that stopped the run or −1, topology).
+    """
+    old = modes.copy()
+    status, lost, topology = resolve(t, x, v, modes, contact_before, motion_before, s, w)
+    energy[N_POWERS] += lost
+    last = log_switches(t, old, modes, events)
+    stop_interface = -1
+    if status != FINISHED:
+        stop_interface = last
+    elif zeno_events > 0 and t - events.recent[(events.n_events[0] + 1)
+                                               % len(events.recent)] < zeno_window:
+        status = ZENO
+        stop_interface = last
+    start(t, x, v, modes, topology, s, w, contact_before, motion_before)
+    return status, stop_interface, topology
+
+
+@njit_without_refcounts
+def start(t, x, v, modes, topology, s, w, contact_before, motion_before):
+    """Evaluate the first stage and the guards at a (re)start point."""
+    set_powers(w.stage_p[0], evaluate_guards(t, x, v, modes, topology, s, w, w.a_start))
+    for e in range(len(modes)):
+        contact_before[e] = w.contact[e]
+        motion_before[e] = w.motion[e]
+
+
+@njit_without_refcounts
+def record(out, k, t, x, v, modes, energy, w):
+    """Sample k of the output: the state and the forces last evaluated into w."""
+    out.t[k] = t
+    for i in range(len(x)):
+        out.x[k, i] = x[i]
+        out.v[k, i] = v[i]
+    for e in range(len(modes)):
+        out.normal[k, e] = w.normal[e]
+        out.friction[k, e] = w.friction[e]
+        out.modes[k, e] = modes[e]
+    for c in range(N_WORK):
+        out.energy[k, c] = energy[c]
+
+
+@njit_without_refcounts
+def is_finite(x, v):
+    for i in range(len(x)):
+        if not (math.isfinite(x[i]) and math.isfinite(v[i])):
+            return False
+    return True
+
+
+@njit(cache=True)
+def begin(s, x0, v0, t0, n_samples, event_capacity, zeno_events):
+    """Everything a driver needs at t0: work arrays, output, log, modes, state, energy."""
+    n_blades, n_interfaces = len(s.mass), len(s.gap)
+    w = new_work(n_blades, n_interfaces)
+    out = new_output(n_samples, n_blades, n_interfaces)
+    events = new_events(event_capacity, zeno_events)
+    x = x0.copy()
+    v = v0.copy()
+    energy = np.zeros(N_WORK)
+    modes, candidates = initial_modes(x, v, s, w)
+    status, lost, topology = settle(t0, x, v, modes, candidates, s, w)
+    energy[N_POWERS] += lost
+    contact_before = np.empty(n_interfaces)
+    motion_before = np.empty(n_interfaces)
+    start(t0, x, v, modes, topology, s, w, contact_before, motion_before)
+    return w, out, events, x, v, energy, modes, status, topology, contact_before, motion_before
+
+
+# ---- the drivers --------------------------------------------------------------------------
+
+@njit_without_refcounts
+def keep_guards(w, contact_before, motion_before):
+    """The guards in w become the reference for detecting the next switch."""
+    for e in range(len(contact_before)):
+        contact_before[e] = w.contact[e]
+        motion_before[e] = w.motion[e]
+
+
+@njit_without_refcounts
+def take_step(x, v, energy, w):
+    """Move to the end of the step just taken: its state, and its last stage as the first."""
+    for i in range(len(x)):
+        x[i] = w.x_new[i]
+        v[i] = w.v_new[i]
+        w.a_start[i] = w.a_end[i]
+    for c in range(N_WORK):
+        energy[c] = w.e_new[c]
+    for c in range(N_POWERS):
+        w.stage_p[0, c] = w.stage_p[6, c]
+
+
+@njit(cache=True)
+def finish(status, t, stop_interface, steps, out, n_samples, events):
+    n_logged = min(events.n_events[0], len(events.time))
+    return (status, t, stop_interface, steps, out.t[:n_samples], out.x[:n_samples],
+            out.v[:n_samples], out.normal[:n_samples], out.friction[:n_samples],
+            out.modes[:n_samples], out.energy[:n_samples], events.time[:n_logged],
+            events.interface[:n_logged], events.kind[:n_logged], events.counts)
+
+
+@njit_without_refcounts
+def advance_fixed(k, t, t0, step, n_steps, steps_per_sample, x, v, energy, modes, topology,
+                  s, w, contact_before, motion_before, out, sample):
+    """RK4 steps along the grid t0 + k·step, recording samples, until a guard crosses.
+
+    Starts at time t inside step k (t = t0 + k·step unless a switch was just resolved).
+    Returns (k, t, sample, status): the step in which a guard crossed with the state still
+    at its start (k < n_steps), or k = n_steps at the end of the run.
+    """
+    while k < n_steps:
+        t_end = t0 + (k + 1) * step
+        rk4_step(t, x, v, energy, t_end - t, modes, topology, s, w, w.x_new, w.v_new,
+                 w.e_new)
+        set_powers(w.stage_p[6], evaluate_guards(t_end, w.x_new, w.v_new, modes, topology,
+                                                 s, w, w.a_end))
+        if (HAS_CONTACT_EVENTS or HAS_STICK) and any_crossed(contact_before, motion_before, w):
+            return k, t, sample, FINISHED
+        keep_guards(w, contact_before, motion_before)
+        take_step(x, v, energy, w)
+        if not is_finite(x, v):
+            return k, t, sample, NOT_FINITE
+        t = t_end
+        k += 1
+        if k % steps_per_sample == 0:
+            record(out, sample, t, x, v, modes, energy, w)
+            sample += 1
+    return k, t, sample, FINISHED
+
+
+@njit_without_refcounts
+def locate_fixed(t, h, tolerance, x, v, energy, modes, topology, s, w, contact_before,
+                 motion_before):
+    """Bisect the step from t of size h for its earliest switch; move the state there.
+
+    The switch lies in (lo, hi] of the step; each trial state is integrated anew from the
+    step's start. Returns hi, the step taken, with the guards at its end in w.
+    """
+    lo, hi = 0.0, h
+    while hi - lo > tolerance:
+        mid = 0.5 * (lo + hi)
+        rk4_step(t, x, v, energy, mid, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
+        evaluate_guards(t + mid, w.x_new, w.v_new, modes, topology, s, w, w.a_end)
+        if any_crossed(contact_before, motion_before, w):
+            hi = mid
+        else:
+            lo = mid
+    rk4_step(t, x, v, energy, hi, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
+    take_step(x, v, energy, w)
+    evaluate_guards(t + hi, x, v, modes, topology, s, w, w.a_end)
+    return hi
 
 
 @njit(cache=True)
@@ -316,105 +671,153 @@ def run_fixed_step(s, x0, v0, t0, step, n_steps, steps_per_sample, event_toleran
     is integrated in the new modes. Samples are taken every ``steps_per_sample`` steps.
     Zeno guard: ``zeno_events`` switches within ``zeno_window`` seconds stop the run.
     """
-    n_blades, n_interfaces = len(s.mass), len(s.gap)
-    w = new_work(n_blades, n_interfaces)
-    n_samples = n_steps // steps_per_sample + 1
-    out_t = np.empty(n_samples)
-    out_x = np.empty((n_samples, n_blades))
-    out_v = np.empty((n_samples, n_blades))
-    out_normal = np.empty((n_samples, n_interfaces))
-    out_friction = np.empty((n_samples, n_interfaces))
-    out_modes = np.empty((n_samples, n_interfaces), dtype=np.int8)
-    out_energy = np.empty((n_samples, 5))
-    log = (np.empty(event_capacity), np.empty(event_capacity, dtype=np.int64),
-           np.empty(event_capacity, dtype=np.int8))
-    counts = np.zeros(5, dtype=np.int64)
-    recent = np.full(max(zeno_events, 1), -np.inf)
-    n_events = 0
-
-    x = x0.copy()
-    v = v0.copy()
-    x_new = np.empty(n_blades)
-    v_new = np.empty(n_blades)
-    energy = np.zeros(5)  # excitation, damping, friction, contact work; projection loss [J]
-    step_energy = np.zeros(4)
-    modes, candidates = initial_modes(x, v, s, w)
-    status, lost, topology = settle(t0, x, v, modes, candidates, s, w)
-    energy[4] += lost
-    evaluate_guards(t0, x, v, modes, topology, s, w)
-    contact_before = w.contact.copy()
-    motion_before = w.motion.copy()
-    t = t0
-    sample = 0
+    (w, out, events, x, v, energy, modes, status, topology, contact_before,
+     motion_before) = begin(s, x0, v0, t0, n_steps // steps_per_sample + 1, event_capacity,
+                            zeno_events)
+    record(out, 0, t0, x, v, modes, energy, w)
+    k, t, sample = 0, t0, 1
     stop_interface = -1
-
-    for k in range(n_steps + 1):
-        if k % steps_per_sample == 0:
-            out_t[sample] = t
-            out_x[sample] = x
-            out_v[sample] = v
-            out_normal[sample] = w.normal
-            out_friction[sample] = w.friction
-            out_modes[sample] = modes
-            out_energy[sample] = energy
-            sample += 1
+    while status == FINISHED:
+        k, t, sample, status = advance_fixed(k, t, t0, step, n_steps, steps_per_sample, x, v,
+                                             energy, modes, topology, s, w, contact_before,
+                                             motion_before, out, sample)
         if k == n_steps or status != FINISHED:
             break
         t_end = t0 + (k + 1) * step
-        while status == FINISHED:
-            # advance
-            h = t_end - t
-            step_energy[:] = 0.0
-            rk4_step(t, x, v, h, modes, topology, s, w, x_new, v_new, step_energy)
-            evaluate_guards(t_end, x_new, v_new, modes, topology, s, w)
-            # detect
-            if not (HAS_CONTACT_EVENTS or HAS_STICK) or not any_crossed(
-                    contact_before, motion_before, w):
-                energy[:4] += step_energy
-                t = t_end
-                x[:] = x_new
-                v[:] = v_new
-                break
-            # locate: the earliest switch lies in (lo, hi]; the state is taken at hi
-            lo, hi = 0.0, h
-            while hi - lo > event_tolerance:
-                mid = 0.5 * (lo + hi)
-                rk4_step(t, x, v, mid, modes, topology, s, w, x_new, v_new, step_energy)
-                evaluate_guards(t + mid, x_new, v_new, modes, topology, s, w)
-                if any_crossed(contact_before, motion_before, w):
-                    hi = mid
-                else:
-                    lo = mid
-            step_energy[:] = 0.0
-            rk4_step(t, x, v, hi, modes, topology, s, w, x_new, v_new, step_energy)
-            evaluate_guards(t + hi, x_new, v_new, modes, topology, s, w)
-            energy[:4] += step_energy
-            t = t_end if hi == h else t + hi
-            x[:] = x_new
-            v[:] = v_new
-            # resolve and regroup
-            old = modes.copy()
-            status, lost, topology = resolve(t, x, v, modes, contact_before, motion_before,
-                                             s, w)
-            energy[4] += lost
-            n_events, last = log_switches(t, old, modes, log, counts, recent, n_events)
-            if status != FINISHED:
-                stop_interface = last
-            elif zeno_events > 0 and t - recent[(n_events + 1) % len(recent)] < zeno_window:
-                status = ZENO
-                stop_interface = last
-            evaluate_guards(t, x, v, modes, topology, s, w)
-            contact_before[:] = w.contact
-            motion_before[:] = w.motion
-            if t >= t_end:
-                break
-        contact_before[:] = w.contact
-        motion_before[:] = w.motion
-        for i in range(n_blades):
-            if not (math.isfinite(x[i]) and math.isfinite(v[i])):
-                status = NOT_FINITE
-    n_logged = min(n_events, event_capacity)
-    return (status, t, stop_interface, out_t[:sample], out_x[:sample], out_v[:sample],
-            out_normal[:sample], out_friction[:sample], out_modes[:sample],
-            out_energy[:sample], log[0][:n_logged], log[1][:n_logged], log[2][:n_logged],
-            counts)
+        h = t_end - t
+        hi = locate_fixed(t, h, event_tolerance, x, v, energy, modes, topology, s, w,
+                          contact_before, motion_before)
+        t = t_end if hi == h else t + hi
+        status, stop_interface, topology = switch(t, x, v, energy, modes, contact_before,
+                                                  motion_before, s, w, events, zeno_events,
+                                                  zeno_window)
+        if t == t_end:
+            k += 1
+            if k % steps_per_sample == 0:
+                record(out, sample, t, x, v, modes, energy, w)
+                sample += 1
+        if not is_finite(x, v):
+            status = NOT_FINITE
+    return finish(status, t, stop_interface, n_steps, out, sample, events)
+
+
+@njit_without_refcounts
+def advance_adaptive(t, h, t_final, sample_step, t0, n_samples, rtol, atol_x, atol_v, h_max,
+                     h_min, x, v, energy, modes, topology, s, w, contact_before,
+                     motion_before, out, sample, steps):
+    """Dormand–Prince steps from t, recording samples, until a guard crosses or the end.
+
+    Returns (t, h, sample, steps, status, theta): theta ≤ 1 locates the first crossing
+    found inside the step of size h from t (the state still at its start); theta = 2 when
+    the run reached its last sample or stopped with the status.
+    """
+    while sample < n_samples:
+        last = h >= t_final - t
+        if last:
+            h = t_final - t
+        elif h < h_min:
+            return t, h, sample, steps, STEP_TOO_SMALL, 2.0
+        error = dp5_step(t, x, v, energy, h, modes, topology, s, w, rtol, atol_x, atol_v)
+        if not error <= 1.0:
+            h *= max(0.2, 0.9 * error ** -0.2) if math.isfinite(error) else 0.2
+            continue
+        steps += 1
+        if HAS_CONTACT_EVENTS or HAS_STICK:
+            theta = 1.0 if any_crossed(contact_before, motion_before, w) else 2.0
+            theta = min(theta, kinematic_dip(h, x, v, energy, modes, contact_before,
+                                             motion_before, s, w))
+            if theta <= 1.0:
+                return t, h, sample, steps, FINISHED, theta
+        t_new = t_final if last else t + h
+        keep_guards(w, contact_before, motion_before)
+        sample = record_dense(out, sample, n_samples, t0, sample_step, t, t_new, h, x, v,
+                              energy, modes, topology, s, w)
+        take_step(x, v, energy, w)
+        if not is_finite(x, v):
+            return t, h, sample, steps, NOT_FINITE, 2.0
+        t = t_new
+        h = min(h * (min(5.0, 0.9 * error ** -0.2) if error > 0.0 else 5.0), h_max)
+    return t, h, sample, steps, FINISHED, 2.0
+
+
+@njit_without_refcounts
+def locate_dense(t, h, theta, t_final, tolerance, sample_step, t0, n_samples, x, v, energy,
+                 modes, topology, s, w, contact_before, motion_before, out, sample):
+    """Bisect the dense output of the step from t on (0, θ] for its earliest switch.
+
+    Records the samples up to the switch, moves the state there and leaves its guards in
+    w. Returns (the switch time, the next sample).
+    """
+    lo, hi = 0.0, theta
+    while (hi - lo) * h > tolerance:
+        mid = 0.5 * (lo + hi)
+        dense_state(mid, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
+        evaluate_guards(t + mid * h, w.xt, w.vt, modes, topology, s, w, w.a_sample)
+        if any_crossed(contact_before, motion_before, w):
+            hi = mid
+        else:
+            lo = mid
+    t_event = t_final if hi == 1.0 and t + h >= t_final else t + hi * h
+    sample = record_dense(out, sample, n_samples, t0, sample_step, t, t_event, h, x, v,
+                          energy, modes, topology, s, w)
+    dense_state(hi, h, x, v, energy, w, w.x_new, w.v_new, w.e_new)
+    for i in range(len(x)):
+        x[i] = w.x_new[i]
+        v[i] = w.v_new[i]
+    for c in range(N_WORK):
+        energy[c] = w.e_new[c]
+    evaluate_guards(t_event, x, v, modes, topology, s, w, w.a_end)
+    return t_event, sample
+
+
+@njit(cache=True)
+def run_adaptive(s, x0, v0, t0, sample_step, n_samples, rtol, atol_x, atol_v, h_initial,
+                 h_max, h_min, event_tolerance, zeno_events, zeno_window, event_capacity):
+    """Integrate by Dormand–Prince 5(4) from (t0, x0, v0) to the last of n_samples samples.
+
+    Steps are accepted when the scaled local error (``dp5_step``) is at most 1, and the next
+    step is scaled by 0.9·error^(−1/5) within [0.2, 5], capped at h_max. Samples at
+    t0 + k·sample_step, switches (to within event_tolerance seconds) and the kinematic
+    guards inside a step all come from the step's dense output, so steps never shorten to
+    meet them. A step below h_min stops the run (STEP_TOO_SMALL).
+    """
+    (w, out, events, x, v, energy, modes, status, topology, contact_before,
+     motion_before) = begin(s, x0, v0, t0, n_samples, event_capacity, zeno_events)
+    record(out, 0, t0, x, v, modes, energy, w)
+    t_final = t0 + (n_samples - 1) * sample_step
+    t, h, sample, steps = t0, min(h_initial, h_max), 1, 0
+    stop_interface = -1
+    while status == FINISHED and sample < n_samples:
+        t, h, sample, steps, status, theta = advance_adaptive(
+            t, h, t_final, sample_step, t0, n_samples, rtol, atol_x, atol_v, h_max, h_min,
+            x, v, energy, modes, topology, s, w, contact_before, motion_before, out, sample,
+            steps)
+        if theta > 1.0 or status != FINISHED:
+            break
+        t, sample = locate_dense(t, h, theta, t_final, event_tolerance, sample_step, t0,
+                                 n_samples, x, v, energy, modes, topology, s, w,
+                                 contact_before, motion_before, out, sample)
+        status, stop_interface, topology = switch(t, x, v, energy, modes, contact_before,
+                                                  motion_before, s, w, events, zeno_events,
+                                                  zeno_window)
+        if not is_finite(x, v):
+            status = NOT_FINITE
+    return finish(status, t, stop_interface, steps, out, sample, events)
+
+
+@njit_without_refcounts
+def record_dense(out, sample, n_samples, t0, sample_step, t, t_to, h, x, v, energy, modes,
+                 topology, s, w):
+    """Record the samples in (t, t_to] from the dense output of the step of size h from t.
+
+    Returns the index of the next sample. Overwrites the forces and guards in w.
+    """
+    while sample < n_samples:
+        time = t0 + sample * sample_step
+        if time > t_to:
+            break
+        dense_state((time - t) / h, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
+        evaluate_guards(time, w.xt, w.vt, modes, topology, s, w, w.a_sample)
+        record(out, sample, time, w.xt, w.vt, modes, w.e_sample, w)
+        sample += 1
+    return sample

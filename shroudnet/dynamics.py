@@ -26,24 +26,32 @@ import numpy as np
 from numba import njit
 
 from .clusters import cluster_labels
+from .compiled import njit_without_refcounts
 from .modes import Mode
 from .scene import Scene, SceneArrays
 
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)
 
 
-@njit(cache=True)
-def excitation_forces(t, amplitudes, phases, excitation_frequency, out):
-    """Q_i(t) = q0 + Σ_n q_n sin(n l Ω t + φ_i) [N] (paper §2), written into ``out``."""
-    for i in range(len(phases)):
-        q = amplitudes[0]
-        for n in range(1, len(amplitudes)):
-            if amplitudes[n] != 0.0:
-                q += amplitudes[n] * math.sin(n * excitation_frequency * t + phases[i])
-        out[i] = q
+@njit_without_refcounts
+def excitation_forces(t, amplitudes, cos_phase, sin_phase, excitation_frequency, out):
+    """Q_i(t) = q0 + Σ_n q_n sin(n l Ω t + φ_i) [N] (paper §2), written into ``out``.
+
+    ``cos_phase`` and ``sin_phase`` hold cos φ_i and sin φ_i: by sin(a + φ) = sin a cos φ +
+    cos a sin φ, a harmonic costs one sine and one cosine whatever the number of blades.
+    """
+    for i in range(len(out)):
+        out[i] = amplitudes[0]
+    for n in range(1, len(amplitudes)):
+        if amplitudes[n] != 0.0:
+            angle = n * excitation_frequency * t
+            in_phase = amplitudes[n] * math.sin(angle)
+            quadrature = amplitudes[n] * math.cos(angle)
+            for i in range(len(out)):
+                out[i] += in_phase * cos_phase[i] + quadrature * sin_phase[i]
 
 
-@njit(cache=True)
+@njit_without_refcounts
 def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle,
                          penetration, rate, slip_velocity):
     """Penetration δ = (u − Δ) sin α [m], its rate δ̇ [m/s] and slip velocity u̇ cos α [m/s].
@@ -65,7 +73,7 @@ def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle,
         slip_velocity[e] = du * cos_angle[e]
 
 
-@njit(cache=True)
+@njit_without_refcounts
 def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, stuck,
                      resultant):
     """R_i = Q_i − c_i ẋ_i − k_i x_i − (Bᵀ F)_i over the interfaces that are not stuck [N].
@@ -92,7 +100,7 @@ def cluster_mass(mass, labels, n_clusters):
     return total
 
 
-@njit(cache=True)
+@njit_without_refcounts
 def cluster_accelerations(resultant, labels, grounded, masses, cluster_force, acceleration):
     """ẍ_i = Σ_cluster R / Σ_cluster m for every blade of a cluster; 0 in a grounded one.
 
@@ -137,29 +145,31 @@ def static_friction_operator(n_blades, left, right, cos_angle, stuck):
     return np.ascontiguousarray(np.linalg.pinv(matrix)), stuck_interfaces
 
 
-@njit(cache=True)
+@njit_without_refcounts
 def static_friction(operator, stuck_interfaces, mass, resultant, acceleration, normal_force,
-                    sin_angle, left, right):
-    """Static friction f_e [N] on each stuck interface, zero elsewhere.
+                    sin_angle, left, right, imbalance, friction):
+    """Static friction f_e [N] on each stuck interface, written into ``friction[e]``.
 
     f = P b with b_i = R_i − m_i ẍ_i − Σ_e B_ei N_e sin α_e over the stuck interfaces
-    (see ``static_friction_operator``).
+    (see ``static_friction_operator``). Other entries of ``friction`` are left as they are;
+    ``imbalance`` is scratch space of n_blades.
     """
-    imbalance = resultant - mass * acceleration
+    for i in range(len(mass)):
+        imbalance[i] = resultant[i] - mass[i] * acceleration[i]
     for e in stuck_interfaces:
         push = normal_force[e] * sin_angle[e]
         if left[e] >= 0:
             imbalance[left[e]] -= push
         if right[e] >= 0:
             imbalance[right[e]] += push
-    friction = np.zeros(len(left))
-    solution = operator @ imbalance
     for k in range(len(stuck_interfaces)):
-        friction[stuck_interfaces[k]] = solution[k]
-    return friction
+        value = 0.0
+        for i in range(len(mass)):
+            value += operator[k, i] * imbalance[i]
+        friction[stuck_interfaces[k]] = value
 
 
-@njit(cache=True)
+@njit_without_refcounts
 def event_guards(modes, penetration, slip_velocity, normal_force, friction_force, static_mu,
                  opens, can_stick, contact, motion):
     """Guards: per interface, values that stay ≥ 0 while its mode holds and cross 0 at a switch.
@@ -245,7 +255,8 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     normal, friction = law_forces(a, penetration, rate, slip_velocity, modes)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
     q = np.empty(n)
-    excitation_forces(float(t), a.amplitudes, a.phases, a.excitation_frequency, q)
+    excitation_forces(float(t), a.amplitudes, np.cos(a.phases), np.sin(a.phases),
+                      a.excitation_frequency, q)
     labels, grounded = cluster_labels(n, a.left, a.right, stuck)
     resultant = np.empty(n)
     resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right, interface_force, stuck,
@@ -255,9 +266,8 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
                           cluster_mass(a.mass, labels, len(grounded)), np.empty(n), acceleration)
     operator, stuck_interfaces = static_friction_operator(a.n_blades, a.left, a.right,
                                                           a.cos_angle, stuck)
-    friction = np.where(stuck, static_friction(operator, stuck_interfaces, a.mass, resultant,
-                                               acceleration, normal, a.sin_angle, a.left,
-                                               a.right), friction)
+    static_friction(operator, stuck_interfaces, a.mass, resultant, acceleration, normal,
+                    a.sin_angle, a.left, a.right, np.empty(n), friction)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
     contact, motion = np.empty(m), np.empty(m)
     event_guards(modes, penetration, slip_velocity, normal, friction, a.static_mu, a.opens,

@@ -4,11 +4,12 @@ from collections import namedtuple
 
 #: A scene as the compiled loop sees it: the ``SceneArrays`` fields that are numbers, plus
 #: each interface's law index (into the kernel's list of law classes, −1 for none) and its
-#: parameters, padded into one row per interface.
+#: parameters, padded into one row per interface; the excitation phases as cos φ and sin φ.
 KernelScene = namedtuple("KernelScene", [
     "mass", "damping", "stiffness", "left", "right", "gap", "sin_angle", "cos_angle",
     "opens", "can_stick", "static_mu", "regularisation", "normal_kind", "normal_params",
-    "friction_kind", "friction_params", "amplitudes", "phases", "excitation_frequency",
+    "friction_kind", "friction_params", "amplitudes", "cos_phase", "sin_phase",
+    "excitation_frequency",
 ])
 
 #: Stick clusters of a mode set and its static friction operator.
@@ -16,8 +17,20 @@ Topology = namedtuple("Topology", [
     "stuck", "labels", "grounded", "masses", "operator", "stuck_interfaces",
 ])
 
-#: Scratch arrays of one run, allocated once.
+#: Scratch arrays of one run, allocated once. Per blade: q … a_sample, x_new, v_new; per
+#: interface: penetration … motion; Runge–Kutta stages (7 rows): stage_v, stage_a (per
+#: blade) and stage_p (the four powers); the state's energy columns: e_new, e_sample.
 Work = namedtuple("Work", [
-    "q", "penetration", "rate", "slip", "normal", "friction", "force", "resultant",
-    "scratch", "contact", "motion", "a1", "a2", "a3", "a4", "xt", "vt",
+    "q", "resultant", "scratch", "imbalance", "a_start", "a_end", "a_sample", "xt", "vt",
+    "x_new", "v_new",
+    "penetration", "rate", "slip", "normal", "friction", "force", "contact", "motion",
+    "stage_v", "stage_a", "stage_p", "e_new", "e_sample",
 ])
+
+#: The event log of one run: located switches (time, interface, kind) up to its capacity,
+#: exact counts by kind, the times of the latest switches (for the Zeno guard), and
+#: ``n_events[0]``, the number of switches so far.
+Events = namedtuple("Events", ["time", "interface", "kind", "counts", "recent", "n_events"])
+
+#: Sampled output of one run: one row per sample time.
+Output = namedtuple("Output", ["t", "x", "v", "normal", "friction", "modes", "energy"])

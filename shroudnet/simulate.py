@@ -37,6 +37,37 @@ class FixedStep:
 
 
 @dataclass(frozen=True, kw_only=True)
+class Adaptive:
+    """Dormand–Prince 5(4) with error control and dense output; switches found on it.
+
+    A step is accepted when the RMS over blades of its local error estimate, each component
+    divided by atol + rtol·|value|, is at most 1. Displacements are held to ``atol`` [m] and
+    velocities to ``atol``·lΩ [m/s], the same scale for harmonic motion at the excitation
+    frequency. Samples and switches are taken from the step's 4th-order dense output, so
+    they do not shorten the steps.
+
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance per step, in [1e-14, 0.1].
+    atol : float
+        Absolute tolerance on displacements per step [m], > 0.
+    max_step : float
+        Largest step, in excitation periods, in (0, 1].
+    """
+
+    rtol: float = 1e-8
+    atol: float = 1e-12
+    max_step: float = 0.05
+
+    def __post_init__(self):
+        check_real("Adaptive", "rtol", self.rtol, low=1e-14, high=0.1)
+        check_real("Adaptive", "atol", self.atol, low=0.0, low_open=True, unit="m")
+        check_real("Adaptive", "max_step", self.max_step, low=0.0, low_open=True, high=1.0,
+                   unit="periods")
+
+
+@dataclass(frozen=True, kw_only=True)
 class ZenoGuard:
     """Stop a run when switches pile up: ``events`` of them within ``window`` periods.
 
@@ -54,7 +85,7 @@ class ZenoGuard:
         check_real("ZenoGuard", "window", self.window, low=0.0, low_open=True, unit="periods")
 
 
-def simulate(scene: Scene, periods: int, *, method: FixedStep = FixedStep(),
+def simulate(scene: Scene, periods: int, *, method: FixedStep | Adaptive = FixedStep(),
              samples_per_period: int = 100, event_tolerance: float = 1e-10,
              zeno: ZenoGuard = ZenoGuard(), initial=None,
              event_capacity: int = 1_000_000) -> Simulation:
@@ -69,10 +100,10 @@ def simulate(scene: Scene, periods: int, *, method: FixedStep = FixedStep(),
     scene : Scene
     periods : int
         Number of excitation periods, ≥ 1.
-    method : FixedStep
-        The integrator and its accuracy knob.
+    method : FixedStep or Adaptive
+        The integrator and its accuracy knobs.
     samples_per_period : int
-        Output samples per period; must divide the method's steps per period.
+        Output samples per period; with ``FixedStep`` it must divide the steps per period.
     event_tolerance : float
         Width of the time bracket of each located switch, in excitation periods.
     zeno : ZenoGuard
@@ -85,20 +116,21 @@ def simulate(scene: Scene, periods: int, *, method: FixedStep = FixedStep(),
     Raises
     ------
     SimulationError
-        On Zeno or chattering behaviour, a mode set with no consistent choice, or a
-        non-finite state; the message names the time and the interface.
+        On Zeno or chattering behaviour, a mode set with no consistent choice, a step size
+        that collapses, or a non-finite state; the message names the time and the interface.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate needs a shroudnet.Scene, got {scene!r}")
     if isinstance(periods, bool) or not isinstance(periods, int) or periods < 1:
         raise ValueError(f"periods must be an int >= 1, got {periods!r}")
-    if not isinstance(method, FixedStep):
-        raise TypeError(f"method must be FixedStep(...), got {method!r}")
-    steps = method.steps_per_period
+    if not isinstance(method, FixedStep | Adaptive):
+        raise TypeError(f"method must be FixedStep(...) or Adaptive(...), got {method!r}")
     if isinstance(samples_per_period, bool) or not isinstance(samples_per_period, int) \
-            or samples_per_period < 1 or steps % samples_per_period:
-        raise ValueError(f"samples_per_period must be an int dividing steps_per_period = "
-                         f"{steps}, got {samples_per_period!r}")
+            or samples_per_period < 1:
+        raise ValueError(f"samples_per_period must be an int >= 1, got {samples_per_period!r}")
+    if isinstance(method, FixedStep) and method.steps_per_period % samples_per_period:
+        raise ValueError(f"samples_per_period must divide FixedStep.steps_per_period = "
+                         f"{method.steps_per_period}, got {samples_per_period}")
     check_real("simulate", "event_tolerance", event_tolerance, low=0.0, low_open=True,
                high=1e-3, unit="periods")
     n = len(scene.blades)
@@ -108,10 +140,19 @@ def simulate(scene: Scene, periods: int, *, method: FixedStep = FixedStep(),
     period = scene.excitation_period
     kernel = load_kernel(scene)
     ks = kernel_scene(scene)
-    (status, t_stop, interface, t, x, v, normal, friction, modes, work, log_t, log_e, log_k,
-     counts) = kernel.run_fixed_step(
-        ks, x0, v0, 0.0, period / steps, periods * steps, steps // samples_per_period,
-        event_tolerance * period, zeno.events, zeno.window * period, event_capacity)
+    common = (event_tolerance * period, zeno.events, zeno.window * period, event_capacity)
+    if isinstance(method, FixedStep):
+        steps = method.steps_per_period
+        result = kernel.run_fixed_step(ks, x0, v0, 0.0, period / steps, periods * steps,
+                                       steps // samples_per_period, *common)
+    else:
+        omega = scene.arrays.excitation_frequency
+        result = kernel.run_adaptive(
+            ks, x0, v0, 0.0, period / samples_per_period, periods * samples_per_period + 1,
+            method.rtol, method.atol, method.atol * omega, 1e-3 * period,
+            method.max_step * period, _SMALLEST_STEP * period, *common)
+    (status, t_stop, interface, n_steps, t, x, v, normal, friction, modes, work, log_t, log_e,
+     log_k, counts) = result
     if status != kernel.FINISHED:
         raise SimulationError(_stop_message(kernel, scene, status, t_stop, interface, period,
                                             zeno))
@@ -124,7 +165,11 @@ def simulate(scene: Scene, periods: int, *, method: FixedStep = FixedStep(),
                 "zeno": asdict(zeno)}
     return Simulation(scene=scene, settings=settings, t=t, x=x, v=v, normal_force=normal,
                       friction_force=friction, modes=modes, events=events, energy=ledger,
-                      work=work, samples_per_period=samples_per_period)
+                      work=work, samples_per_period=samples_per_period, steps=int(n_steps))
+
+
+#: An adaptive step below this many excitation periods stops the run.
+_SMALLEST_STEP = 1e-14
 
 
 def _initial(values, n, name):
@@ -148,6 +193,9 @@ def _stop_message(kernel, scene, status, t, interface, period, zeno):
     if status == kernel.INCONSISTENT:
         return (f"no consistent set of stick and slip modes {when}{where}: the friction "
                 "limits of coupled stuck interfaces conflict.")
+    if status == kernel.STEP_TOO_SMALL:
+        return (f"the adaptive step fell below {_SMALLEST_STEP:g} periods {when}{where}: "
+                "the tolerances cannot be met there; loosen rtol/atol or stiffen less.")
     return f"the state became non-finite {when}{where}; reduce the step or the stiffness."
 
 

@@ -83,6 +83,7 @@ class Simulation:
     energy: EnergyLedger
     work: np.ndarray         # cumulative (excitation, damping, friction, contact, lock) [J]
     samples_per_period: int
+    steps: int               # Runge–Kutta steps taken (accepted ones, for Adaptive)
 
     def _steady(self, skip: float) -> slice:
         if skip < 0 or skip * self.samples_per_period >= len(self.t):

@@ -87,7 +87,8 @@ def test_friction_never_exceeds_the_static_limit_unless_flagged(data):
     sliding = modes != Mode.STICK
     assert np.all(np.abs(r.friction_force[sliding]) <= limit[sliding] * (1 + 1e-12) + 1e-300)
     stuck = modes == Mode.STICK
-    np.testing.assert_allclose(r.motion_guard[stuck], limit[stuck] - np.abs(r.friction_force[stuck]))
+    np.testing.assert_allclose(r.motion_guard[stuck],
+                               limit[stuck] - np.abs(r.friction_force[stuck]))
 
 
 @given(st.data())

@@ -89,7 +89,7 @@ def test_frequency_models_and_stiffness():
 def test_presets_chain_ring_and_fixed_nodes():
     ring = BladeGroup.ring(5, BLADE, SHROUD)
     assert ring.interfaces[-1][:2] == ("blade4", "blade0")
-    assert [(l, r) for l, r, _ in BladeGroup.chain(3, BLADE, SHROUD).interfaces] == [
+    assert [(a, b) for a, b, _ in BladeGroup.chain(3, BLADE, SHROUD).interfaces] == [
         ("blade0", "blade1"), ("blade1", "blade2")]
     group = BladeGroup().add_blade("b", BLADE).add_fixed("casing").connect("casing", "b", SHROUD)
     scene = Scene(group=group, excitation=Excitation(engine_order=1, amplitudes=(0, 1),

@@ -7,9 +7,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from contact_laws import Coulomb, ExponentialFriction, KelvinVoigt, LinearSpring
-from shroudnet import (Blade, BladeGroup, EventKind, Excitation, FixedStep, Interface, Mode,
-                       Scene, SimulationError, ZenoGuard, simulate)
+from contact_laws import Coulomb, ExponentialFriction, KelvinVoigt, LinearSpring, Regularised
+from shroudnet import (Adaptive, Blade, BladeGroup, EventKind, Excitation, FixedStep,
+                       Interface, Mode, Scene, SimulationError, ZenoGuard, simulate)
 from shroudnet.scenes import three_blade_paper
 
 
@@ -24,16 +24,30 @@ def linear_response(scene, t):
     return q0 / a.stiffness + amplitude * np.sin(angle), amplitude * w * np.cos(angle)
 
 
-def test_without_contact_each_blade_is_the_closed_form_linear_oscillator():
+@pytest.mark.parametrize("method", [FixedStep(steps_per_period=400), Adaptive()])
+def test_without_contact_each_blade_is_the_closed_form_linear_oscillator(method):
     scene = three_blade_paper(gap=1.0, q1=50.0, speed_rpm=6000.0, q0=3.0)
     x0, v0 = linear_response(scene, [0.0])
-    sim = simulate(scene, 20, method=FixedStep(steps_per_period=400),
-                   initial=(x0[0], v0[0]))
+    sim = simulate(scene, 20, method=method, initial=(x0[0], v0[0]))
     x, v = linear_response(scene, sim.t)
     scale = np.abs(x).max()
     assert np.abs(sim.x - x).max() < 1e-6 * scale
     assert np.abs(sim.v - v).max() < 1e-6 * np.abs(v).max()
     assert sum(sim.events.counts.values()) == 0
+
+
+def test_adaptive_error_follows_its_tolerance():
+    """On the smooth case the error against the closed form falls in step with rtol."""
+    scene = three_blade_paper(gap=1.0, q1=50.0, speed_rpm=6000.0)
+    x0, v0 = linear_response(scene, [0.0])
+    errors = []
+    for rtol in [1e-6, 1e-8, 1e-10]:
+        sim = simulate(scene, 10, method=Adaptive(rtol=rtol, atol=rtol * 1e-4),
+                       samples_per_period=20, initial=(x0[0], v0[0]))
+        x = linear_response(scene, sim.t)[0]
+        errors.append(np.abs(sim.x - x).max() / np.abs(x).max())
+        assert errors[-1] < 10 * rtol
+    assert errors[0] > 30 * errors[1] > 900 * errors[2], errors
 
 
 def test_fixed_step_scheme_converges_with_fourth_order():
@@ -63,11 +77,14 @@ def test_paper_run_logs_its_events_and_closes_the_energy_ledger():
     assert np.isfinite(sim.x).all() and np.isfinite(sim.friction_force).all()
 
 
-def _sticky_scene(alpha=0.3, mu=0.8, q1=20.0, n=3):
-    """μ_s above tan α, so that interfaces stick (DESIGN §5)."""
+def _sticky_scene(alpha=0.3, mu=0.8, q1=20.0, n=3, regularisation=0.0):
+    """μ_s above tan α, so that interfaces stick (DESIGN §5); optionally regularised [m/s]."""
     blade = Blade(mass=0.082, damping=4.0, stiffness=1.5e5)
+    friction = Coulomb(mu=mu)
+    if regularisation:
+        friction = Regularised(law=friction, velocity=regularisation)
     shroud = Interface(gap=-5e-6, angle=alpha, normal=LinearSpring(stiffness=3e5),
-                       friction=Coulomb(mu=mu))
+                       friction=friction)
     excitation = Excitation(engine_order=2, amplitudes=(0.0, q1), phases=[0.0, 2.0, 4.0][:n])
     return Scene(group=BladeGroup.chain(n, blade, shroud), excitation=excitation,
                  speed_rpm=6000.0)
@@ -90,6 +107,47 @@ def test_stuck_interfaces_respect_the_friction_limit_and_slip_follows_its_mode()
     assert np.all(slip[sim.modes == Mode.SLIP_NEGATIVE] <= 1e-6 * vscale)
     assert np.all(np.abs(slip[stuck]) <= 1e-12 * vscale)
     assert abs(sim.energy.residual) < 1e-6 * sim.energy.friction_loss
+
+
+def _nonsmooth_errors(scene, methods, reference):
+    """Largest displacement error of each method against the reference, relative."""
+    scale = np.abs(reference.x).max()
+    periods = reference.periods
+    return [np.abs(simulate(scene, periods, method=m, samples_per_period=10).x
+                   - reference.x).max() / scale for m in methods]
+
+
+def test_both_integrators_agree_on_a_nonsmooth_case_as_their_knobs_tighten():
+    """Contact closing and opening, stick, breakaway and reversal within ten periods."""
+    scene = _sticky_scene()
+    reference = simulate(scene, 10, method=Adaptive(rtol=1e-12, atol=1e-16),
+                         samples_per_period=10)
+    assert all(count > 0 for count in reference.events.counts.values())
+    fixed = _nonsmooth_errors(scene, [FixedStep(steps_per_period=n) for n in (250, 500, 1000)],
+                              reference)
+    adaptive = _nonsmooth_errors(scene, [Adaptive(rtol=r, atol=r * 1e-4)
+                                         for r in (1e-6, 1e-8, 1e-10)], reference)
+    assert fixed[0] > 8 * fixed[1] > 8 * fixed[2] and fixed[2] < 1e-8, fixed
+    assert adaptive[0] > 30 * adaptive[1] > 30 * adaptive[2] and adaptive[2] < 1e-8, adaptive
+    ledger = reference.energy
+    dissipated = ledger.damping_loss + ledger.friction_loss + ledger.contact_loss
+    assert abs(ledger.residual) < 1e-6 * dissipated
+
+
+def test_regularised_friction_converges_to_event_driven_friction():
+    """tanh(v/v_ε) friction approaches exact stick–slip as v_ε shrinks, error ∝ v_ε."""
+    exact = _sticky_scene()
+    reference = simulate(exact, 10, method=Adaptive(rtol=1e-10, atol=1e-14),
+                         samples_per_period=10)
+    scale = np.abs(reference.x).max()
+    errors = []
+    for velocity in [1e-2, 1e-3, 1e-4]:
+        regularised = _sticky_scene(regularisation=velocity)
+        sim = simulate(regularised, 10, method=Adaptive(rtol=1e-10, atol=1e-14),
+                       samples_per_period=10)
+        assert sim.events.counts["sticking"] == 0  # a regularised law never sticks
+        errors.append(np.abs(sim.x - reference.x).max() / scale)
+    assert errors[0] > 5 * errors[1] > 25 * errors[2] and errors[2] < 1e-3, errors
 
 
 @settings(max_examples=6, deadline=None)
@@ -143,7 +201,9 @@ def test_zeno_guard_stops_with_the_time_and_the_interface():
 
 @pytest.mark.parametrize("kwargs, message", [
     (dict(periods=0), r"periods must be an int >= 1"),
-    (dict(periods=2, samples_per_period=7), r"samples_per_period must be an int dividing"),
+    (dict(periods=2, samples_per_period=7), r"samples_per_period must divide FixedStep"),
+    (dict(periods=2, samples_per_period=0), r"samples_per_period must be an int >= 1"),
+    (dict(periods=2, method=Adaptive(), samples_per_period=1.5), r"samples_per_period must be"),
     (dict(periods=2, event_tolerance=0.0), r"simulate\.event_tolerance must be in \(0"),
     (dict(periods=2, initial=([0.0], [0.0])), r"initial x0 must hold 3 finite numbers"),
 ])
