@@ -26,6 +26,16 @@ shrouded group blades with rubbing and impact*.
 """
 
 from . import scenes as scenes
+from .analysis import Campbell as Campbell
+from .analysis import Classification as Classification
+from .analysis import Spectrum as Spectrum
+from .analysis import amplitude_spectrum as amplitude_spectrum
+from .analysis import campbell as campbell
+from .analysis import classify as classify
+from .analysis import classify_section as classify_section
+from .analysis import friction_loss_per_cycle as friction_loss_per_cycle
+from .analysis import spectrum as spectrum
+from .analysis import zero_one_test as zero_one_test
 from .blade import Blade as Blade
 from .blade import ConstantFrequency as ConstantFrequency
 from .blade import FrequencyTable as FrequencyTable
@@ -51,3 +61,6 @@ from .simulation import EventKind as EventKind
 from .simulation import EventLog as EventLog
 from .simulation import Simulation as Simulation
 from .simulation import SimulationError as SimulationError
+from .sweep import Sweep as Sweep
+from .sweep import SweepPoint as SweepPoint
+from .sweep import sweep as sweep

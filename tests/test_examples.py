@@ -15,10 +15,34 @@ def test_readme_python_blocks_run():
         exec(compile(block, "README.md", "exec"), {})
 
 
-@pytest.mark.parametrize("name", ["paper_scene", "paper_three_blade"])
-def test_example_runs(name, capsys):
-    namespace = {"__name__": "example"}
-    exec(compile((ROOT / "examples" / f"{name}.py").read_text(), name, "exec"), namespace)
-    main = namespace["main"]
-    main(periods=20, skip=10) if name == "paper_three_blade" else main()
+#: Each example with arguments small enough for a test, and the figures it must save.
+EXAMPLES = {
+    "paper_scene": ({}, []),
+    "paper_three_blade": ({"periods": 20, "skip": 10}, []),
+    "fig06_11_stiffness_ratio": ({"values": 4, "transient": 20, "record": 5, "steady": 10},
+                                 ["fig06_bifurcation_gamma1.png", "fig11_gamma1_8.8.png"]),
+    "fig12_15_rotating_speed": ({"values": 3, "transient": 20, "record": 5, "steady": 10},
+                                ["fig12_bifurcation_speed.png", "fig15_speed_5990.png"]),
+    "fig16_19_excitation_amplitude": ({"values": 3, "transient": 20, "record": 5,
+                                       "steady": 10},
+                                      ["fig16_bifurcation_q1.png", "fig19_q1_50.png"]),
+    "fig20_campbell": ({}, ["fig20_campbell.png"]),
+    "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
+                                ["fig21_energy_density_gamma1.png",
+                                 "fig22_energy_density_gap.png",
+                                 "fig23_energy_density_angle.png"]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES))
+def test_example_runs_and_saves_its_figures(name, capsys):
+    path = ROOT / "examples" / f"{name}.py"
+    namespace = {"__name__": "example", "__file__": str(path)}
+    exec(compile(path.read_text(), str(path), "exec"), namespace)
+    arguments, figures = EXAMPLES[name]
+    for figure in figures:
+        (ROOT / "examples" / "output" / figure).unlink(missing_ok=True)
+    namespace["main"](**arguments)
     assert capsys.readouterr().out
+    for figure in figures:
+        assert (ROOT / "examples" / "output" / figure).stat().st_size > 10_000

@@ -1,0 +1,258 @@
+"""What a simulation means: spectra, periodicity and chaos, energy measures, the Campbell diagram.
+
+Functions here compute; they never plot (``shroudnet.figures`` draws their results). Each
+works on a ``Simulation`` and, where that is useful beyond shroudnet, on plain arrays.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Hashable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .simulation import Simulation
+
+#: Labels besides "p1" … "pN".
+QUASI_PERIODIC = "quasi-periodic"
+CHAOTIC = "chaotic"
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """One-sided amplitude spectrum of a steady response.
+
+    ``frequency_ratio`` is f/f_e; ``amplitude`` is the amplitude of each component [m for
+    displacements], corrected for the window's coherent gain so that a pure sine of
+    amplitude A on a bin shows A. ``resolution`` is the bin width in f/f_e: 1/(number of
+    periods analysed).
+    """
+
+    frequency_ratio: np.ndarray
+    amplitude: np.ndarray
+    resolution: float
+    window: str
+
+    def peak(self) -> float:
+        """f/f_e of the largest component other than the mean."""
+        return float(self.frequency_ratio[1:][np.argmax(self.amplitude[1:])])
+
+    def amplitude_at(self, ratio: float) -> float:
+        """Largest amplitude within one bin of f/f_e = ``ratio``."""
+        near = np.abs(self.frequency_ratio - ratio) <= self.resolution
+        return float(self.amplitude[near].max()) if near.any() else 0.0
+
+
+def amplitude_spectrum(signal, samples_per_period: int, *, window: str = "hann") -> Spectrum:
+    """The spectrum of ``signal`` sampled ``samples_per_period`` times per excitation period.
+
+    The mean is removed before windowing and kept as the amplitude at f = 0. ``window`` is
+    "hann" (low leakage, for finding subharmonics) or "rectangular" (exact on whole
+    periods of a periodic signal).
+    """
+    x = np.asarray(signal, dtype=float)
+    if x.ndim != 1 or len(x) < 4 or not np.isfinite(x).all():
+        raise ValueError("amplitude_spectrum needs a 1-D finite signal of at least 4 samples")
+    if window not in ("hann", "rectangular"):
+        raise ValueError(f"window must be 'hann' or 'rectangular', got {window!r}")
+    mean = x.mean()
+    weights = np.hanning(len(x) + 1)[:-1] if window == "hann" else np.ones(len(x))
+    amplitude = 2.0 * np.abs(np.fft.rfft((x - mean) * weights)) / weights.sum()
+    amplitude[0] = abs(mean)
+    ratio = np.fft.rfftfreq(len(x), d=1.0 / samples_per_period)
+    return Spectrum(frequency_ratio=ratio, amplitude=amplitude,
+                    resolution=samples_per_period / len(x), window=window)
+
+
+def spectrum(sim: Simulation, blade: Hashable | int, skip: int, *,
+             window: str = "hann") -> Spectrum:
+    """Amplitude spectrum of a blade's displacement over whole periods after ``skip``."""
+    i = sim.scene.blade_position(blade)
+    x = sim.x[_steady_rows(sim, skip), i][:-1]  # whole periods: drop the closing sample
+    return amplitude_spectrum(x, sim.samples_per_period, window=window)
+
+
+def _steady_rows(sim: Simulation, skip: int) -> slice:
+    if isinstance(skip, bool) or not isinstance(skip, int | np.integer) \
+            or not 0 <= skip < sim.periods:
+        raise ValueError(f"skip must be a whole number of periods in [0, {sim.periods}), "
+                         f"got {skip!r}")
+    return slice(skip * sim.samples_per_period, None)
+
+
+def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
+    """The 0–1 test for chaos (Gottwald & Melbourne 2009, correlation method): K ∈ [−1, 1].
+
+    ``series`` is an observable sampled once per forcing period (a Poincaré coordinate).
+    K is near 1 for chaotic dynamics and near 0 for periodic or quasi-periodic ones. It needs
+    a few hundred points; below 50 it returns NaN. The random frequencies c ∈ (π/5, 4π/5)
+    come from ``seed``, so the result is reproducible.
+    """
+    phi = np.asarray(series, dtype=float)
+    n = len(phi)
+    if n < 50:
+        return math.nan
+    spread = np.ptp(phi)
+    if spread == 0.0:
+        return 0.0
+    phi = phi / spread
+    lags = np.arange(1, n // 10 + 1)
+    j = np.arange(1, n + 1)
+    k_values = []
+    for c in np.random.default_rng(seed).uniform(math.pi / 5, 4 * math.pi / 5, n_frequencies):
+        p = np.cumsum(phi * np.cos(j * c))
+        q = np.cumsum(phi * np.sin(j * c))
+        mean_square = np.array([np.mean((p[lag:] - p[:-lag]) ** 2 + (q[lag:] - q[:-lag]) ** 2)
+                                for lag in lags])
+        oscillating = phi.mean() ** 2 * (1 - np.cos(lags * c)) / (1 - math.cos(c))
+        displacement = mean_square - oscillating
+        if np.ptp(displacement) == 0.0:
+            k_values.append(0.0)
+        else:
+            k_values.append(np.corrcoef(lags, displacement)[0, 1])
+    return float(np.median(k_values))
+
+
+@dataclass(frozen=True)
+class Classification:
+    """The kind of a steady motion, with the evidence for it.
+
+    ``label`` is "p1", "p2", … "pN" (the response repeats after N excitation periods),
+    "quasi-periodic" or "chaotic". ``period`` is N, or None. ``mismatch`` is the largest
+    distance between Poincaré points N periods apart relative to the attractor's size (for
+    the best N tried when none repeats). ``zero_one`` is the 0–1 test's K on the Poincaré
+    displacements (near 1: chaos; near 0: regular), NaN with too few points.
+    ``broadband`` is the fraction of the spectrum's power outside its 20 strongest lines.
+    """
+
+    label: str
+    period: int | None
+    n_points: int
+    tolerance: float
+    mismatch: float
+    zero_one: float
+    broadband: float
+
+    def __str__(self) -> str:
+        return (f"{self.label}: {self.n_points} Poincaré points, repeat mismatch "
+                f"{self.mismatch:.1e} (tolerance {self.tolerance:g}), 0-1 test K = "
+                f"{self.zero_one:.2f}, broadband fraction {self.broadband:.1e}")
+
+
+def classify_section(points, *, scale=None, tolerance: float = 1e-5, max_period: int = 64,
+                     chaos_threshold: float = 0.5, broadband: float = math.nan
+                     ) -> Classification:
+    """Classify a motion from its Poincaré points (rows (x, ẋ), one per forcing period).
+
+    The motion is pN for the smallest N ≤ ``max_period`` with every point within
+    ``tolerance`` of the point N periods later, distances taken per coordinate relative to
+    ``scale`` (default: the largest |value| of each coordinate). Otherwise the 0–1 test
+    decides: K > ``chaos_threshold`` is chaotic, else quasi-periodic.
+    """
+    points = np.asarray(points, dtype=float)
+    if points.ndim != 2 or points.shape[1] != 2 or len(points) < 2:
+        raise ValueError("classify needs at least two Poincaré points (x, v) as rows")
+    if not np.isfinite(points).all():
+        raise ValueError("classify: the Poincaré points are not finite")
+    scale = np.abs(points).max(axis=0) if scale is None else np.asarray(scale, dtype=float)
+    scale = np.where(scale > 0.0, scale, 1.0)
+    relative = points / scale
+    mismatch = math.inf
+    for period in range(1, min(max_period, len(points) - 1) + 1):
+        gap = float(np.abs(relative[period:] - relative[:-period]).max())
+        mismatch = min(mismatch, gap)
+        if gap <= tolerance:
+            return Classification(f"p{period}", period, len(points), tolerance, gap, 0.0,
+                                  broadband)
+    k = zero_one_test(points[:, 0])
+    label = CHAOTIC if k > chaos_threshold else QUASI_PERIODIC
+    return Classification(label, None, len(points), tolerance, mismatch, k, broadband)
+
+
+def classify(sim: Simulation, blade: Hashable | int, skip: int, *, tolerance: float = 1e-5,
+             max_period: int = 64) -> Classification:
+    """Classify the motion of a blade after ``skip`` transient periods.
+
+    See ``classify_section``. Distances are relative to the largest |x| and |ẋ| of the
+    steady response. Give the run enough recorded periods: 2N + 1 to recognise pN, a few
+    hundred for the 0–1 test to separate chaos from quasi-periodicity.
+    """
+    i = sim.scene.blade_position(blade)
+    rows = _steady_rows(sim, skip)
+    scale = (np.abs(sim.x[rows, i]).max(), np.abs(sim.v[rows, i]).max())
+    return classify_section(sim.poincare(blade, skip=skip), scale=scale, tolerance=tolerance,
+                            max_period=max_period,
+                            broadband=broadband_fraction(spectrum(sim, blade, skip)))
+
+
+def broadband_fraction(spectrum: Spectrum, lines: int = 20) -> float:
+    """Fraction of the power (mean removed) outside the ``lines`` strongest spectral lines.
+
+    A line is a local maximum with the bins beside it (the Hann window's main lobe).
+    """
+    power = spectrum.amplitude[1:] ** 2
+    total = power.sum()
+    if total == 0.0:
+        return 0.0
+    inside = np.zeros(len(power), dtype=bool)
+    peaks = [k for k in range(len(power))
+             if (k == 0 or power[k] >= power[k - 1])
+             and (k == len(power) - 1 or power[k] >= power[k + 1])]
+    for k in sorted(peaks, key=lambda k: power[k], reverse=True)[:lines]:
+        inside[max(k - 2, 0):k + 3] = True
+    return float(power[~inside].sum() / total)
+
+
+def friction_loss_per_cycle(sim: Simulation, skip: int) -> float:
+    """Energy dissipated by friction per excitation period after ``skip`` [J/cycle].
+
+    Sliding friction work plus the kinetic energy lost as slipping blades lock together.
+    """
+    rows = _steady_rows(sim, skip)
+    work = sim.work[rows]
+    return float((work[-1, 2] + work[-1, 4] - work[0, 2] - work[0, 4])
+                 / (sim.periods - skip))
+
+
+@dataclass(frozen=True)
+class Campbell:
+    """A Campbell diagram: f_d1 [Hz] against speed [rpm], and the engine-order lines.
+
+    ``crossings`` lists (engine order l, speed [rpm], frequency [Hz]) where f_d1 = l Ω/60:
+    the speeds at which the excitation is resonant.
+    """
+
+    speeds_rpm: np.ndarray
+    frequency: np.ndarray
+    engine_orders: tuple[int, ...]
+    crossings: tuple[tuple[int, float, float], ...]
+
+    def line(self, engine_order: int) -> np.ndarray:
+        """The excitation frequency l Ω/60 [Hz] of an engine order at each speed."""
+        return engine_order * self.speeds_rpm / 60.0
+
+
+def campbell(frequency_model, speeds_rpm: Sequence[float],
+             engine_orders: Sequence[int] = (1, 2, 3, 4)) -> Campbell:
+    """Campbell diagram of a blade frequency model (anything with ``at(speed_rpm)`` in Hz:
+    ``ConstantFrequency``, ``Southwell``, ``FrequencyTable``) over increasing speeds [rpm]."""
+    speeds = np.asarray(speeds_rpm, dtype=float)
+    if speeds.ndim != 1 or len(speeds) < 2 or np.any(np.diff(speeds) <= 0):
+        raise ValueError("campbell needs at least two increasing speeds_rpm")
+    frequency = np.array([frequency_model.at(s) for s in speeds])
+    crossings = []
+    for order in engine_orders:
+        def detuning(speed, order=order):
+            return frequency_model.at(speed) - order * speed / 60.0
+        gap = frequency - order * speeds / 60.0
+        for k in range(len(speeds)):
+            if gap[k] == 0.0:
+                speed = speeds[k]
+            elif k + 1 < len(speeds) and gap[k] * gap[k + 1] < 0.0:
+                speed = brentq(detuning, speeds[k], speeds[k + 1], xtol=1e-9)
+            else:
+                continue
+            crossings.append((int(order), float(speed), float(order * speed / 60.0)))
+    return Campbell(speeds, frequency, tuple(int(o) for o in engine_orders), tuple(crossings))

@@ -1,0 +1,105 @@
+"""Figures in the paper's style, drawn with matplotlib from computed results.
+
+Nothing in the computation imports this module. Each function returns a matplotlib
+``Figure`` and leaves saving to the caller (``fig.savefig(path)``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Mapping, Sequence
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .analysis import Campbell, classify, spectrum
+from .simulation import Simulation
+from .sweep import Sweep
+
+
+def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: str = "",
+                   max_ratio: float = 6.0, shown_periods: int = 30) -> Figure:
+    """The panel of the paper's Figs. 7–19 for one blade after ``skip`` periods.
+
+    Displacement history, phase portrait with Poincaré points, amplitude spectrum against
+    f/f_e, and the impact (normal) and friction forces of the blade's interfaces.
+    """
+    i = sim.scene.blade_position(blade)
+    rows = slice(skip * sim.samples_per_period, None)
+    t, x, v = sim.t[rows], sim.x[rows, i], sim.v[rows, i]
+    shown = slice(None, shown_periods * sim.samples_per_period + 1)
+    a = sim.scene.arrays
+    own = np.flatnonzero((a.left == i) | (a.right == i))
+    figure = Figure(figsize=(11, 8), layout="constrained")
+    axes = figure.subplot_mosaic([["history", "history"], ["phase", "spectrum"],
+                                  ["impact", "friction"]])
+    axes["history"].plot(t[shown] * 1e3, x[shown] * 1e3, lw=0.8)
+    axes["history"].set(xlabel="t [ms]", ylabel="x [mm]", title="displacement")
+    section = sim.poincare(blade, skip=skip)
+    axes["phase"].plot(x * 1e3, v, lw=0.4, color="0.6")
+    axes["phase"].plot(section[:, 0] * 1e3, section[:, 1], "o", ms=3, color="C3",
+                       label="Poincaré points")
+    axes["phase"].set(xlabel="x [mm]", ylabel="ẋ [m/s]", title="phase portrait")
+    axes["phase"].legend(loc="upper right", fontsize="small")
+    spec = spectrum(sim, blade, skip)
+    keep = spec.frequency_ratio <= max_ratio
+    axes["spectrum"].semilogy(spec.frequency_ratio[keep], spec.amplitude[keep] * 1e3, lw=0.8)
+    axes["spectrum"].set(xlabel="f / f_e", ylabel="amplitude [mm]",
+                         title=f"spectrum (resolution {spec.resolution:.3g} f_e)")
+    for name, forces, label in (("impact", sim.normal_force, "N [N]"),
+                                ("friction", sim.friction_force, "f [N]")):
+        for e in own:
+            left, right, _ = sim.scene.group.interfaces[e]
+            axes[name].plot(t[shown] * 1e3, forces[rows][shown, e], lw=0.8,
+                            label=f"{left}–{right}")
+        axes[name].set(xlabel="t [ms]", ylabel=label, title=f"{name} force")
+        if len(own):
+            axes[name].legend(loc="upper right", fontsize="small")
+    kind = classify(sim, blade, skip)
+    figure.suptitle(f"{title}  [{kind.label}]" if title else kind.label)
+    return figure
+
+
+def bifurcation_diagram(result: Sweep, *, xlabel: str = "", title: str = "",
+                        scale: float = 1e3, unit: str = "mm") -> Figure:
+    """Poincaré displacements of the swept blade against the parameter (Figs. 6, 12, 16)."""
+    values, section = result.diagram(0)
+    figure = Figure(figsize=(8, 5), layout="constrained")
+    axes = figure.add_subplot()
+    axes.plot(values, section * scale, ",", color="k")
+    if len(result.points) < 40:
+        axes.plot(values, section * scale, ".", ms=2, color="k")
+    axes.set(xlabel=xlabel or result.parameter, ylabel=f"x at t = k T_e [{unit}]",
+             title=title)
+    return figure
+
+
+def curves(x: Sequence[float], series: Mapping[str, Sequence[float]], *, xlabel: str,
+           ylabel: str, title: str = "", logy: bool = False) -> Figure:
+    """Labelled curves over one axis (the E_ρ curves of Figs. 21–23)."""
+    figure = Figure(figsize=(7, 4.5), layout="constrained")
+    axes = figure.add_subplot()
+    for label, values in series.items():
+        axes.plot(x, values, "o-", ms=3, label=label)
+    if logy:
+        axes.set_yscale("log")
+    axes.set(xlabel=xlabel, ylabel=ylabel, title=title)
+    if len(series) > 1:
+        axes.legend()
+    return figure
+
+
+def campbell_diagram(diagram: Campbell, *, title: str = "Campbell diagram") -> Figure:
+    """f_d1 against speed with the engine-order lines and the resonances (Fig. 20)."""
+    figure = Figure(figsize=(7, 5), layout="constrained")
+    axes = figure.add_subplot()
+    axes.plot(diagram.speeds_rpm, diagram.frequency, lw=2, label="f_d1")
+    for order in diagram.engine_orders:
+        axes.plot(diagram.speeds_rpm, diagram.line(order), "--", lw=0.8, label=f"l = {order}")
+    for order, speed, frequency in diagram.crossings:
+        axes.plot(speed, frequency, "o", color="C3")
+        axes.annotate(f"{speed:.0f} rpm", (speed, frequency), textcoords="offset points",
+                      xytext=(5, -12), fontsize="small")
+    top = 1.3 * diagram.frequency.max()
+    axes.set(xlabel="Ω [rev/min]", ylabel="frequency [Hz]", ylim=(0, top), title=title)
+    axes.legend(loc="upper left")
+    return figure

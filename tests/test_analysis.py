@@ -1,0 +1,126 @@
+"""Analysis: spectra, the period and chaos classifier, energy measures, Campbell, sweeps."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from shroudnet import (FixedStep, amplitude_spectrum, campbell, classify, classify_section,
+                       friction_loss_per_cycle, simulate, spectrum, sweep, zero_one_test)
+from shroudnet.scenes import paper_frequency_model, three_blade_paper
+from tests.test_simulate import linear_response
+
+
+def duffing_section(gamma, *, delta=0.3, omega=1.2, transient=200, record=500):
+    """Poincaré points of x'' + δx' − x + x³ = γ cos ωt (the double-well Duffing oscillator
+    of Guckenheimer & Holmes, §2.2): period 2 at γ = 0.28, chaotic at γ = 0.5."""
+    period = 2 * math.pi / omega
+
+    def field(t, y):
+        return [y[1], -delta * y[1] + y[0] - y[0] ** 3 + gamma * math.cos(omega * t)]
+
+    times = period * np.arange(transient, transient + record)
+    run = solve_ivp(field, (0.0, times[-1]), [1.0, 0.0], method="DOP853", rtol=1e-10,
+                    atol=1e-12, t_eval=times)
+    return run.y.T
+
+
+@pytest.fixture(scope="module")
+def linear():
+    scene = three_blade_paper(gap=1.0, q1=50.0, speed_rpm=6000.0)
+    x0, v0 = linear_response(scene, [0.0])
+    return simulate(scene, 24, method=FixedStep(steps_per_period=500), samples_per_period=50,
+                    initial=(x0[0], v0[0]))
+
+
+def test_a_linear_oscillator_is_p1_with_its_spectrum_at_the_excitation(linear):
+    kind = classify(linear, "blade2", skip=4)
+    assert kind.label == "p1" and kind.period == 1 and kind.mismatch < 1e-6
+    spec = spectrum(linear, "blade2", skip=4, window="rectangular")
+    assert spec.peak() == pytest.approx(1.0, abs=spec.resolution / 2)
+    assert spec.resolution == pytest.approx(1 / 20)
+    omega = linear.scene.arrays.excitation_frequency
+    amplitude = np.hypot(linear.x[0, 1], linear.v[0, 1] / omega)
+    assert spec.amplitude_at(1.0) == pytest.approx(amplitude, rel=1e-6)
+    hann = spectrum(linear, "blade2", skip=4)
+    assert hann.amplitude_at(1.0) == pytest.approx(amplitude, rel=1e-6)
+    assert np.ptp(linear.poincare("blade2", skip=4), axis=0).max() < 1e-6 * amplitude * 1e4
+
+
+def test_a_p3_orbit_has_three_points_and_energy_at_odd_thirds_of_the_excitation():
+    sim = simulate(three_blade_paper(gamma1=3.5), 300, samples_per_period=50)
+    kind = classify(sim, 1, skip=240)
+    assert kind.label == "p3"
+    points = sim.poincare(1, skip=240)
+    assert len(np.unique(np.round(points[:, 0] / np.abs(points[:, 0]).max(), 4))) == 3
+    spec = spectrum(sim, 1, skip=240, window="rectangular")  # 60 periods: thirds on bins
+    main = spec.amplitude_at(1.0)
+    # The symmetric group keeps the odd multiples only, as the paper's Fig. 14 shows.
+    for ratio in (1 / 3, 5 / 3, 7 / 3):
+        assert spec.amplitude_at(ratio) > 1e-3 * main
+    for ratio in (1 / 2, 1 / 4, 3 / 4, 5 / 4):
+        assert spec.amplitude_at(ratio) < 1e-5 * main
+
+
+def test_the_classifier_on_duffing_and_quasi_periodic_motions():
+    doubled = classify_section(duffing_section(0.28))
+    chaotic = classify_section(duffing_section(0.5))
+    t = 2 * math.pi * np.arange(500)
+    torus = np.column_stack([np.sin(t) + 0.5 * np.sin(math.sqrt(2) * t),
+                             np.cos(t) + 0.5 * math.sqrt(2) * np.cos(math.sqrt(2) * t)])
+    quasi = classify_section(torus)
+    assert (doubled.label, chaotic.label, quasi.label) == ("p2", "chaotic", "quasi-periodic")
+    assert chaotic.zero_one > 0.9
+    assert abs(quasi.zero_one) < 0.1
+    assert abs(zero_one_test(duffing_section(0.28)[:, 0])) < 0.1
+    assert "0-1 test K" in str(chaotic)
+
+
+def test_classifier_inputs_are_checked():
+    with pytest.raises(ValueError, match="at least two Poincaré points"):
+        classify_section(np.zeros((1, 2)))
+    with pytest.raises(ValueError, match="not finite"):
+        classify_section(np.array([[0.0, 1.0], [np.nan, 1.0]]))
+    assert math.isnan(zero_one_test(np.arange(10.0)))
+    with pytest.raises(ValueError, match="window must be"):
+        amplitude_spectrum(np.arange(8.0), 4, window="flat")
+
+
+def test_friction_loss_per_cycle_adds_up_to_the_ledger():
+    sim = simulate(three_blade_paper(gamma1=2.2), 12)
+    assert friction_loss_per_cycle(sim, skip=0) * 12 == pytest.approx(sim.energy.friction_loss,
+                                                                      rel=1e-12)
+    with pytest.raises(ValueError, match="skip must be a whole number of periods"):
+        friction_loss_per_cycle(sim, skip=12)
+
+
+def test_campbell_crossings_solve_the_southwell_law():
+    model = paper_frequency_model()
+    diagram = campbell(model, np.linspace(0.0, 12000.0, 121), engine_orders=(2, 3))
+    assert [order for order, _, _ in diagram.crossings] == [2, 3]
+    for order, speed, frequency in diagram.crossings:
+        exact = 60.0 * model.f0 / math.sqrt(order**2 - model.coefficient)
+        assert speed == pytest.approx(exact, rel=1e-9)
+        assert frequency == pytest.approx(model.at(speed), rel=1e-9)
+    np.testing.assert_allclose(diagram.line(2), 2 * diagram.speeds_rpm / 60)
+
+
+def test_a_sweep_equals_its_points_run_one_by_one():
+    def scene_at(gamma1):
+        return three_blade_paper(gamma1=gamma1)
+
+    settings = {"transient": 20, "record": 6, "samples_per_period": 20}
+    together = sweep(scene_at, [1.0, 3.5], **settings)
+    apart = [sweep(scene_at, [value], **settings).points[0] for value in (1.0, 3.5)]
+    for a, b in zip(together.points, apart):
+        np.testing.assert_array_equal(a.poincare, b.poincare)
+        assert a.energy_density == b.energy_density
+    chained = sweep(scene_at, [1.0, 3.5], continuation=True, **settings)
+    first = sweep(scene_at, [1.0], **settings)
+    second = sweep(scene_at, [3.5], initial=first.points[0].final_state, **settings)
+    np.testing.assert_array_equal(chained.points[1].poincare, second.points[0].poincare)
+    assert not np.array_equal(chained.points[1].poincare, together.points[1].poincare)
+    values, section = together.diagram()
+    assert values.shape == section.shape == (14,)
+    assert together.labels == [p.classification.label for p in together.points]
