@@ -41,7 +41,7 @@ def study(*, scene_at, parameter, label, unit, claims, first_figure, diagram_fig
         print(f"{value:8g} {claim:>15} {kind.label:>15}  {kind}")
     result = sweep(scene_at, np.asarray(values), parameter=parameter, transient=transient,
                    record=record, method=METHOD, progress=print_progress)
-    diagram = bifurcation_diagram(result, xlabel=f"{label} {unit}".strip(),
+    diagram = bifurcation_diagram(result, xlabel=f"{label} [{unit}]" if unit else label,
                                   title=f"Fig. {diagram_figure}: reference blade")
     diagram.savefig(OUTPUT / f"fig{diagram_figure:02d}_bifurcation_{parameter}.png", dpi=110)
     print(f"saved the figures in {OUTPUT}")
