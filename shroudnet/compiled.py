@@ -4,9 +4,13 @@
 function cannot create arrays (numba refuses to compile one that tries); in exchange, passing
 arrays to it and reading them out of tuples costs nothing. With counting, each step of the
 integrator spent most of its time incrementing and decrementing the counts of the few dozen
-arrays it touches: a three-blade derivative took 700 ns instead of 60 ns. Everything on the
+arrays it touches: summing the forces on three blades took 125 ns instead of 14 ns, and
+the paper scene ran at 170,000 instead of 1,150,000 steps per second. Everything on the
 path of a step is compiled this way; code that allocates (regrouping after an event, the
 driver loops) keeps the default.
+
+numpy's error model makes a division by zero give inf or NaN instead of raising inside
+compiled code; the loop then stops with a non-finite state, which it reports.
 """
 
 from numba import njit
