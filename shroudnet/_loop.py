@@ -86,7 +86,8 @@ def new_work(n_blades, n_interfaces):
                 np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b),
                 np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m),
                 np.empty(m), np.empty(m),
-                np.zeros((7, b)), np.zeros((7, b)), np.zeros((7, N_POWERS)),
+                np.empty(m), np.empty(m),
+                np.zeros((7, b)), np.zeros((7, b)), np.zeros((7, N_POWERS)), np.zeros(7),
                 np.zeros(N_WORK), np.zeros(N_WORK))
 
 
@@ -249,6 +250,15 @@ def rk4_step(t, x, v, energy, h, modes, topology, s, w, x_out, v_out, energy_out
 # ---- adaptive step: Dormand–Prince 5(4) -------------------------------------------------
 
 @njit_without_refcounts
+def stage_sum(weights, stages, n_stages, column):
+    """Σ_k weights[k] · stages[k, column] over the first ``n_stages`` Runge–Kutta stages."""
+    total = 0.0
+    for k in range(n_stages):
+        total += weights[k] * stages[k, column]
+    return total
+
+
+@njit_without_refcounts
 def dp5_step(t, x, v, energy, h, modes, topology, s, w, rtol, atol_x, atol_v):
     """One Dormand–Prince step of size h: the new state into w.x_new, w.v_new, w.e_new.
 
@@ -263,30 +273,17 @@ def dp5_step(t, x, v, energy, h, modes, topology, s, w, rtol, atol_x, atol_v):
         sa[0, i] = w.a_start[i]
     for j in range(1, 6):
         for i in range(n):
-            dx = 0.0
-            dv = 0.0
-            for k in range(j):
-                dx += DP_A[j, k] * sv[k, i]
-                dv += DP_A[j, k] * sa[k, i]
-            w.xt[i] = x[i] + h * dx
-            w.vt[i] = v[i] + h * dv
+            w.xt[i] = x[i] + h * stage_sum(DP_A[j], sv, j, i)
+            w.vt[i] = v[i] + h * stage_sum(DP_A[j], sa, j, i)
             sv[j, i] = w.vt[i]
         set_powers(sp[j], derivative(t + DP_C[j] * h, w.xt, w.vt, modes, topology, s, w,
                                      sa[j]))
     for i in range(n):
-        dx = 0.0
-        dv = 0.0
-        for k in range(6):
-            dx += DP_B[k] * sv[k, i]
-            dv += DP_B[k] * sa[k, i]
-        w.x_new[i] = x[i] + h * dx
-        w.v_new[i] = v[i] + h * dv
+        w.x_new[i] = x[i] + h * stage_sum(DP_B, sv, 6, i)
+        w.v_new[i] = v[i] + h * stage_sum(DP_B, sa, 6, i)
         sv[6, i] = w.v_new[i]
     for c in range(N_POWERS):
-        de = 0.0
-        for k in range(6):
-            de += DP_B[k] * sp[k, c]
-        w.e_new[c] = energy[c] + h * de
+        w.e_new[c] = energy[c] + h * stage_sum(DP_B, sp, 6, c)
     w.e_new[N_POWERS] = energy[N_POWERS]
     set_powers(sp[6], evaluate_guards(t + h, w.x_new, w.v_new, modes, topology, s, w,
                                       w.a_end))
@@ -294,14 +291,10 @@ def dp5_step(t, x, v, energy, h, modes, topology, s, w, rtol, atol_x, atol_v):
         sa[6, i] = w.a_end[i]
     error = 0.0
     for i in range(n):
-        ex = 0.0
-        ev = 0.0
-        for k in range(7):
-            ex += DP_E[k] * sv[k, i]
-            ev += DP_E[k] * sa[k, i]
         scale_x = atol_x + rtol * max(abs(x[i]), abs(w.x_new[i]))
         scale_v = atol_v + rtol * max(abs(v[i]), abs(w.v_new[i]))
-        error += (h * ex / scale_x) ** 2 + (h * ev / scale_v) ** 2
+        error += (h * stage_sum(DP_E, sv, 7, i) / scale_x) ** 2 \
+            + (h * stage_sum(DP_E, sa, 7, i) / scale_v) ** 2
     return math.sqrt(error / (2 * n))
 
 
@@ -312,22 +305,14 @@ def dense_state(theta, h, x, v, energy, w, x_out, v_out, energy_out):
     b1 = theta * theta
     b2 = b1 * theta
     b3 = b2 * theta
-    sv, sa, sp = w.stage_v, w.stage_a, w.stage_p
+    weights = w.dense_weights
+    for k in range(7):
+        weights[k] = DP_P[k, 0] * b0 + DP_P[k, 1] * b1 + DP_P[k, 2] * b2 + DP_P[k, 3] * b3
     for i in range(len(x)):
-        dx = 0.0
-        dv = 0.0
-        for k in range(7):
-            weight = DP_P[k, 0] * b0 + DP_P[k, 1] * b1 + DP_P[k, 2] * b2 + DP_P[k, 3] * b3
-            dx += weight * sv[k, i]
-            dv += weight * sa[k, i]
-        x_out[i] = x[i] + h * dx
-        v_out[i] = v[i] + h * dv
+        x_out[i] = x[i] + h * stage_sum(weights, w.stage_v, 7, i)
+        v_out[i] = v[i] + h * stage_sum(weights, w.stage_a, 7, i)
     for c in range(N_POWERS):
-        de = 0.0
-        for k in range(7):
-            weight = DP_P[k, 0] * b0 + DP_P[k, 1] * b1 + DP_P[k, 2] * b2 + DP_P[k, 3] * b3
-            de += weight * sp[k, c]
-        energy_out[c] = energy[c] + h * de
+        energy_out[c] = energy[c] + h * stage_sum(weights, w.stage_p, 7, c)
     energy_out[N_POWERS] = energy[N_POWERS]
 
 
@@ -337,21 +322,19 @@ def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
 
     Contact closing and opening, and the slip velocity of a sliding interface, are
     functions of the state alone, so they are checked on the dense output without
-    evaluating forces.
+    evaluating forces: the guards go into w.contact_trial / w.motion_trial, and the
+    breakaway margins of stuck interfaces, which would need the forces, are not read.
     """
     for theta in DIP_POINTS:
         dense_state(theta, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
         interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
                              w.penetration, w.rate, w.slip)
+        event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu,
+                     s.opens, s.can_stick, w.contact_trial, w.motion_trial)
         for e in range(len(modes)):
-            if s.opens[e]:
-                guard = -w.penetration[e] if modes[e] == OPEN else w.penetration[e]
-                if crossed(contact_before[e], guard):
-                    return theta
-            if s.can_stick[e] and (modes[e] == SLIP_POSITIVE or modes[e] == SLIP_NEGATIVE):
-                guard = w.slip[e] if modes[e] == SLIP_POSITIVE else -w.slip[e]
-                if crossed(motion_before[e], guard):
-                    return theta
+            if crossed(contact_before[e], w.contact_trial[e]) or (
+                    modes[e] != STICK and crossed(motion_before[e], w.motion_trial[e])):
+                return theta
     return 2.0
 
 
@@ -589,14 +572,21 @@ def keep_guards(w, contact_before, motion_before):
 
 
 @njit_without_refcounts
-def take_step(x, v, energy, w):
-    """Move to the end of the step just taken: its state, and its last stage as the first."""
+def move_state(x, v, energy, w):
+    """The state becomes w.x_new, w.v_new, w.e_new."""
     for i in range(len(x)):
         x[i] = w.x_new[i]
         v[i] = w.v_new[i]
-        w.a_start[i] = w.a_end[i]
     for c in range(N_WORK):
         energy[c] = w.e_new[c]
+
+
+@njit_without_refcounts
+def take_step(x, v, energy, w):
+    """Move to the end of the step just taken: its state, and its last stage as the first."""
+    move_state(x, v, energy, w)
+    for i in range(len(x)):
+        w.a_start[i] = w.a_end[i]
     for c in range(N_POWERS):
         w.stage_p[0, c] = w.stage_p[6, c]
 
@@ -657,7 +647,7 @@ def locate_fixed(t, h, tolerance, x, v, energy, modes, topology, s, w, contact_b
         else:
             lo = mid
     rk4_step(t, x, v, energy, hi, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
-    take_step(x, v, energy, w)
+    move_state(x, v, energy, w)
     evaluate_guards(t + hi, x, v, modes, topology, s, w, w.a_end)
     return hi
 
@@ -761,11 +751,7 @@ def locate_dense(t, h, theta, t_final, tolerance, sample_step, t0, n_samples, x,
     sample = record_dense(out, sample, n_samples, t0, sample_step, t, t_event, h, x, v,
                           energy, modes, topology, s, w)
     dense_state(hi, h, x, v, energy, w, w.x_new, w.v_new, w.e_new)
-    for i in range(len(x)):
-        x[i] = w.x_new[i]
-        v[i] = w.v_new[i]
-    for c in range(N_WORK):
-        energy[c] = w.e_new[c]
+    move_state(x, v, energy, w)
     evaluate_guards(t_event, x, v, modes, topology, s, w, w.a_end)
     return t_event, sample
 
