@@ -65,12 +65,11 @@ def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient
         start = (run.x[-1], run.v[-1])
     sim = simulate(scene, record, method=method, samples_per_period=samples_per_period,
                    initial=start)
-    return SweepPoint(
-        value=float(value), poincare=sim.poincare(blade, skip=0),
-        energy_density=sim.energy_density(blade), friction_loss_per_cycle=
-        friction_loss_per_cycle(sim, skip=0),
-        classification=classify(sim, blade, skip=0, tolerance=tolerance),
-        final_state=(sim.x[-1].copy(), sim.v[-1].copy()))
+    return SweepPoint(value=float(value), poincare=sim.poincare(blade, skip=0),
+                      energy_density=sim.energy_density(blade),
+                      friction_loss_per_cycle=friction_loss_per_cycle(sim, skip=0),
+                      classification=classify(sim, blade, skip=0, tolerance=tolerance),
+                      final_state=(sim.x[-1].copy(), sim.v[-1].copy()))
 
 
 def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
