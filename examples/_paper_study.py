@@ -15,11 +15,6 @@ OUTPUT = Path(__file__).resolve().parent / "output"
 METHOD = Adaptive(rtol=1e-8, atol=1e-12)
 
 
-def print_progress(done, total):
-    end = "\n" if done == total else ""
-    print(f"\r  sweep: {done}/{total} points", end=end, flush=True)
-
-
 def study(*, scene_at, parameter, label, unit, claims, first_figure, diagram_figure,
           values, transient, record, steady):
     """Response panels at each claimed value, then the bifurcation diagram over ``values``.
@@ -40,7 +35,7 @@ def study(*, scene_at, parameter, label, unit, claims, first_figure, diagram_fig
     for value, claim, kind in rows:
         print(f"{value:8g} {claim:>15} {kind.label:>15}  {kind}")
     result = sweep(scene_at, np.asarray(values), parameter=parameter, transient=transient,
-                   record=record, method=METHOD, progress=print_progress)
+                   record=record, method=METHOD)
     diagram = bifurcation_diagram(result, xlabel=f"{label} [{unit}]" if unit else label,
                                   title=f"Fig. {diagram_figure}: reference blade")
     diagram.savefig(OUTPUT / f"fig{diagram_figure:02d}_bifurcation_{parameter}.png", dpi=110)

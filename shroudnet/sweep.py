@@ -1,17 +1,24 @@
 """Parameter sweeps and bifurcation diagrams: one steady response per value of a scalar.
 
 A sweep keeps, per value, only what a diagram needs (Poincaré points, E_ρ, the
-classification and the final state), never the time histories.
+classification and the final state), never the time histories. Its points run on every core
+by default, on any ``concurrent.futures.Executor``, or on a dask cluster.
 """
 
 from __future__ import annotations
 
+import os
+import pickle
 from collections.abc import Callable, Hashable, Sequence
+from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
 from dataclasses import dataclass
 
+import cloudpickle
 import numpy as np
 
 from .analysis import Classification, classify, friction_loss_per_cycle
+from .progress import progress_callback
 from .scene import Scene
 from .simulate import FixedStep, simulate
 
@@ -76,15 +83,34 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
           parameter: str = "value", blade: Hashable | int = 1, transient: int = 300,
           record: int = 100, method=FixedStep(), samples_per_period: int = 50,
           continuation: bool = False, initial=None, tolerance: float = 1e-5,
-          progress: Callable[[int, int], None] | None = None) -> Sweep:
+          workers: int | None = None, executor=None, progress="auto") -> Sweep:
     """The steady response of ``scene_at(value)`` for each value, in the order given.
 
     Each point runs ``transient`` periods, then records ``record`` periods of which it keeps
     the Poincaré points of ``blade``, E_ρ, the friction loss per cycle and the
-    classification. With ``continuation``, each point starts from the previous point's
-    final state (the first from ``initial``, default rest), so a forward and a backward
-    sweep can land on different coexisting attractors; otherwise every point starts from
-    ``initial``. ``progress(done, total)`` is called after each point.
+    classification. Every point starts from ``initial`` (default rest) and is independent
+    of the others, so the points run in parallel and the result is the same, bit for bit,
+    however they are spread.
+
+    Parameters
+    ----------
+    scene_at : callable
+        value ↦ Scene; a lambda or a function defined in a notebook will do (it travels to
+        the workers by cloudpickle).
+    workers : int, optional
+        Worker processes of the pool the sweep makes for itself; default every core of the
+        machine. 1 runs the points one after the other in this process.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Run the points there instead (a thread pool gains nothing: the loop holds the GIL).
+        A dask client runs them on its cluster (``pip install 'shroudnet[dask]'``).
+    continuation : bool
+        Chain the points in order: each starts from the previous point's final state (the
+        first from ``initial``), so a forward and a backward sweep can land on different
+        coexisting attractors. Inherently serial: not allowed with ``workers`` > 1 or an
+        ``executor``.
+    progress : "auto", bool, None or callable
+        ``progress(done, total)`` after each point; "auto" shows points done, rate and time
+        left on standard error when it is a terminal; False or None is silent.
     """
     values = [float(v) for v in values]
     if not values:
@@ -94,19 +120,118 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
             raise ValueError(f"sweep.{name} must be an int >= 0, got {number!r}")
     if record < 3:
         raise ValueError(f"sweep.record must be at least 3 periods, got {record}")
-    points = []
-    state = initial
-    for done, value in enumerate(values, start=1):
-        point = steady_point(scene_at(value), value, blade=blade, transient=transient,
-                             record=record, method=method,
-                             samples_per_period=samples_per_period, initial=state,
-                             tolerance=tolerance)
-        points.append(point)
-        if continuation:
-            state = point.final_state
-        if progress is not None:
-            progress(done, len(values))
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):
+        raise ValueError(f"sweep.workers must be an int >= 1 or None (every core), "
+                         f"got {workers!r}")
+    if executor is not None and workers is not None:
+        raise ValueError("sweep: give workers (a pool of our own) or executor, not both")
+    if continuation and (executor is not None or (workers or 1) > 1):
+        raise ValueError("sweep: continuation chains each point from the previous one and "
+                         "runs serially; leave out workers and executor")
+    report = progress_callback(progress)
+    options = {"blade": blade, "transient": transient, "record": record, "method": method,
+               "samples_per_period": samples_per_period, "tolerance": tolerance}
+    if report is not None:
+        report(0, len(values))
+    if continuation:
+        points = _one_by_one(scene_at, values, initial, options, parameter, report)
+    elif executor is not None:
+        points = _spread(_as_executor(executor), scene_at, values, initial, options,
+                         parameter, report)
+    else:
+        workers = min(default_workers() if workers is None else workers, len(values))
+        if workers == 1:
+            points = _one_by_one(scene_at, values, initial, options, parameter, report,
+                              chain=False)
+        else:
+            with _naming(parameter, values[0]):
+                _warm_kernel(scene_at(values[0]), method)
+            with ProcessPoolExecutor(max_workers=workers) as pool:
+                points = _spread(pool, scene_at, values, initial, options, parameter, report)
     settings = {"transient": transient, "record": record, "method": repr(method),
                 "samples_per_period": samples_per_period, "continuation": continuation,
                 "tolerance": tolerance}
     return Sweep(parameter=parameter, blade=blade, points=tuple(points), settings=settings)
+
+
+def default_workers() -> int:
+    """The cores this process may run on."""
+    if hasattr(os, "process_cpu_count"):  # Python ≥ 3.13
+        return os.process_cpu_count() or 1
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
+
+
+def _point(scene_at, value, initial, options) -> SweepPoint:
+    return steady_point(scene_at(value), value, initial=initial, **options)
+
+
+def _remote_point(pickled_scene_at: bytes, value, initial, options) -> SweepPoint:
+    """One point on a worker; ``scene_at`` comes pickled by cloudpickle, lambdas included."""
+    return _point(pickle.loads(pickled_scene_at), value, initial, options)
+
+
+def _one_by_one(scene_at, values, initial, options, parameter, report, chain=True):
+    points = []
+    state = initial
+    for done, value in enumerate(values, start=1):
+        with _naming(parameter, value):
+            point = _point(scene_at, value, state, options)
+        points.append(point)
+        if chain:
+            state = point.final_state
+        if report is not None:
+            report(done, len(values))
+    return points
+
+
+def _spread(executor: Executor, scene_at, values, initial, options, parameter, report):
+    pickled = _pickled(scene_at)
+    futures = {executor.submit(_remote_point, pickled, value, initial, options): index
+               for index, value in enumerate(values)}
+    points = [None] * len(values)
+    try:
+        for done, future in enumerate(as_completed(futures), start=1):
+            index = futures[future]
+            with _naming(parameter, values[index]):
+                points[index] = future.result()
+            if report is not None:
+                report(done, len(values))
+    finally:
+        for future in futures:
+            future.cancel()
+    return points
+
+
+@contextmanager
+def _naming(parameter, value):
+    """Add the sweep point to the message of an error raised while computing it."""
+    try:
+        yield
+    except Exception as error:
+        error.add_note(f"in the sweep point {parameter} = {value:g}")
+        raise
+
+
+def _as_executor(executor) -> Executor:
+    if isinstance(executor, Executor):
+        return executor
+    if hasattr(executor, "get_executor"):  # a dask.distributed.Client
+        return executor.get_executor()
+    raise TypeError(f"sweep.executor must be a concurrent.futures.Executor or a "
+                    f"dask.distributed.Client, got {executor!r}")
+
+
+def _pickled(scene_at) -> bytes:
+    try:
+        return cloudpickle.dumps(scene_at)
+    except Exception as error:
+        raise TypeError(f"sweep: scene_at ({scene_at!r}) cannot be sent to worker processes: "
+                        f"{error}. Pass workers=1 to run the sweep in this process.") from None
+
+
+def _warm_kernel(scene, method):
+    """Compile (or load) the kernel here once, so the workers find it in the disk cache."""
+    simulate(scene, 1, method=method, samples_per_period=1)

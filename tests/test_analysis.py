@@ -1,4 +1,4 @@
-"""Analysis: spectra, the period and chaos classifier, energy measures, Campbell, sweeps."""
+"""Analysis: spectra, the period and chaos classifier, energy measures, Campbell."""
 
 import math
 
@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from shroudnet import (FixedStep, amplitude_spectrum, campbell, classify, classify_section,
-                       friction_loss_per_cycle, simulate, spectrum, sweep, zero_one_test)
+                       friction_loss_per_cycle, simulate, spectrum, zero_one_test)
 from shroudnet.scenes import paper_frequency_model, three_blade_paper
 from tests.test_simulate import linear_response
 
@@ -104,23 +104,3 @@ def test_campbell_crossings_solve_the_southwell_law():
         assert speed == pytest.approx(exact, rel=1e-9)
         assert frequency == pytest.approx(model.at(speed), rel=1e-9)
     np.testing.assert_allclose(diagram.line(2), 2 * diagram.speeds_rpm / 60)
-
-
-def test_a_sweep_equals_its_points_run_one_by_one():
-    def scene_at(gamma1):
-        return three_blade_paper(gamma1=gamma1)
-
-    settings = {"transient": 20, "record": 6, "samples_per_period": 20}
-    together = sweep(scene_at, [1.0, 3.5], **settings)
-    apart = [sweep(scene_at, [value], **settings).points[0] for value in (1.0, 3.5)]
-    for a, b in zip(together.points, apart):
-        np.testing.assert_array_equal(a.poincare, b.poincare)
-        assert a.energy_density == b.energy_density
-    chained = sweep(scene_at, [1.0, 3.5], continuation=True, **settings)
-    first = sweep(scene_at, [1.0], **settings)
-    second = sweep(scene_at, [3.5], initial=first.points[0].final_state, **settings)
-    np.testing.assert_array_equal(chained.points[1].poincare, second.points[0].poincare)
-    assert not np.array_equal(chained.points[1].poincare, together.points[1].poincare)
-    values, section = together.diagram()
-    assert values.shape == section.shape == (14,)
-    assert together.labels == [p.classification.label for p in together.points]

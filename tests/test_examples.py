@@ -1,6 +1,8 @@
 """Examples and the README's code run as they are shown."""
 
+import importlib.util
 import re
+import sys
 from pathlib import Path
 
 import pytest
@@ -36,13 +38,17 @@ EXAMPLES = {
 
 @pytest.mark.parametrize("name", sorted(EXAMPLES))
 def test_example_runs_and_saves_its_figures(name, capsys):
+    # Imported as a module of its own name, so that its functions pickle for the sweep's
+    # worker processes as they do when the script runs as __main__.
     path = ROOT / "examples" / f"{name}.py"
-    namespace = {"__name__": "example", "__file__": str(path)}
-    exec(compile(path.read_text(), str(path), "exec"), namespace)
+    spec = importlib.util.spec_from_file_location(name, path)
+    example = importlib.util.module_from_spec(spec)
+    sys.modules[name] = example
+    spec.loader.exec_module(example)
     arguments, figures = EXAMPLES[name]
     for figure in figures:
         (ROOT / "examples" / "output" / figure).unlink(missing_ok=True)
-    namespace["main"](**arguments)
+    example.main(**arguments)
     assert capsys.readouterr().out
     for figure in figures:
         assert (ROOT / "examples" / "output" / figure).stat().st_size > 10_000
