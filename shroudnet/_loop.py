@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 
 from shroudnet.clusters import cluster_labels
-from shroudnet.compiled import njit_without_refcounts
+from shroudnet.compiled import njit_inlined, njit_without_refcounts
 from shroudnet.dynamics import (cluster_accelerations, cluster_mass, event_guards,
                                 excitation_forces, interface_kinematics, resultant_forces,
                                 static_friction, static_friction_operator)
@@ -143,7 +143,7 @@ def law_forces(s, modes, w):
             w.friction[e] = -sliding
 
 
-@njit_without_refcounts
+@njit_inlined
 def derivative(t, x, v, modes, topology, s, w, acceleration):
     """ẍ into ``acceleration``; returns the powers (excitation, damping, friction, contact) [W].
 
@@ -191,19 +191,19 @@ def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
     return powers
 
 
-@njit_without_refcounts
+@njit_inlined
 def set_powers(row, powers):
     for k in range(N_POWERS):
         row[k] = powers[k]
 
 
-@njit_without_refcounts
+@njit_inlined
 def crossed(before, after):
     """A guard changed sign: it is negative now and was not, or it fell further below zero."""
     return after < 0.0 and (before >= 0.0 or after < before)
 
 
-@njit_without_refcounts
+@njit_inlined
 def any_crossed(contact_before, motion_before, w):
     for e in range(len(contact_before)):
         if crossed(contact_before[e], w.contact[e]) or crossed(motion_before[e], w.motion[e]):
@@ -249,7 +249,7 @@ def rk4_step(t, x, v, energy, h, modes, topology, s, w, x_out, v_out, energy_out
 
 # ---- adaptive step: Dormand–Prince 5(4) -------------------------------------------------
 
-@njit_without_refcounts
+@njit_inlined
 def stage_sum(weights, stages, n_stages, column):
     """Σ_k weights[k] · stages[k, column] over the first ``n_stages`` Runge–Kutta stages."""
     total = 0.0
@@ -298,7 +298,7 @@ def dp5_step(t, x, v, energy, h, modes, topology, s, w, rtol, atol_x, atol_v):
     return math.sqrt(error / (2 * n))
 
 
-@njit_without_refcounts
+@njit_inlined
 def dense_state(theta, h, x, v, energy, w, x_out, v_out, energy_out):
     """The state at t + θh from the dense output of the last ``dp5_step``."""
     b0 = theta
@@ -316,7 +316,7 @@ def dense_state(theta, h, x, v, energy, w, x_out, v_out, energy_out):
     energy_out[N_POWERS] = energy[N_POWERS]
 
 
-@njit_without_refcounts
+@njit_inlined
 def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
     """The first of ``DIP_POINTS`` at which a contact or slip guard has crossed, else 2.
 
@@ -325,7 +325,8 @@ def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
     evaluating forces: the guards go into w.contact_trial / w.motion_trial, and the
     breakaway margins of stuck interfaces, which would need the forces, are not read.
     """
-    for theta in DIP_POINTS:
+    for k in range(len(DIP_POINTS)):
+        theta = DIP_POINTS[k]
         dense_state(theta, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
         interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
                              w.penetration, w.rate, w.slip)

@@ -16,3 +16,8 @@ compiled code; the loop then stops with a non-finite state, which it reports.
 from numba import njit
 
 njit_without_refcounts = njit(cache=True, _nrt=False, error_model="numpy")
+
+#: The same, inlined into its callers by numba: for the small helpers called many times
+#: per step with the loop's tuples of arrays, whose passing would otherwise cost more than
+#: their work.
+njit_inlined = njit(cache=True, _nrt=False, error_model="numpy", inline="always")

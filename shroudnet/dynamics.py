@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit
 
 from .clusters import cluster_labels
-from .compiled import njit_without_refcounts
+from .compiled import njit_inlined, njit_without_refcounts
 from .modes import Mode
 from .scene import Scene, SceneArrays
 
@@ -51,7 +51,7 @@ def excitation_forces(t, amplitudes, cos_phase, sin_phase, excitation_frequency,
                 out[i] += in_phase * cos_phase[i] + quadrature * sin_phase[i]
 
 
-@njit_without_refcounts
+@njit_inlined
 def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle,
                          penetration, rate, slip_velocity):
     """Penetration δ = (u − Δ) sin α [m], its rate δ̇ [m/s] and slip velocity u̇ cos α [m/s].
@@ -169,7 +169,7 @@ def static_friction(operator, stuck_interfaces, mass, resultant, acceleration, n
         friction[stuck_interfaces[k]] = value
 
 
-@njit_without_refcounts
+@njit_inlined
 def event_guards(modes, penetration, slip_velocity, normal_force, friction_force, static_mu,
                  opens, can_stick, contact, motion):
     """Guards: per interface, values that stay ≥ 0 while its mode holds and cross 0 at a switch.
