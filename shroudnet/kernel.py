@@ -29,7 +29,6 @@ from .kernel_types import KernelScene
 from .scene import Scene
 
 _LOOP_SOURCE = Path(__file__).with_name("_loop.py")
-_LOADED: dict[str, ModuleType] = {}
 
 
 def cache_folder() -> Path:
@@ -114,14 +113,19 @@ def load_kernel(scene: Scene) -> ModuleType:
     """The compiled kernel module for the laws and effects of ``scene``."""
     arrays = scene.arrays
     normal_classes, friction_classes = _law_classes(arrays)
+    return _kernel(tuple(normal_classes), tuple(friction_classes),
+                   tuple(_flags(arrays).items()))
+
+
+@functools.cache
+def _kernel(normal_classes, friction_classes, flags) -> ModuleType:
+    """The kernel of one combination of law classes and effect flags (once per process)."""
     loop, compiled_in = _loop_sources()
-    source = _header(normal_classes, friction_classes, _flags(arrays)) + loop
+    source = _header(list(normal_classes), list(friction_classes), dict(flags)) + loop
     identity = "\n".join([source, compiled_in]
                          + [_signature(c, "normal") for c in normal_classes]
                          + [_signature(c, "friction") for c in friction_classes])
     key = hashlib.sha256(identity.encode()).hexdigest()[:20]
-    if key in _LOADED:
-        return _LOADED[key]
     folder = cache_folder()
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"kernel_{key}.py"
@@ -137,7 +141,6 @@ def load_kernel(scene: Scene) -> ModuleType:
     for kind, classes in (("normal", normal_classes), ("friction", friction_classes)):
         for index, law_class in enumerate(classes):
             setattr(module, f"_{kind}_{index}", njit(_law_function(law_class, kind)))
-    _LOADED[key] = module
     return module
 
 
