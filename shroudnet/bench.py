@@ -1,4 +1,13 @@
-"""Benchmark: ``python -m shroudnet.bench`` prints integration speed on the paper's scene.
+"""Benchmark: ``python -m shroudnet.bench`` prints what the paper's scene costs to simulate.
+
+1. Steps per second of each integrator on one core.
+2. Scene specialisation: the same blades with no contact, frictionless and frictional
+   contact, each running the kernel compiled for its effects.
+3. The ratio against a plain ``solve_ivp`` event-driven implementation of the same scene
+   (``shroudnet.baseline``) at equal accuracy, both measured against a converged reference.
+4. Sweeps: seconds per bifurcation point, the speed-up with the number of workers, and the
+   wall time and peak memory of a Fig. 6-class diagram (γ1 over [0.5, 10], 300 transient +
+   100 recorded periods per value) on every core.
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
 the kernel); nothing here is asserted, because timings depend on the machine.
@@ -6,45 +15,215 @@ the kernel); nothing here is asserted, because timings depend on the machine.
 
 from __future__ import annotations
 
+import argparse
+import functools
+import json
+import resource
 import statistics
+import subprocess
+import sys
 import time
 
+import numpy as np
+
+from .baseline import solve_ivp_baseline
+from .group import BladeGroup
+from .scene import Scene
 from .scenes import three_blade_paper
 from .simulate import Adaptive, FixedStep, simulate
+from .sweep import default_workers, sweep
+
+#: The benchmark's operating point: p3 motion with stick, slip and impacts on both shrouds.
+POINT = {"gamma1": 2.2, "speed_rpm": 6000.0, "q1": 50.0}
 
 
-def steps_per_second(method, *, periods: int = 200, repeats: int = 5) -> tuple[float, object]:
+def median_time(function, repeats: int) -> tuple[float, object]:
+    """Median wall time [s] of ``function()`` over ``repeats`` runs, and its last result."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = function()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), result
+
+
+def steps_per_second(method, *, scene=None, periods: int = 200, repeats: int = 5
+                     ) -> tuple[float, object]:
     """Median Runge–Kutta steps per second on one core, and the last simulation.
 
     A step is one grid step for ``FixedStep``, one accepted step for ``Adaptive``; the time
     includes locating and resolving every switch and recording 100 samples per period.
     """
-    scene = three_blade_paper(gamma1=2.2, speed_rpm=6000.0, q1=50.0)
+    scene = three_blade_paper(**POINT) if scene is None else scene
     simulate(scene, 2, method=method)
-    rates = []
-    for _ in range(repeats):
+    seconds, sim = median_time(lambda: simulate(scene, periods, method=method), repeats)
+    return sim.steps / seconds, sim
+
+
+def without_interfaces(scene: Scene) -> Scene:
+    """The same blades and excitation with no shroud interfaces at all."""
+    group = BladeGroup()
+    for name in scene.group.blades:
+        group.add_blade(name, scene.group.blade(name))
+    return Scene(group=group, excitation=scene.excitation, speed_rpm=scene.speed_rpm)
+
+
+def specialisation_scenes() -> dict[str, Scene]:
+    frictional = three_blade_paper(**POINT)
+    return {
+        "no interfaces": without_interfaces(frictional),
+        "contact that never closes (gap 1 m)": three_blade_paper(**POINT, gap=1.0),
+        "frictionless contact": three_blade_paper(**POINT, friction=None),
+        "frictional contact (the paper's)": frictional,
+    }
+
+
+def baseline_comparison(gammas=(1.0, 2.2, 3.5), periods: int = 50, repeats: int = 3):
+    """Per γ1: (seconds ours, seconds solve_ivp, error ours, error solve_ivp, switches).
+
+    Both run Dormand–Prince 5(4) at rtol = 1e-8, atol = 1e-12 m; errors are the largest
+    deviation of the displacements at t = k T_e from a reference at rtol = 1e-12, relative
+    to the largest displacement.
+    """
+    rows = []
+    for gamma1 in gammas:
+        scene = three_blade_paper(**{**POINT, "gamma1": gamma1})
+        reference = simulate(scene, periods, method=Adaptive(rtol=1e-12, atol=1e-16),
+                             samples_per_period=1, event_tolerance=1e-13).x
+        run = functools.partial(simulate, scene, periods, method=Adaptive(),
+                                samples_per_period=1)
+        run()
+        ours_seconds, ours = median_time(run, repeats)
         start = time.perf_counter()
-        sim = simulate(scene, periods, method=method)
-        rates.append(sim.steps / (time.perf_counter() - start))
-    return statistics.median(rates), sim
+        plain = solve_ivp_baseline(scene, periods, rtol=1e-8, atol=1e-12)
+        plain_seconds = time.perf_counter() - start
+        scale = np.abs(reference).max()
+        rows.append((gamma1, ours_seconds, plain_seconds,
+                     np.abs(ours.x - reference).max() / scale,
+                     np.abs(plain.x - reference).max() / scale, plain.switches))
+    return rows
 
 
-def main() -> None:
+def gamma_scene(gamma1):
+    return three_blade_paper(**{**POINT, "gamma1": gamma1})
+
+
+def diagram(values, *, workers, transient=300, record=100, progress=False):
+    """A Fig. 6-class sweep of γ1; returns (wall time [s], the sweep)."""
     start = time.perf_counter()
-    three_blade_paper()  # imports done
-    print("paper three-blade scene, gamma1 = 2.2, 6000 rpm, q1 = 50 N, 200 periods, one core")
+    result = sweep(gamma_scene, values, parameter="gamma1", transient=transient,
+                   record=record, method=Adaptive(), workers=workers, progress=progress)
+    return time.perf_counter() - start, result
+
+
+def diagram_in_fresh_process(points, transient, record, workers) -> dict:
+    """Run the diagram in a new Python process, so that its peak memory is its own.
+
+    Returns wall seconds, peak resident memory [MB] of that process and of its largest
+    worker, and the size of the results the sweep keeps [MB]. Progress goes to stderr.
+    """
+    command = [sys.executable, "-m", "shroudnet.bench", "--diagram-only", "--points",
+               str(points), "--transient", str(transient), "--record", str(record),
+               "--workers", str(workers)]
+    done = subprocess.run(command, stdout=subprocess.PIPE, text=True, check=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def _diagram_only(points, transient, record, workers) -> None:
+    seconds, result = diagram(np.linspace(0.5, 10.0, points), workers=workers,
+                              transient=transient, record=record, progress="auto")
+    kept = sum(p.poincare.nbytes + sum(s.nbytes for s in p.final_state)
+               for p in result.points)
+    print(json.dumps({
+        "seconds": seconds, "kept_mb": kept / 1e6,
+        "own_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "worker_mb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}))
+
+
+def worker_counts(cores: int) -> list[int]:
+    counts = [1]
+    while counts[-1] * 2 <= cores:
+        counts.append(counts[-1] * 2)
+    return counts + ([cores] if counts[-1] != cores else [])
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(prog="python -m shroudnet.bench",
+                                     description=__doc__.split("\n\n")[0])
+    parser.add_argument("--points", type=int, default=400,
+                        help="values of γ1 in the diagram (default 400)")
+    parser.add_argument("--transient", type=int, default=300)
+    parser.add_argument("--record", type=int, default=100)
+    parser.add_argument("--scaling-points", type=int, default=None,
+                        help="values per run of the worker scaling (default 8 per core)")
+    parser.add_argument("--baseline-periods", type=int, default=50)
+    parser.add_argument("--quick", action="store_true",
+                        help="small sizes everywhere, to check that the benchmark runs")
+    parser.add_argument("--diagram-only", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--workers", type=int, default=None, help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.diagram_only:
+        return _diagram_only(args.points, args.transient, args.record, args.workers)
+    if args.quick:
+        args.points, args.transient, args.record, args.baseline_periods = 8, 20, 10, 5
+    cores = default_workers()
+    scaling_points = args.scaling_points or (4 if args.quick else 8 * cores)
+    repeats = 1 if args.quick else 5
+    periods = 20 if args.quick else 200
+    start = time.perf_counter()
+
+    print(f"1. Integration speed, one core: paper scene γ1 = {POINT['gamma1']}, "
+          f"{POINT['speed_rpm']:g} rpm, q1 = {POINT['q1']:g} N, {periods} periods")
     for label, method in [("fixed-step RK4, 1000 steps/period", FixedStep()),
                           ("adaptive DP5(4), default tolerances", Adaptive())]:
-        rate, sim = steps_per_second(method)
+        rate, sim = steps_per_second(method, periods=periods, repeats=repeats)
         counts = sim.events.counts
         per_period = sim.steps / sim.periods
-        print(f"  {label}: {rate:,.0f} steps/s, {per_period:,.0f} steps/period, "
-              f"{rate / per_period:,.0f} periods/s (median of 5)")
-        print(f"    events: {sum(counts.values())} "
-              f"({', '.join(f'{k} {v}' for k, v in counts.items())})")
-        print(f"    energy ledger residual: {sim.energy.residual:.3e} J "
-              f"against friction loss {sim.energy.friction_loss:.4f} J")
-    print(f"  wall time including warm-up: {time.perf_counter() - start:.1f} s")
+        print(f"   {label}: {rate:,.0f} steps/s, {per_period:,.0f} steps/period, "
+              f"{rate / per_period:,.0f} periods/s (median of {repeats})")
+        print(f"     events: {sum(counts.values())} "
+              f"({', '.join(f'{k} {v}' for k, v in counts.items())}); energy ledger "
+              f"residual {sim.energy.residual:.3e} J against friction loss "
+              f"{sim.energy.friction_loss:.4f} J")
+
+    print("\n2. Scene specialisation: fixed-step RK4, 1000 steps/period, one core")
+    for label, scene in specialisation_scenes().items():
+        rate, sim = steps_per_second(FixedStep(), scene=scene, periods=periods,
+                                     repeats=repeats)
+        print(f"   {label}: {rate:,.0f} steps/s, {sum(sim.events.counts.values())} events")
+
+    print(f"\n3. Against plain solve_ivp (RK45, Python right-hand side, event functions), "
+          f"{args.baseline_periods} periods, both at rtol 1e-8, atol 1e-12 m")
+    ratios = []
+    for gamma1, ours, plain, error_ours, error_plain, switches in baseline_comparison(
+            gammas=(2.2,) if args.quick else (1.0, 2.2, 3.5), periods=args.baseline_periods,
+            repeats=repeats):
+        ratios.append(plain / ours)
+        print(f"   γ1 = {gamma1:g}: shroudnet {ours * 1e3:.1f} ms (error {error_ours:.1e}), "
+              f"solve_ivp {plain:.2f} s (error {error_plain:.1e}), {switches} switches: "
+              f"{plain / ours:,.0f}x")
+    print(f"   median ratio: {statistics.median(ratios):,.0f}x per trajectory")
+
+    print(f"\n4. Sweeps of γ1 ({args.transient} transient + {args.record} recorded periods "
+          f"per value, adaptive DP5(4)); this machine has {cores} cores")
+    subset = np.linspace(0.5, 10.0, scaling_points)
+    diagram(subset[:2], workers=1, transient=2, record=3)  # compile or load the kernel
+    serial = None
+    for workers in worker_counts(cores):
+        seconds, _ = diagram(subset, workers=workers, transient=args.transient,
+                             record=args.record)
+        serial = serial or seconds
+        print(f"   {workers:>3} worker(s), {scaling_points} values: {seconds:6.2f} s, "
+              f"{seconds / scaling_points:.3f} s per point, speed-up "
+              f"{serial / seconds:.2f} (efficiency {serial / seconds / workers:.0%})")
+    figures = diagram_in_fresh_process(args.points, args.transient, args.record, cores)
+    seconds = figures["seconds"]
+    print(f"   Fig. 6-class diagram, {args.points} values on {cores} workers: {seconds:.1f} s "
+          f"wall, {seconds / args.points:.3f} s per point")
+    print(f"   peak resident memory of that run: {figures['own_mb']:.0f} MB in its main "
+          f"process, {figures['worker_mb']:.0f} MB in its largest worker; the sweep keeps "
+          f"{figures['kept_mb']:.2f} MB of results")
+    print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 
 if __name__ == "__main__":
