@@ -129,26 +129,28 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     if continuation and (executor is not None or (workers or 1) > 1):
         raise ValueError("sweep: continuation chains each point from the previous one and "
                          "runs serially; leave out workers and executor")
+    if not callable(scene_at):
+        raise TypeError(f"sweep.scene_at must be a callable value -> Scene, got {scene_at!r}")
+    executor = None if executor is None else _as_executor(executor)
+    if executor is None and not continuation:
+        workers = min(default_workers() if workers is None else workers, len(values))
+    serial = continuation or (executor is None and workers == 1)
+    pickled = None if serial else _pickled(scene_at)
     report = progress_callback(progress)
     options = {"blade": blade, "transient": transient, "record": record, "method": method,
                "samples_per_period": samples_per_period, "tolerance": tolerance}
     if report is not None:
         report(0, len(values))
-    if continuation:
-        points = _one_by_one(scene_at, values, initial, options, parameter, report)
+    if serial:
+        points = _one_by_one(scene_at, values, initial, options, parameter, report,
+                             chain=continuation)
     elif executor is not None:
-        points = _spread(_as_executor(executor), scene_at, values, initial, options,
-                         parameter, report)
+        points = _spread(executor, pickled, values, initial, options, parameter, report)
     else:
-        workers = min(default_workers() if workers is None else workers, len(values))
-        if workers == 1:
-            points = _one_by_one(scene_at, values, initial, options, parameter, report,
-                              chain=False)
-        else:
-            with _naming(parameter, values[0]):
-                _warm_kernel(scene_at(values[0]), method)
-            with ProcessPoolExecutor(max_workers=workers) as pool:
-                points = _spread(pool, scene_at, values, initial, options, parameter, report)
+        with _naming(parameter, values[0]):
+            _warm_kernel(scene_at(values[0]), method)
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            points = _spread(pool, pickled, values, initial, options, parameter, report)
     settings = {"transient": transient, "record": record, "method": repr(method),
                 "samples_per_period": samples_per_period, "continuation": continuation,
                 "tolerance": tolerance}
@@ -173,7 +175,7 @@ def _remote_point(pickled_scene_at: bytes, value, initial, options) -> SweepPoin
     return _point(pickle.loads(pickled_scene_at), value, initial, options)
 
 
-def _one_by_one(scene_at, values, initial, options, parameter, report, chain=True):
+def _one_by_one(scene_at, values, initial, options, parameter, report, chain):
     points = []
     state = initial
     for done, value in enumerate(values, start=1):
@@ -187,8 +189,7 @@ def _one_by_one(scene_at, values, initial, options, parameter, report, chain=Tru
     return points
 
 
-def _spread(executor: Executor, scene_at, values, initial, options, parameter, report):
-    pickled = _pickled(scene_at)
+def _spread(executor: Executor, pickled, values, initial, options, parameter, report):
     futures = {executor.submit(_remote_point, pickled, value, initial, options): index
                for index, value in enumerate(values)}
     points = [None] * len(values)
