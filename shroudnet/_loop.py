@@ -325,8 +325,7 @@ def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
     evaluating forces: the guards go into w.contact_trial / w.motion_trial, and the
     breakaway margins of stuck interfaces, which would need the forces, are not read.
     """
-    for k in range(len(DIP_POINTS)):
-        theta = DIP_POINTS[k]
+    for theta in DIP_POINTS:
         dense_state(theta, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
         interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
                              w.penetration, w.rate, w.slip)

@@ -78,6 +78,11 @@ def specialisation_scenes() -> dict[str, Scene]:
     }
 
 
+def gamma_scene(gamma1):
+    """The benchmark's scene at stiffness ratio ``gamma1`` (module-level: it is pickled)."""
+    return three_blade_paper(**{**POINT, "gamma1": gamma1})
+
+
 def baseline_comparison(gammas=(1.0, 2.2, 3.5), periods: int = 50, repeats: int = 3):
     """Per γ1: (seconds ours, seconds solve_ivp, error ours, error solve_ivp, switches).
 
@@ -87,7 +92,7 @@ def baseline_comparison(gammas=(1.0, 2.2, 3.5), periods: int = 50, repeats: int 
     """
     rows = []
     for gamma1 in gammas:
-        scene = three_blade_paper(**{**POINT, "gamma1": gamma1})
+        scene = gamma_scene(gamma1)
         reference = simulate(scene, periods, method=Adaptive(rtol=1e-12, atol=1e-16),
                              samples_per_period=1, event_tolerance=1e-13).x
         run = functools.partial(simulate, scene, periods, method=Adaptive(),
@@ -102,10 +107,6 @@ def baseline_comparison(gammas=(1.0, 2.2, 3.5), periods: int = 50, repeats: int 
                      np.abs(ours.x - reference).max() / scale,
                      np.abs(plain.x - reference).max() / scale, plain.switches))
     return rows
-
-
-def gamma_scene(gamma1):
-    return three_blade_paper(**{**POINT, "gamma1": gamma1})
 
 
 def diagram(values, *, workers, transient=300, record=100, progress=False):
