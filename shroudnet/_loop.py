@@ -338,6 +338,98 @@ def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
     return 2.0
 
 
+@njit_inlined
+def contact_guard(e, x, v, modes, s):
+    """Interface e's contact guard g (−δ while open, δ while closed) [m] and ġ [m/s]."""
+    u = 0.0
+    du = 0.0
+    if s.left[e] >= 0:
+        u += x[s.left[e]]
+        du += v[s.left[e]]
+    if s.right[e] >= 0:
+        u -= x[s.right[e]]
+        du -= v[s.right[e]]
+    side = -s.sin_angle[e] if modes[e] == OPEN else s.sin_angle[e]
+    return side * (u - s.gap[e]), side * du
+
+
+@njit_inlined
+def may_graze(e, h, x, v, modes, s, w):
+    """Interface e's contact guard, positive at both ends of the step of size h from (x, v)
+    to (w.x_new, w.v_new), may still dip below 0 inside it: a grazing contact.
+
+    That needs a minimum inside the step (ġ < 0 at its start, > 0 at its end) and the
+    tangents at both ends, which bound a convex guard from below, meeting below 0. Far
+    from grazing the bound stays positive and nothing more is evaluated.
+    """
+    if not s.opens[e]:
+        return False
+    g0, rate0 = contact_guard(e, x, v, modes, s)
+    g1, rate1 = contact_guard(e, w.x_new, w.v_new, modes, s)
+    if not (g0 > 0.0 and g1 > 0.0 and rate0 < 0.0 and rate1 > 0.0):
+        return False
+    meet = (g1 - g0 - rate1 * h) / (rate0 - rate1)
+    return g0 + rate0 * meet <= 0.0
+
+
+@njit_inlined
+def graze_dense(h, tolerance, x, v, energy, modes, s, w):
+    """θ just past the minimum of a contact guard that dips below 0 inside the adaptive step
+    of size h, else 2. The minimum is bisected on the sign of ġ along the dense output to
+    within ``tolerance`` seconds; a switch then lies in (0, θ], where the guard falls."""
+    first = 2.0
+    for e in range(len(modes)):
+        if not may_graze(e, h, x, v, modes, s, w):
+            continue
+        lo, hi = 0.0, 1.0
+        while (hi - lo) * h > tolerance:
+            mid = 0.5 * (lo + hi)
+            dense_state(mid, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
+            if contact_guard(e, w.xt, w.vt, modes, s)[1] < 0.0:
+                lo = mid
+            else:
+                hi = mid
+        dense_state(hi, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
+        if contact_guard(e, w.xt, w.vt, modes, s)[0] < 0.0:
+            first = min(first, hi)
+    return first
+
+
+@njit_inlined
+def graze_fixed(t, h, tolerance, x, v, energy, modes, topology, s, w):
+    """``graze_dense`` for the fixed-step RK4 step of size h from t, each trial state
+    integrated anew from the step's start. Returns θ ≤ 1, or 2 with the step's end state
+    and guards restored in w when no contact guard dips below 0."""
+    candidates = w.contact_trial
+    searched = False
+    for e in range(len(modes)):
+        candidates[e] = 1.0 if may_graze(e, h, x, v, modes, s, w) else 0.0
+        searched = searched or candidates[e] > 0.0
+    if not searched:
+        return 2.0
+    first = 2.0
+    for e in range(len(modes)):
+        if candidates[e] == 0.0:
+            continue
+        lo, hi = 0.0, 1.0
+        while (hi - lo) * h > tolerance:
+            mid = 0.5 * (lo + hi)
+            rk4_step(t, x, v, energy, mid * h, modes, topology, s, w, w.x_new, w.v_new,
+                     w.e_new)
+            if contact_guard(e, w.x_new, w.v_new, modes, s)[1] < 0.0:
+                lo = mid
+            else:
+                hi = mid
+        rk4_step(t, x, v, energy, hi * h, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
+        if contact_guard(e, w.x_new, w.v_new, modes, s)[0] < 0.0:
+            first = min(first, hi)
+    if first > 1.0:
+        rk4_step(t, x, v, energy, h, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
+        set_powers(w.stage_p[6], evaluate_guards(t + h, w.x_new, w.v_new, modes, topology,
+                                                 s, w, w.a_end))
+    return first
+
+
 # ---- resolving a switch (allocates: once per event) -------------------------------------
 
 @njit(cache=True)
@@ -601,13 +693,14 @@ def finish(status, t, stop_interface, steps, out, n_samples, events):
 
 
 @njit_without_refcounts
-def advance_fixed(k, t, t0, step, n_steps, steps_per_sample, x, v, energy, modes, topology,
-                  s, w, contact_before, motion_before, out, sample):
+def advance_fixed(k, t, t0, step, n_steps, steps_per_sample, tolerance, x, v, energy, modes,
+                  topology, s, w, contact_before, motion_before, out, sample):
     """RK4 steps along the grid t0 + k·step, recording samples, until a guard crosses.
 
     Starts at time t inside step k (t = t0 + k·step unless a switch was just resolved).
-    Returns (k, t, sample, status): the step in which a guard crossed with the state still
-    at its start (k < n_steps), or k = n_steps at the end of the run.
+    Returns (k, t, sample, status, theta): the step in which a guard crossed, with the state
+    still at its start (k < n_steps) and the switch in (0, θ] of the step; or
+    k = n_steps at the end of the run.
     """
     while k < n_steps:
         t_end = t0 + (k + 1) * step
@@ -616,28 +709,33 @@ def advance_fixed(k, t, t0, step, n_steps, steps_per_sample, x, v, energy, modes
         set_powers(w.stage_p[6], evaluate_guards(t_end, w.x_new, w.v_new, modes, topology,
                                                  s, w, w.a_end))
         if (HAS_CONTACT_EVENTS or HAS_STICK) and any_crossed(contact_before, motion_before, w):
-            return k, t, sample, FINISHED
+            return k, t, sample, FINISHED, 1.0
+        if HAS_CONTACT_EVENTS:
+            theta = graze_fixed(t, t_end - t, tolerance, x, v, energy, modes, topology, s, w)
+            if theta <= 1.0:
+                return k, t, sample, FINISHED, theta
         keep_guards(w, contact_before, motion_before)
         take_step(x, v, energy, w)
         if not is_finite(x, v):
-            return k, t, sample, NOT_FINITE
+            return k, t, sample, NOT_FINITE, 2.0
         t = t_end
         k += 1
         if k % steps_per_sample == 0:
             record(out, sample, t, x, v, modes, energy, w)
             sample += 1
-    return k, t, sample, FINISHED
+    return k, t, sample, FINISHED, 2.0
 
 
 @njit_without_refcounts
-def locate_fixed(t, h, tolerance, x, v, energy, modes, topology, s, w, contact_before,
+def locate_fixed(t, h, theta, tolerance, x, v, energy, modes, topology, s, w, contact_before,
                  motion_before):
-    """Bisect the step from t of size h for its earliest switch; move the state there.
+    """Bisect (0, θh] of the step from t of size h for its earliest switch; move the state
+    there.
 
     The switch lies in (lo, hi] of the step; each trial state is integrated anew from the
     step's start. Returns hi, the step taken, with the guards at its end in w.
     """
-    lo, hi = 0.0, h
+    lo, hi = 0.0, theta * h
     while hi - lo > tolerance:
         mid = 0.5 * (lo + hi)
         rk4_step(t, x, v, energy, mid, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
@@ -668,14 +766,14 @@ def run_fixed_step(s, x0, v0, t0, step, n_steps, steps_per_sample, event_toleran
     k, t, sample = 0, t0, 1
     stop_interface = -1
     while status == FINISHED:
-        k, t, sample, status = advance_fixed(k, t, t0, step, n_steps, steps_per_sample, x, v,
-                                             energy, modes, topology, s, w, contact_before,
-                                             motion_before, out, sample)
+        k, t, sample, status, theta = advance_fixed(
+            k, t, t0, step, n_steps, steps_per_sample, event_tolerance, x, v, energy, modes,
+            topology, s, w, contact_before, motion_before, out, sample)
         if k == n_steps or status != FINISHED:
             break
         t_end = t0 + (k + 1) * step
         h = t_end - t
-        hi = locate_fixed(t, h, event_tolerance, x, v, energy, modes, topology, s, w,
+        hi = locate_fixed(t, h, theta, event_tolerance, x, v, energy, modes, topology, s, w,
                           contact_before, motion_before)
         t = t_end if hi == h else t + hi
         status, stop_interface, topology = switch(t, x, v, energy, modes, contact_before,
@@ -693,7 +791,7 @@ def run_fixed_step(s, x0, v0, t0, step, n_steps, steps_per_sample, event_toleran
 
 @njit_without_refcounts
 def advance_adaptive(t, h, t_final, sample_step, t0, n_samples, rtol, atol_x, atol_v, h_max,
-                     h_min, x, v, energy, modes, topology, s, w, contact_before,
+                     h_min, tolerance, x, v, energy, modes, topology, s, w, contact_before,
                      motion_before, out, sample, steps):
     """Dormand–Prince steps from t, recording samples, until a guard crosses or the end.
 
@@ -716,6 +814,8 @@ def advance_adaptive(t, h, t_final, sample_step, t0, n_samples, rtol, atol_x, at
             theta = 1.0 if any_crossed(contact_before, motion_before, w) else 2.0
             theta = min(theta, kinematic_dip(h, x, v, energy, modes, contact_before,
                                              motion_before, s, w))
+            if HAS_CONTACT_EVENTS:
+                theta = min(theta, graze_dense(h, tolerance, x, v, energy, modes, s, w))
             if theta <= 1.0:
                 return t, h, sample, steps, FINISHED, theta
         t_new = t_final if last else t + h
@@ -776,8 +876,8 @@ def run_adaptive(s, x0, v0, t0, sample_step, n_samples, rtol, atol_x, atol_v, h_
     while status == FINISHED and sample < n_samples:
         t, h, sample, steps, status, theta = advance_adaptive(
             t, h, t_final, sample_step, t0, n_samples, rtol, atol_x, atol_v, h_max, h_min,
-            x, v, energy, modes, topology, s, w, contact_before, motion_before, out, sample,
-            steps)
+            event_tolerance, x, v, energy, modes, topology, s, w, contact_before, motion_before,
+            out, sample, steps)
         if theta > 1.0 or status != FINISHED:
             break
         t, sample = locate_dense(t, h, theta, t_final, event_tolerance, sample_step, t0,

@@ -72,17 +72,44 @@ class ZenoGuard:
     """Stop a run when switches pile up: ``events`` of them within ``window`` periods.
 
     Chattering and Zeno behaviour (infinitely many switches in finite time) otherwise make
-    an event-driven integrator crawl. The run stops with a ``SimulationError`` naming the
-    time and the interface.
+    an event-driven integrator crawl. Past an accumulation point of switches, a located
+    switch leaves the state within the event tolerance of the next one, so the pile-up
+    goes on at a spacing of some tens of event tolerances. The default window, 10⁶ event
+    tolerances (10⁻⁴ periods at the default tolerance) but at most 10⁻³ periods, is wide
+    enough to see that, and 200 switches in it would mean at least 2·10⁵ per period, far
+    beyond any motion the integrator resolves. (With a loose event tolerance such a
+    pile-up moves on by many tolerances per switch, so it ends without the guard.) The
+    run stops with a ``SimulationError`` naming the time and the interface.
+
+    Parameters
+    ----------
+    events : int
+        Switches that make a pile-up, ≥ 2.
+    window : float, optional
+        Their time span, in excitation periods, > 0; by default
+        min(10⁶ × ``event_tolerance``, 10⁻³).
     """
 
     events: int = 200
-    window: float = 1e-6
+    window: float | None = None
 
     def __post_init__(self):
         if isinstance(self.events, bool) or not isinstance(self.events, int) or self.events < 2:
             raise ValueError(f"ZenoGuard.events must be an int >= 2, got {self.events!r}")
-        check_real("ZenoGuard", "window", self.window, low=0.0, low_open=True, unit="periods")
+        if self.window is not None:
+            check_real("ZenoGuard", "window", self.window, low=0.0, low_open=True,
+                       unit="periods")
+
+    def window_at(self, event_tolerance: float) -> float:
+        """The window in periods for a run that locates switches to ``event_tolerance``."""
+        if self.window is not None:
+            return self.window
+        return min(ZENO_WINDOW_TOLERANCES * event_tolerance, ZENO_WINDOW_LIMIT)
+
+
+#: The default Zeno window, in event tolerances, and its upper limit in periods.
+ZENO_WINDOW_TOLERANCES = 1e6
+ZENO_WINDOW_LIMIT = 1e-3
 
 
 def simulate(scene: Scene, periods: int, *, method: FixedStep | Adaptive = FixedStep(),
@@ -140,7 +167,8 @@ def simulate(scene: Scene, periods: int, *, method: FixedStep | Adaptive = Fixed
     period = scene.excitation_period
     kernel = load_kernel(scene)
     ks = kernel_scene(scene)
-    common = (event_tolerance * period, zeno.events, zeno.window * period, event_capacity)
+    zeno_window = zeno.window_at(event_tolerance)
+    common = (event_tolerance * period, zeno.events, zeno_window * period, event_capacity)
     if isinstance(method, FixedStep):
         steps = method.steps_per_period
         result = kernel.run_fixed_step(ks, x0, v0, 0.0, period / steps, periods * steps,
@@ -155,14 +183,14 @@ def simulate(scene: Scene, periods: int, *, method: FixedStep | Adaptive = Fixed
      log_k, counts) = result
     if status != kernel.FINISHED:
         raise SimulationError(_stop_message(kernel, scene, status, t_stop, interface, period,
-                                            zeno))
+                                            zeno.events, zeno_window))
 
     events = EventLog(time=log_t, interface=log_e, kind=log_k,
                       counts={k.name.lower(): int(counts[k]) for k in EventKind})
     ledger = _ledger(scene, x, v, modes, work)
     settings = {"method": type(method).__name__, **asdict(method), "periods": periods,
                 "samples_per_period": samples_per_period, "event_tolerance": event_tolerance,
-                "zeno": asdict(zeno)}
+                "zeno": {"events": zeno.events, "window": zeno_window}}
     return Simulation(scene=scene, settings=settings, t=t, x=x, v=v, normal_force=normal,
                       friction_force=friction, modes=modes, events=events, energy=ledger,
                       work=work, samples_per_period=samples_per_period, steps=int(n_steps))
@@ -179,17 +207,18 @@ def _initial(values, n, name):
     return array
 
 
-def _stop_message(kernel, scene, status, t, interface, period, zeno):
+def _stop_message(kernel, scene, status, t, interface, period, zeno_events, zeno_window):
     where = ""
     if interface >= 0:
         left, right, _ = scene.group.interfaces[interface]
         where = f" on interface {interface} ({left!r}, {right!r})"
     when = f"at t = {t:.9g} s (period {t / period:.6f})"
     if status == kernel.ZENO:
-        return (f"Zeno or chattering behaviour {when}{where}: {zeno.events} switches within "
-                f"{zeno.window:g} periods. Loosen the contact (smaller stiffness, some "
-                "damping), use a Regularised friction law, or widen ZenoGuard if this is "
-                "expected.")
+        return (f"Zeno or chattering behaviour {when}{where}: {zeno_events} switches within "
+                f"{zeno_window:g} periods. The switches accumulate there, and past that "
+                "point the laws define no motion the integrator can follow. Make the "
+                "contact force continuous at closing, soften or damp the contact, use a "
+                "Regularised friction law, or widen ZenoGuard if this is expected.")
     if status == kernel.INCONSISTENT:
         return (f"no consistent set of stick and slip modes {when}{where}: the friction "
                 "limits of coupled stuck interfaces conflict.")

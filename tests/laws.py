@@ -25,6 +25,22 @@ class CubicSpring(cl.NormalLaw):
 
 
 @dataclass(frozen=True, kw_only=True)
+class PreloadedStop(cl.NormalLaw):
+    """A stop held by a preloaded spring, N = F0 + k δ: the force jumps to F0 on contact."""
+
+    preload: float
+    stiffness: float
+
+    def __post_init__(self):
+        cl.check_real("PreloadedStop", "preload", self.preload, low=0.0, unit="N")
+        cl.check_real("PreloadedStop", "stiffness", self.stiffness, low=0.0, unit="N/m")
+
+    @staticmethod
+    def normal_force(penetration, rate, preload, stiffness):
+        return preload + stiffness * penetration
+
+
+@dataclass(frozen=True, kw_only=True)
 class RationalWeakening(cl.FrictionLaw):
     """A user's own friction law, μ = μ_k + (μ_s − μ_k)/(1 + |v|/v_c)."""
 

@@ -6,21 +6,26 @@ The slowest are marked ``slow``: ``pytest -m "not slow"`` skips them locally; CI
 """
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 from contact_laws import Coulomb, ExponentialFriction, LinearSpring
-from shroudnet import Adaptive, Blade, BladeGroup, Excitation, Interface, Mode, Scene, simulate
+from shroudnet import (Adaptive, Blade, BladeGroup, EventKind, Excitation, FixedStep, Interface,
+                       Mode, Scene, SimulationError, simulate)
 from shroudnet.scenes import three_blade_paper
+from tests.laws import PreloadedStop
 
 
-def assert_sound(sim):
-    """No NaN, the ledger closes, the switches are counted; returns the switch count."""
+def assert_sound(sim, energy=None):
+    """No NaN, the ledger closes to 1e-6 of ``energy`` [J] (default: the excitation work),
+    the switches are counted; returns the switch count."""
     assert np.isfinite(sim.x).all() and np.isfinite(sim.v).all()
     assert np.isfinite(sim.normal_force).all() and np.isfinite(sim.friction_force).all()
     ledger = sim.energy
-    assert abs(ledger.residual) < 1e-6 * abs(ledger.excitation_work)
+    assert abs(ledger.residual) < 1e-6 * abs(ledger.excitation_work if energy is None
+                                              else energy)
     switches = sum(sim.events.counts.values())
     assert len(sim.events.time) == switches  # every switch logged (far below capacity)
     return switches
@@ -126,6 +131,74 @@ def test_an_all_stuck_ring_of_64_blades_moves_as_one_body():
                                atol=1e-7 * amplitude)
     assert np.abs(sim.friction_force).max() > 0.0  # mistuning loads the friction
     assert (np.abs(sim.friction_force) <= 0.5 * sim.normal_force).all()
+
+
+def blade_against_a_stop(interface, mean_force=0.0):
+    """One undamped 200 Hz blade facing a fixed stop across ``interface``, under q0 only."""
+    group = BladeGroup().add_blade("blade", Blade(mass=0.082, damping=0.0, frequency=200.0))
+    group.add_fixed("stop").connect("blade", "stop", interface)
+    return Scene(group=group, speed_rpm=6000.0,
+                 excitation=Excitation(engine_order=2, amplitudes=(mean_force, 0.0),
+                                       phases=[0.0]))
+
+
+@pytest.mark.parametrize("method", [Adaptive(rtol=1e-10, atol=1e-15), FixedStep()])
+def test_grazing_contact_is_found_at_every_tangency(method):
+    """A free oscillation x = A sin ωt whose crests just reach the gap: the contact closes
+    with zero relative velocity. A gap 1e-6 A below the crest is touched for 4e-4 periods,
+    well inside one step, at each of the 20 crests: every touch is found (the contact guard
+    is searched for a minimum inside each step), with its reversal at the deepest point.
+    1e-6 A above the crest, nothing is touched. Exactly at it, whatever the rounding
+    decides, the motion stays the free oscillation."""
+    amplitude = 1e-4
+    law = ExponentialFriction(mu_static=0.5, mu_kinetic=0.3, beta=5.0)
+    for offset, touches in ((-1e-6, 20), (0.0, None), (1e-6, 0)):
+        scene = blade_against_a_stop(Interface(
+            gap=amplitude * (1.0 + offset), angle=math.pi / 3,
+            normal=LinearSpring(stiffness=1e6), friction=law))
+        a = scene.arrays
+        w = math.sqrt(a.stiffness[0] / a.mass[0])
+        sim = simulate(scene, 20, method=method, initial=([0.0], [amplitude * w]))
+        switches = assert_sound(sim, energy=0.5 * a.mass[0] * (amplitude * w) ** 2)
+        counts = sim.events.counts
+        if touches is not None:
+            assert counts["closing"] == counts["separation"] == counts["reversal"] == touches
+        assert switches <= 60
+        free = amplitude * np.sin(w * sim.t)
+        assert np.abs(sim.x[:, 0] - free).max() < 1e-6 * amplitude
+
+
+@pytest.mark.slow  # compiles a kernel for the stop's own law
+def test_chattering_at_zero_relative_velocity_meets_the_zeno_guard():
+    """A blade pushed by q0 = 30 N against a preloaded stop (N = 50 N + k δ) bounces: each
+    impact loses energy to friction (μ = 0.3 < tan α, so it slips back out), and since the
+    stop's force jumps to 50 N on contact, bounce and flight times shrink with the speed.
+    The bounces accumulate at a finite time, where the relative velocity chatters about
+    zero and the laws define no continuation. The guard must stop the run there, with the
+    time and the interface, the same point for both integrators. With μ ≥ tan α the first
+    impact ends in stick instead, and the run finishes."""
+    def stop(alpha):
+        return blade_against_a_stop(Interface(
+            gap=1e-4, angle=alpha, normal=PreloadedStop(preload=50.0, stiffness=1e6),
+            friction=Coulomb(mu=0.3)), mean_force=30.0)
+
+    bouncing = simulate(stop(math.pi / 3), 2, method=Adaptive())
+    assert assert_sound(bouncing) > 20
+    closings = bouncing.events.time[bouncing.events.kind == EventKind.CLOSING]
+    assert (np.diff(np.diff(closings)) < 0.0).all()  # the bounces keep shortening
+    accumulation = []
+    for method in (Adaptive(), FixedStep()):
+        with pytest.raises(SimulationError, match=r"Zeno or chattering behaviour .* on "
+                                                  r"interface 0 \('blade', 'stop'\)") as stop_:
+            simulate(stop(math.pi / 3), 20, method=method)
+        accumulation.append(float(re.search(r"\(period ([\d.]+)\)", str(stop_.value))[1]))
+    assert 2.0 < accumulation[0] < 3.0
+    assert accumulation[0] == pytest.approx(accumulation[1], abs=1e-5)
+    for method in (Adaptive(), FixedStep()):
+        sticking = simulate(stop(0.2), 5, method=method)
+        assert assert_sound(sticking) == 2
+        assert sticking.events.counts["sticking"] == 1
+        assert (sticking.modes[-1] == Mode.STICK).all()
 
 
 @pytest.mark.slow
