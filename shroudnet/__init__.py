@@ -52,6 +52,7 @@ from .interface import Interface as Interface
 from .modes import Mode as Mode
 from .scene import Scene as Scene
 from .scene import SceneArrays as SceneArrays
+from .simulate import Accuracy as Accuracy
 from .simulate import Adaptive as Adaptive
 from .simulate import FixedStep as FixedStep
 from .simulate import ZenoGuard as ZenoGuard

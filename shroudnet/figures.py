@@ -10,8 +10,10 @@ from collections.abc import Hashable, Mapping, Sequence
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import NullFormatter
 
 from .analysis import Campbell, classify, spectrum
+from .precision import Study
 from .simulation import Simulation
 from .sweep import Sweep
 
@@ -102,4 +104,30 @@ def campbell_diagram(diagram: Campbell, *, title: str = "Campbell diagram") -> F
     top = 1.3 * diagram.frequency.max()
     axes.set(xlabel="Ω [rev/min]", ylabel="frequency [Hz]", ylim=(0, top), title=title)
     axes.legend(loc="upper left")
+    return figure
+
+
+def work_precision_diagram(study: Study, *, title: str = "What accuracy costs") -> Figure:
+    """Relative error against CPU time per period, one panel per regime, one line per family
+    of settings; in chaos, the sampling floor of the record as a dashed line."""
+    regimes = list(study.floors)
+    figure = Figure(figsize=(5 * len(regimes), 4.5), layout="constrained")
+    axes = figure.subplots(1, len(regimes), squeeze=False)[0]
+    styles = {"FixedStep": "o-", "Adaptive": "s-", "event tolerance": "^-",
+              "Regularised": "v-", "Accuracy": "x:"}
+    for ax, regime in zip(axes, regimes):
+        rows = [m for m in study.measurements if m.regime == regime]
+        for family, style in styles.items():
+            chosen = [m for m in rows if m.setting.family == family]
+            if chosen:
+                ax.loglog([m.seconds_per_period * 1e3 for m in chosen],
+                          [max(m.error, 1e-16) for m in chosen], style, ms=4, label=family)
+        if study.floors[regime] > 0.0:
+            ax.axhline(study.floors[regime], ls="--", color="0.5",
+                       label="sampling floor of the record")
+        ax.set(xlabel="CPU time per period [ms]", ylabel="relative error", title=regime)
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.grid(True, which="major", lw=0.3)
+    axes[0].legend(fontsize="small")
+    figure.suptitle(title)
     return figure

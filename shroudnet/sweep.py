@@ -20,7 +20,7 @@ import numpy as np
 from .analysis import Classification, classify, friction_loss_per_cycle
 from .progress import progress_callback
 from .scene import Scene
-from .simulate import FixedStep, simulate
+from .simulate import Accuracy, Adaptive, FixedStep, simulate
 
 
 @dataclass(frozen=True)
@@ -63,7 +63,7 @@ class Sweep:
 
 
 def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient: int,
-                 record: int, method=FixedStep(), samples_per_period: int = 50,
+                 record: int, method=Adaptive(), samples_per_period: int = 50,
                  initial=None, tolerance: float = 1e-5) -> SweepPoint:
     """Run ``transient`` periods unrecorded, then ``record`` periods, and reduce them."""
     start = initial
@@ -81,7 +81,7 @@ def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient
 
 def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
           parameter: str = "value", blade: Hashable | int = 1, transient: int = 300,
-          record: int = 100, method=FixedStep(), samples_per_period: int = 50,
+          record: int = 100, method=Adaptive(), samples_per_period: int = 50,
           continuation: bool = False, initial=None, tolerance: float = 1e-5,
           workers: int | None = None, executor=None, progress="auto") -> Sweep:
     """The steady response of ``scene_at(value)`` for each value, in the order given.
@@ -97,6 +97,9 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     scene_at : callable
         value ↦ Scene; a lambda or a function defined in a notebook will do (it travels to
         the workers by cloudpickle).
+    method : FixedStep, Adaptive or Accuracy
+        As for ``simulate``; the default ``Adaptive()`` keeps each point's Poincaré points
+        and E_ρ to about 1e-7 in periodic regimes.
     workers : int, optional
         Worker processes of the pool the sweep makes for itself; default every core of the
         machine. 1 runs the points one after the other in this process.
@@ -120,6 +123,9 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
             raise ValueError(f"sweep.{name} must be an int >= 0, got {number!r}")
     if record < 3:
         raise ValueError(f"sweep.record must be at least 3 periods, got {record}")
+    if not isinstance(method, FixedStep | Adaptive | Accuracy):
+        raise TypeError("sweep.method must be FixedStep(...), Adaptive(...) or Accuracy(...), "
+                        f"got {method!r}")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):
         raise ValueError(f"sweep.workers must be an int >= 1 or None (every core), "

@@ -29,6 +29,8 @@ EXAMPLES = {
                                        "steady": 10},
                                       ["fig16_bifurcation_q1.png", "fig19_q1_50.png"]),
     "fig20_campbell": ({}, ["fig20_campbell.png"]),
+    "work_precision": ({"transient": 10, "record": 5, "chaotic_record": 10, "repeats": 1},
+                       ["work_precision.png"]),
     "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
                                 ["fig21_energy_density_gamma1.png",
                                  "fig22_energy_density_gap.png",

@@ -201,7 +201,8 @@ def test_zeno_guard_stops_with_the_time_and_the_interface():
 
 @pytest.mark.parametrize("kwargs, message", [
     (dict(periods=0), r"periods must be an int >= 1"),
-    (dict(periods=2, samples_per_period=7), r"samples_per_period must divide FixedStep"),
+    (dict(periods=2, method=FixedStep(), samples_per_period=7),
+     r"samples_per_period must divide FixedStep"),
     (dict(periods=2, samples_per_period=0), r"samples_per_period must be an int >= 1"),
     (dict(periods=2, method=Adaptive(), samples_per_period=1.5), r"samples_per_period must be"),
     (dict(periods=2, event_tolerance=0.0), r"simulate\.event_tolerance must be in \(0"),
