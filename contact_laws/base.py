@@ -22,8 +22,10 @@ class NormalLaw:
     2. ``__post_init__`` that validates every field with a message naming the field and its
        allowed range (``contact_laws.check_real`` does it in one line);
     3. a ``@staticmethod normal_force(penetration, rate, *parameters)`` taking the fields in
-       declaration order and returning the normal force [N]. It is called only while the
-       contact is closed (δ > 0); it must return a finite N ≥ 0 and be written in plain
+       declaration order and returning the normal force [N]. It is called while the
+       contact is closed (δ > 0), where it must return a finite N ≥ 0, and within a step
+       that separates also at δ slightly below 0, where it must stay finite (write
+       ``max(penetration, 0.0) ** n`` for a power). It must be written in plain
        arithmetic on floats (``math`` functions, ``max``, ``min``, ``if``) so that numba can
        compile it into the integrator's loop;
     4. optionally ``opens = False`` as a class attribute for a contact that never opens,

@@ -53,7 +53,8 @@ class Hertz(NormalLaw):
 
     @staticmethod
     def normal_force(penetration, rate, stiffness, exponent):
-        return stiffness * penetration**exponent
+        # A trial state inside a step that separates can hold δ < 0: no force, not NaN.
+        return stiffness * max(penetration, 0.0) ** exponent
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -112,7 +113,7 @@ class HuntCrossley(NormalLaw):
 
     @staticmethod
     def normal_force(penetration, rate, stiffness, damping, exponent):
-        return max(0.0, stiffness * penetration**exponent * (1.0 + damping * rate))
+        return max(0.0, stiffness * max(penetration, 0.0) ** exponent * (1.0 + damping * rate))
 
 
 @dataclass(frozen=True, kw_only=True)
