@@ -83,7 +83,8 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
           parameter: str = "value", blade: Hashable | int = 1, transient: int = 300,
           record: int = 100, method=Adaptive(), samples_per_period: int = 50,
           continuation: bool = False, initial=None, tolerance: float = 1e-5,
-          workers: int | None = None, executor=None, progress="auto") -> Sweep:
+          workers: int | None = None, executor=None, progress="auto",
+          save_to: str | os.PathLike | None = None) -> Sweep:
     """The steady response of ``scene_at(value)`` for each value, in the order given.
 
     Each point runs ``transient`` periods, then records ``record`` periods of which it keeps
@@ -114,6 +115,10 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     progress : "auto", bool, None or callable
         ``progress(done, total)`` after each point; "auto" shows points done, rate and time
         left on standard error when it is a terminal; False or None is silent.
+    save_to : path of a folder, optional
+        Save each point there as it finishes (``shroudnet.results``). If the folder holds
+        this same sweep, interrupted, only its missing points run: none is lost or
+        repeated, and the result is the same as an uninterrupted sweep's.
     """
     values = [float(v) for v in values]
     if not values:
@@ -145,22 +150,56 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     report = progress_callback(progress)
     options = {"blade": blade, "transient": transient, "record": record, "method": method,
                "samples_per_period": samples_per_period, "tolerance": tolerance}
-    if report is not None:
-        report(0, len(values))
-    if serial:
-        points = _one_by_one(scene_at, values, initial, options, parameter, report,
-                             chain=continuation)
-    elif executor is not None:
-        points = _spread(executor, pickled, values, initial, options, parameter, report)
-    else:
-        with _naming(parameter, values[0]):
-            _warm_kernel(scene_at(values[0]), method)
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            points = _spread(pool, pickled, values, initial, options, parameter, report)
     settings = {"transient": transient, "record": record, "method": repr(method),
                 "samples_per_period": samples_per_period, "continuation": continuation,
-                "tolerance": tolerance}
+                "tolerance": tolerance, "initial": _listed(initial),
+                "scenes": _source(scene_at)}
+    points: list[SweepPoint | None] = [None] * len(values)
+    store = None
+    if save_to is not None:
+        from .results import SweepStore  # results reads Sweep and SweepPoint from here
+        store = SweepStore(save_to, {"parameter": parameter, "blade": blade,
+                                     "values": values, "settings": settings})
+        for index, point in store.finished().items():
+            points[index] = point
+    todo = [index for index, point in enumerate(points) if point is None]
+
+    def finished(index, point):
+        points[index] = point
+        if store is not None:
+            store.save(index, point)
+        if report is not None:
+            report(sum(p is not None for p in points), len(values))
+
+    if report is not None:
+        report(len(values) - len(todo), len(values))
+    if todo and serial:
+        if continuation and todo[0] > 0:
+            initial = points[todo[0] - 1].final_state
+        _one_by_one(scene_at, values, todo, initial, options, parameter, finished,
+                    chain=continuation)
+    elif todo and executor is not None:
+        _spread(executor, pickled, values, todo, initial, options, parameter, finished)
+    elif todo:
+        with _naming(parameter, values[todo[0]]):
+            _warm_kernel(scene_at(values[todo[0]]), method)
+        with ProcessPoolExecutor(max_workers=min(workers, len(todo))) as pool:
+            _spread(pool, pickled, values, todo, initial, options, parameter, finished)
     return Sweep(parameter=parameter, blade=blade, points=tuple(points), settings=settings)
+
+
+def _listed(initial):
+    """``initial`` as plain lists (for the settings and a saved sweep's manifest)."""
+    return None if initial is None else [np.asarray(part, dtype=float).tolist()
+                                         for part in initial]
+
+
+def _source(scene_at) -> dict:
+    """What the scenes of a sweep came from: a scene file's document and the swept path
+    when ``scene_at`` is a ``scenefile.SceneAt``, else the callable's name."""
+    if hasattr(scene_at, "document") and hasattr(scene_at, "path"):
+        return {"document": scene_at.document, "path": scene_at.path}
+    return {"callable": getattr(scene_at, "__qualname__", type(scene_at).__name__)}
 
 
 def default_workers() -> int:
@@ -181,35 +220,30 @@ def _remote_point(pickled_scene_at: bytes, value, initial, options) -> SweepPoin
     return _point(pickle.loads(pickled_scene_at), value, initial, options)
 
 
-def _one_by_one(scene_at, values, initial, options, parameter, report, chain):
-    points = []
+def _one_by_one(scene_at, values, todo, initial, options, parameter, finished, chain):
+    """The points ``todo`` in order, in this process; each goes to ``finished(index, point)``."""
     state = initial
-    for done, value in enumerate(values, start=1):
-        with _naming(parameter, value):
-            point = _point(scene_at, value, state, options)
-        points.append(point)
+    for index in todo:
+        with _naming(parameter, values[index]):
+            point = _point(scene_at, values[index], state, options)
+        finished(index, point)
         if chain:
             state = point.final_state
-        if report is not None:
-            report(done, len(values))
-    return points
 
 
-def _spread(executor: Executor, pickled, values, initial, options, parameter, report):
-    futures = {executor.submit(_remote_point, pickled, value, initial, options): index
-               for index, value in enumerate(values)}
-    points = [None] * len(values)
+def _spread(executor: Executor, pickled, values, todo, initial, options, parameter, finished):
+    """The points ``todo`` on ``executor``; each goes to ``finished`` as it completes."""
+    futures = {executor.submit(_remote_point, pickled, values[index], initial, options): index
+               for index in todo}
     try:
-        for done, future in enumerate(as_completed(futures), start=1):
+        for future in as_completed(futures):
             index = futures[future]
             with _naming(parameter, values[index]):
-                points[index] = future.result()
-            if report is not None:
-                report(done, len(values))
+                point = future.result()
+            finished(index, point)
     finally:
         for future in futures:
             future.cancel()
-    return points
 
 
 @contextmanager

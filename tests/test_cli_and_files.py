@@ -1,0 +1,237 @@
+"""Scene files, saved results and the ``shroudnet`` command, end to end."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import asdict
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from shroudnet import results, scenefile, simulate, sweep
+from shroudnet.cli import main
+from shroudnet.scenes import three_blade_paper
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENES = ROOT / "examples" / "scenes"
+PAPER = SCENES / "paper_three_blade.toml"
+
+
+def small_paper_scene(folder: Path, periods=30, transient=20) -> Path:
+    """The shipped paper scene file, with a short run."""
+    text = PAPER.read_text().replace("periods = 400", f"periods = {periods}")
+    path = folder / "paper.toml"
+    path.write_text(text.replace("transient = 300", f"transient = {transient}"))
+    return path
+
+
+def test_the_paper_scene_file_is_the_paper_scene():
+    loaded = scenefile.load(PAPER)
+    built, paper = loaded.scene.arrays, three_blade_paper().arrays
+    for field in ("mass", "damping", "stiffness", "gap", "sin_angle", "cos_angle",
+                  "static_mu", "amplitudes", "phases", "excitation_frequency"):
+        np.testing.assert_allclose(getattr(built, field), getattr(paper, field), rtol=1e-15)
+    assert built.normal_laws == paper.normal_laws and built.friction_laws == paper.friction_laws
+    assert loaded.run.blade == "blade2" and loaded.run.transient == 300
+
+
+@pytest.mark.parametrize("name", ["paper_three_blade", "ring_24_travelling_wave",
+                                  "mistuned_packet"])
+def test_every_shipped_scene_reads_and_writes_back_to_the_same_scene(name):
+    loaded = scenefile.load(SCENES / f"{name}.toml")
+    again = scenefile.read(json.loads(json.dumps(scenefile.document(loaded.scene, loaded.run))))
+    assert scenefile.document(again.scene, again.run) == scenefile.document(loaded.scene,
+                                                                            loaded.run)
+    assert again.run == loaded.run
+    np.testing.assert_array_equal(again.scene.arrays.stiffness, loaded.scene.arrays.stiffness)
+    np.testing.assert_array_equal(again.scene.arrays.phases, loaded.scene.arrays.phases)
+
+
+def test_a_user_law_is_named_by_its_module():
+    from tests.laws import CubicSpring
+    scene = three_blade_paper(normal=CubicSpring(linear=3e5, cubic=1e12))
+    document = scenefile.document(scene)
+    assert document["interfaces"][0]["normal"]["law"] == "tests.laws:CubicSpring"
+    assert scenefile.read(document).scene.group.interfaces[0][2].normal == scene.group \
+        .interfaces[0][2].normal
+
+
+def broken_files(folder: Path):
+    """(file, expected message): each breaks one thing in the paper's scene file."""
+    paper = PAPER.read_text()
+    cases = {
+        "unknown top-level key": (paper.replace("speed_rpm = 6000.0", "speed_rpm = 6000.0\n"
+                                                "sped = 1"),
+                                  r"sped: unknown key; allowed keys: blades, excitation"),
+        "missing speed": (paper.replace("speed_rpm = 6000.0", ""), r"speed_rpm: is required"),
+        "negative mass": (paper.replace("mass = 0.082", "mass = -0.082", 1),
+                          r"blades\[0\]: Blade\.mass must be in \(0, inf\) kg, got -0\.082"),
+        "unknown law": (paper.replace('law = "LinearSpring"', 'law = "Linear"', 1),
+                        r"interfaces\[0\]\.normal\.law: 'Linear' is not a NormalLaw; built in: "
+                        r"ConstantLoad, Hertz, HuntCrossley, KelvinVoigt, LinearSpring"),
+        "wrong law field": (paper.replace("mu_kinetic = 0.3", "mu_dynamic = 0.3", 1),
+                            r"interfaces\[0\]\.friction\.mu_dynamic: unknown key; allowed "
+                            r"fields of ExponentialFriction: beta, mu_kinetic, mu_static"),
+        "friction out of range": (paper.replace("mu_kinetic = 0.3", "mu_kinetic = 0.7", 1),
+                                  r"ExponentialFriction\.mu_kinetic must be in \[0, "
+                                  r"mu_static = 0\.5\]"),
+        "unknown blade": (paper.replace('right = "blade3"', 'right = "blade4"'),
+                          r"interfaces\[1\]: connect\('blade2', 'blade4'\): unknown node "
+                          r"'blade4'"),
+        "text for a number": (paper.replace("gap = 2e-5", 'gap = "small"', 1),
+                              r"interfaces\[0\]\.gap: must be a number, got 'small'"),
+        "no frequency": (paper.replace("frequency = { f0 = 194.55636166861493, coefficient "
+                                       "= 0.76 }", "", 1),
+                         r"blades\[0\]: give a blade either frequency \[Hz\] or stiffness"),
+        "bad phases": (paper.replace('phases = "anti-phase"', 'phases = "wave"'),
+                       r'excitation\.phases: must be "anti-phase", \{travelling_wave = nd\}'),
+        "bad method": (paper.replace('method = "adaptive"', 'method = "rk45"'),
+                       r"run\.method: must be one of 'adaptive', 'fixed', 'accuracy'"),
+        "knob of another method": (paper.replace("rtol = 1e-8", "steps_per_period = 500"),
+                                   r"run\.steps_per_period: does not apply to method = "
+                                   r"'adaptive'; it takes atol, max_step, rtol"),
+        "transient too long": (paper.replace("transient = 300", "transient = 500"),
+                               r"run\.transient must be an int in \[0, periods = 400\)"),
+        "not TOML": ("speed_rpm = = 1", r"not valid TOML"),
+    }
+    for number, (name, (text, message)) in enumerate(cases.items()):
+        path = folder / f"broken{number}.toml"
+        path.write_text(text)
+        yield name, path, message
+
+
+def test_each_broken_scene_file_names_its_key_before_any_work(tmp_path):
+    for name, path, message in broken_files(tmp_path):
+        with pytest.raises(scenefile.SceneFileError, match=message):
+            scenefile.load(path)
+        assert str(path) in str(pytest.raises(scenefile.SceneFileError, scenefile.load,
+                                              path).value), name
+    with pytest.raises(scenefile.SceneFileError, match="no such scene file"):
+        scenefile.load(tmp_path / "missing.toml")
+
+
+def test_a_result_file_loads_back_without_loss(tmp_path):
+    loaded = scenefile.load(small_paper_scene(tmp_path))
+    sim = simulate(loaded.scene, 12)
+    path = results.save_simulation(tmp_path / "run.npz", sim, loaded.run)
+    back = results.load_simulation(path)
+    for field in ("t", "x", "v", "normal_force", "friction_force", "modes", "work"):
+        np.testing.assert_array_equal(getattr(back, field), getattr(sim, field))
+        assert getattr(back, field).dtype == getattr(sim, field).dtype
+    for field in ("time", "interface", "kind"):
+        np.testing.assert_array_equal(getattr(back.events, field), getattr(sim.events, field))
+    assert back.events.counts == sim.events.counts and back.energy == sim.energy
+    assert back.settings == sim.settings and back.steps == sim.steps
+    assert scenefile.document(back.scene) == scenefile.document(sim.scene)
+    assert back.energy_density("blade2", 4) == sim.energy_density("blade2", 4)
+    assert results.load_run_settings(path) == loaded.run
+    assert not list(tmp_path.glob(".*part"))  # nothing left from the atomic write
+
+
+def test_command_line_run_sweep_and_plot(tmp_path, capsys):
+    scene = small_paper_scene(tmp_path)
+    assert main(["run", str(scene), "-o", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    for line in ("scene ", "method ", "took ", "motion ", "E_rho ", "events ", "energy ",
+                 "saved "):
+        assert line in out
+    assert "residual" in out and "of the excitation work" in out
+    run = results.load(tmp_path / "out" / "paper.npz")
+    assert run.periods == 30 and (tmp_path / "out" / "paper.png").stat().st_size > 10_000
+
+    folder = tmp_path / "sweep"
+    assert main(["sweep", str(scene), "--param", "interfaces.0.normal.stiffness",
+                 "--values", "1.5e5:3e5:3", "4e5", "--record", "5", "--transient", "10",
+                 "--workers", "1", "-o", str(folder)]) == 0
+    assert "motions " in capsys.readouterr().out
+    diagram = results.load(folder)
+    assert diagram.values.tolist() == [1.5e5, 2.25e5, 3e5, 4e5]
+    assert (folder / "bifurcation.png").stat().st_size > 10_000
+
+    (folder / "bifurcation.png").unlink()
+    (tmp_path / "out" / "paper.png").unlink()
+    assert main(["plot", str(folder)]) == 0
+    assert main(["plot", str(tmp_path / "out" / "paper.npz")]) == 0
+    assert (folder / "bifurcation.png").exists() and (tmp_path / "out" / "paper.png").exists()
+
+
+def test_command_line_errors_are_one_clear_line(tmp_path, capsys):
+    name, path, message = next(broken_files(tmp_path))
+    assert main(["run", str(path)]) == 2
+    assert capsys.readouterr().err.startswith(f"shroudnet run: error: {path}: sped: ")
+    scene = small_paper_scene(tmp_path)
+    assert main(["sweep", str(scene), "--param", "interfaces.5.gap", "--values", "1"]) == 2
+    assert "nothing at interfaces.5; keys there: indices 0 to 1" in capsys.readouterr().err
+    assert main(["sweep", str(scene), "--param", "speed_rpm", "--values", "fast"]) == 2
+    assert "'fast' is neither a number nor START:STOP:COUNT" in capsys.readouterr().err
+    for command in ("run", "sweep", "plot", "bench"):
+        with pytest.raises(SystemExit) as done:
+            main([command, "--help"])
+        assert done.value.code == 0
+        assert "usage: " in capsys.readouterr().out
+
+
+def test_an_interrupted_sweep_resumes_without_losing_or_repeating_a_point(tmp_path):
+    """Stopped after two of five points, the sweep runs only the three missing ones and
+    ends equal to an uninterrupted sweep, bit for bit."""
+    def scene_at(gamma1):
+        return three_blade_paper(gamma1=gamma1)
+
+    values = [1.0, 2.0, 3.0, 3.5, 4.0]
+    options = dict(parameter="gamma1", transient=20, record=6, workers=1)
+
+    class Interrupted(Exception):
+        pass
+
+    def stop_after_two(done, total):
+        if done == 2:
+            raise Interrupted
+
+    folder = tmp_path / "sweep"
+    with pytest.raises(Interrupted):
+        sweep(scene_at, values, save_to=folder, progress=stop_after_two, **options)
+    first = sorted((folder / "points").iterdir())
+    assert [p.name for p in first] == ["00000.npz", "00001.npz"]
+    stamps = [p.stat().st_mtime_ns for p in first]
+
+    seen = []
+    resumed = sweep(scene_at, values, save_to=folder, progress=lambda d, t: seen.append(d),
+                    **options)
+    assert seen == [2, 3, 4, 5]  # starts with two done; three computed
+    assert [p.stat().st_mtime_ns for p in first] == stamps  # not written again
+    whole = sweep(scene_at, values, progress=False, **options)
+    for a, b in zip(resumed.points, whole.points):
+        np.testing.assert_array_equal(a.poincare, b.poincare)
+        assert a.energy_density == b.energy_density
+        np.testing.assert_equal(asdict(a.classification), asdict(b.classification))
+    assert results.load(folder).points[4].energy_density == whole.points[4].energy_density
+    with pytest.raises(results.ResultsError, match=r"holds another sweep \(its values differ"):
+        sweep(scene_at, values[:3], save_to=folder, **options)
+
+
+@pytest.mark.slow
+def test_a_killed_command_line_sweep_resumes(tmp_path):
+    """SIGKILL mid-way through ``shroudnet sweep``: every point file left is whole, and
+    the same command finishes the rest."""
+    scene = small_paper_scene(tmp_path)
+    folder = tmp_path / "sweep"
+    command = [sys.executable, "-m", "shroudnet", "sweep", str(scene), "--param",
+               "interfaces.0.normal.stiffness", "--values", "1.5e5:1.2e6:24", "--transient",
+               "300", "--record", "20", "--workers", "1", "-o", str(folder)]
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and len(list(folder.glob("points/*.npz"))) < 3:
+        time.sleep(0.01)
+    os.kill(process.pid, signal.SIGKILL)
+    process.wait()
+    kept = list(folder.glob("points/*.npz"))
+    assert 3 <= len(kept) < 24
+    for point in kept:
+        results._load_point(point)  # whole, not truncated
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+    assert len(results.load(folder).points) == 24
+    assert not list(folder.glob("points/.*"))  # no temporary files left
