@@ -112,8 +112,9 @@ def load(path: str | Path) -> SceneFile:
 def read(document: dict, *, source: str = "scene") -> SceneFile:
     """Build the scene and run settings of a document (a parsed scene file)."""
     try:
-        return SceneFile(scene=_scene(document), run=_run(document.get("run", {})),
-                         document=document)
+        scene, run = _scene(document), _run(document.get("run", {}))
+        _build("run.blade", lambda: scene.blade_position(run.blade))
+        return SceneFile(scene=scene, run=run, document=document)
     except _KeyError as error:
         raise SceneFileError(f"{source}: {error.key}: {error.message}") from None
 

@@ -96,6 +96,9 @@ def broken_files(folder: Path):
                                    r"'adaptive'; it takes atol, max_step, rtol"),
         "transient too long": (paper.replace("transient = 300", "transient = 500"),
                                r"run\.transient must be an int in \[0, periods = 400\)"),
+        "unknown run blade": (paper.replace('blade = "blade2"', 'blade = "blade9"'),
+                              r"run\.blade: unknown blade 'blade9': give a name in "
+                              r"\['blade1', 'blade2', 'blade3'\]"),
         "not TOML": ("speed_rpm = = 1", r"not valid TOML"),
     }
     for number, (name, (text, message)) in enumerate(cases.items()):
