@@ -125,6 +125,7 @@ def work_precision_diagram(study: Study, *, title: str = "What accuracy costs") 
         if study.floors[regime] > 0.0:
             ax.axhline(study.floors[regime], ls="--", color="0.5",
                        label="sampling floor of the record")
+            ax.legend(handles=ax.get_lines()[-1:], fontsize="small", loc="lower right")
         ax.set(xlabel="CPU time per period [ms]", ylabel="relative error", title=regime)
         ax.xaxis.set_minor_formatter(NullFormatter())
         ax.grid(True, which="major", lw=0.3)
