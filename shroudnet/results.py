@@ -165,16 +165,21 @@ class SweepStore:
             stale.unlink(missing_ok=True)
         self.manifest = manifest
 
-    def _path(self, index: int) -> Path:
-        return self.folder / "points" / f"{index:05d}.npz"
-
     def finished(self) -> dict[int, SweepPoint]:
         """The points already saved, by index."""
-        return {i: _load_point(self._path(i)) for i in range(len(self.manifest["values"]))
-                if self._path(i).exists()}
+        return _saved_points(self.folder, len(self.manifest["values"]))
 
     def save(self, index: int, point: SweepPoint) -> None:
-        _save_point(self._path(index), point)
+        _save_point(_point_path(self.folder, index), point)
+
+
+def _point_path(folder: Path, index: int) -> Path:
+    return folder / "points" / f"{index:05d}.npz"
+
+
+def _saved_points(folder: Path, count: int) -> dict[int, SweepPoint]:
+    return {i: _load_point(_point_path(folder, i)) for i in range(count)
+            if _point_path(folder, i).exists()}
 
 
 def load_sweep(folder: str | Path) -> Sweep:
@@ -184,9 +189,9 @@ def load_sweep(folder: str | Path) -> Sweep:
         manifest = json.loads((folder / SweepStore.MANIFEST).read_text())
     except FileNotFoundError:
         raise ResultsError(f"{folder}: not a sweep folder (no {SweepStore.MANIFEST})") from None
-    store = SweepStore(folder, {k: v for k, v in manifest.items()
-                                if k not in ("format", "kind")})
-    points = store.finished()
+    if manifest.get("format") != FORMAT or manifest.get("kind") != "sweep":
+        raise ResultsError(f"{folder}: not a sweep folder of results format {FORMAT}")
+    points = _saved_points(folder, len(manifest["values"]))
     missing = [i for i in range(len(manifest["values"])) if i not in points]
     if missing:
         raise ResultsError(f"{folder}: {len(missing)} of {len(manifest['values'])} points are "
