@@ -78,7 +78,7 @@ class Accuracy:
     target/100 periods. The factor 100 comes from the work–precision study
     (``shroudnet.precision``, README "What accuracy costs"): on the paper's group the
     error of the adaptive integrator is 7–16 times its rtol, and that of the event
-    location 0.4–6 times its tolerance. In chaos no single trajectory converges; E_ρ and
+    location 0.3–6 times its tolerance. In chaos no single trajectory converges; E_ρ and
     the attractor's bounds then converge to the sampling error of the record instead.
 
     Parameters
@@ -175,7 +175,7 @@ def simulate(scene: Scene, periods: int, *,
         Output samples per period; with ``FixedStep`` it must divide the steps per period.
     event_tolerance : float
         Width of the time bracket of each located switch, in excitation periods. Its
-        error on the results is 0.4–6 times this; the default 1e-10 stays below the
+        error on the results is 0.3–6 times this; the default 1e-10 stays below the
         integrators' own.
     zeno : ZenoGuard
         When to stop a run whose switches pile up.
