@@ -31,8 +31,8 @@ from numba import njit
 from shroudnet.clusters import cluster_labels
 from shroudnet.compiled import njit_inlined, njit_without_refcounts
 from shroudnet.dynamics import (cluster_accelerations, cluster_mass, event_guards,
-                                excitation_forces, interface_kinematics, resultant_forces,
-                                static_friction, static_friction_operator)
+                                excitation_forces, interface_kinematics, relative_motion,
+                                resultant_forces, static_friction, static_friction_operator)
 from shroudnet.kernel_types import Events, Output, Topology, Work
 
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = 0, 1, 2, 3
@@ -341,14 +341,7 @@ def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
 @njit_inlined
 def contact_guard(e, x, v, modes, s):
     """Interface e's contact guard g (−δ while open, δ while closed) [m] and ġ [m/s]."""
-    u = 0.0
-    du = 0.0
-    if s.left[e] >= 0:
-        u += x[s.left[e]]
-        du += v[s.left[e]]
-    if s.right[e] >= 0:
-        u -= x[s.right[e]]
-        du -= v[s.right[e]]
+    u, du = relative_motion(x, v, s.left, s.right, e)
     side = -s.sin_angle[e] if modes[e] == OPEN else s.sin_angle[e]
     return side * (u - s.gap[e]), side * du
 

@@ -52,22 +52,30 @@ def excitation_forces(t, amplitudes, cos_phase, sin_phase, excitation_frequency,
 
 
 @njit_inlined
+def relative_motion(x, v, left, right, e):
+    """(u, u̇) of interface e: u = x_i − x_j of its left and right blades [m], and its rate
+    [m/s]; a fixed node has x = 0."""
+    u = 0.0
+    du = 0.0
+    if left[e] >= 0:
+        u += x[left[e]]
+        du += v[left[e]]
+    if right[e] >= 0:
+        u -= x[right[e]]
+        du -= v[right[e]]
+    return u, du
+
+
+@njit_inlined
 def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle,
                          penetration, rate, slip_velocity):
     """Penetration δ = (u − Δ) sin α [m], its rate δ̇ [m/s] and slip velocity u̇ cos α [m/s].
 
-    u = x_i − x_j is the relative displacement of the left and right blades; a fixed node
-    has x = 0. Written into the last three arrays.
+    u = x_i − x_j is the relative displacement of the left and right blades
+    (``relative_motion``). Written into the last three arrays.
     """
     for e in range(len(left)):
-        u = 0.0
-        du = 0.0
-        if left[e] >= 0:
-            u += x[left[e]]
-            du += v[left[e]]
-        if right[e] >= 0:
-            u -= x[right[e]]
-            du -= v[right[e]]
+        u, du = relative_motion(x, v, left, right, e)
         penetration[e] = (u - gap[e]) * sin_angle[e]
         rate[e] = du * sin_angle[e]
         slip_velocity[e] = du * cos_angle[e]
