@@ -9,6 +9,7 @@ Normal laws: ``LinearSpring`` (the paper's eqs. 2–3), ``Hertz``, ``KelvinVoigt
 (the paper's eq. 4), ``Stribeck``, and ``Regularised`` (a tanh-smoothed wrapper).
 """
 
+from ._checks import check_int as check_int
 from ._checks import check_real as check_real
 from .base import FrictionLaw as FrictionLaw
 from .base import NormalLaw as NormalLaw

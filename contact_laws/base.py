@@ -31,7 +31,9 @@ class NormalLaw:
     4. optionally ``opens = False`` as a class attribute for a contact that never opens,
        whatever the penetration (a preloaded contact such as ``ConstantLoad``).
 
-    A law is evaluated with ``law(penetration, rate)``.
+    A law is evaluated with ``law(penetration, rate)``. A scene probes a law of one's own
+    for point 3 at sample penetrations and rates when it is built, and refuses it with the
+    point at fault; a sampled check, not a proof.
     """
 
     opens: ClassVar[bool] = True
@@ -63,7 +65,9 @@ class FrictionLaw:
        fields in declaration order and returning μ ≥ 0, written in plain arithmetic that numba
        can compile. It must not exceed its value at zero speed: μ(0) is the static limit.
 
-    A law is evaluated with ``law(slip_speed)``; ``law.static_coefficient`` is μ(0).
+    A law is evaluated with ``law(slip_speed)``; ``law.static_coefficient`` is μ(0). A scene
+    probes a law of one's own for point 3 (finite, 0 ≤ μ(v) ≤ ``static_coefficient``) at
+    slip speeds from 0 to 100 m/s when it is built; a sampled check, not a proof.
     """
 
     @staticmethod

@@ -44,6 +44,7 @@ from .clusters import stick_clusters as stick_clusters
 from .dynamics import Assembly as Assembly
 from .dynamics import assemble as assemble
 from .excitation import AntiPhase as AntiPhase
+from .excitation import EngineOrderWave as EngineOrderWave
 from .excitation import Excitation as Excitation
 from .excitation import ExplicitPhases as ExplicitPhases
 from .excitation import TravellingWave as TravellingWave
@@ -63,5 +64,6 @@ from .simulation import EventLog as EventLog
 from .simulation import Simulation as Simulation
 from .simulation import SimulationError as SimulationError
 from .sweep import Sweep as Sweep
+from .sweep import SweepFailure as SweepFailure
 from .sweep import SweepPoint as SweepPoint
 from .sweep import sweep as sweep

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from contact_laws import check_int
+
 from .simulation import Simulation
 
 #: Labels besides "p1" … "pN".
@@ -75,8 +77,10 @@ def spectrum(sim: Simulation, blade: Hashable | int, skip: int, *,
 
 
 def _steady_rows(sim: Simulation, skip: int) -> slice:
-    if isinstance(skip, bool) or not isinstance(skip, int | np.integer) \
-            or not 0 <= skip < sim.periods:
+    """Rows from t = skip T_e on: ``skip`` is a whole number of periods in [0, periods), an
+    int, a numpy integer or a float of integral value (as ``Simulation.poincare`` takes)."""
+    skip = check_int("", "skip", skip, whole_floats=True)
+    if not 0 <= skip < sim.periods:
         raise ValueError(f"skip must be a whole number of periods in [0, {sim.periods}), "
                          f"got {skip!r}")
     return slice(skip * sim.samples_per_period, None)
@@ -241,6 +245,8 @@ def campbell(frequency_model, speeds_rpm: Sequence[float],
     speeds = np.asarray(speeds_rpm, dtype=float)
     if speeds.ndim != 1 or len(speeds) < 2 or np.any(np.diff(speeds) <= 0):
         raise ValueError("campbell needs at least two increasing speeds_rpm")
+    engine_orders = [check_int("campbell", "engine_orders", order, low=1)
+                     for order in engine_orders]
     frequency = np.array([frequency_model.at(s) for s in speeds])
     crossings = []
     for order in engine_orders:

@@ -98,8 +98,9 @@ class _Model:
                 friction[e] = sliding if self.modes[e] == SLIP_POSITIVE else -sliding
         load = normal * a.sin_angle + friction * a.cos_angle
         load[self.stuck] = 0.0
-        angle = a.excitation_frequency * t * self.harmonics
-        q = a.amplitudes[0] + np.sin(angle[:, None] + a.phases[None, :]).T @ a.amplitudes[1:]
+        # Q_i = s_i [q0 + Σ_n q_n sin(n (lΩ t + φ_i))]: harmonic n carries n φ_i.
+        angle = self.harmonics[:, None] * (a.excitation_frequency * t + a.phases[None, :])
+        q = a.excitation_scale * (a.amplitudes[0] + a.amplitudes[1:] @ np.sin(angle))
         resultant = q - a.damping * v - a.stiffness * x - self.incidence.T @ load
         acceleration = self.share.T @ (self.sums @ resultant)
         if len(self.stuck):

@@ -35,20 +35,22 @@ OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)
 
 @njit_without_refcounts
 def excitation_forces(t, amplitudes, cos_phase, sin_phase, excitation_frequency, out):
-    """Q_i(t) = q0 + Σ_n q_n sin(n l Ω t + φ_i) [N] (paper §2), written into ``out``.
+    """Q_i(t) = s_i [q0 + Σ_n q_n sin(n (l Ω t + φ_i))] [N] (paper §2), written into ``out``.
 
-    ``cos_phase`` and ``sin_phase`` hold cos φ_i and sin φ_i: by sin(a + φ) = sin a cos φ +
-    cos a sin φ, a harmonic costs one sine and one cosine whatever the number of blades.
+    The tables have one row per harmonic n = 0 … n_harmonics and one column per blade
+    (``SceneArrays.harmonic_amplitudes`` and ``harmonic_phases``): ``amplitudes[n, i]`` is
+    s_i q_n, ``cos_phase[n, i]`` and ``sin_phase[n, i]`` are cos n φ_i and sin n φ_i. By
+    sin(a + φ) = sin a cos φ + cos a sin φ, a harmonic costs one sine and one cosine
+    whatever the number of blades.
     """
     for i in range(len(out)):
-        out[i] = amplitudes[0]
-    for n in range(1, len(amplitudes)):
-        if amplitudes[n] != 0.0:
-            angle = n * excitation_frequency * t
-            in_phase = amplitudes[n] * math.sin(angle)
-            quadrature = amplitudes[n] * math.cos(angle)
-            for i in range(len(out)):
-                out[i] += in_phase * cos_phase[i] + quadrature * sin_phase[i]
+        out[i] = amplitudes[0, i]
+    for n in range(1, amplitudes.shape[0]):
+        angle = n * excitation_frequency * t
+        sine = math.sin(angle)
+        cosine = math.cos(angle)
+        for i in range(len(out)):
+            out[i] += amplitudes[n, i] * (sine * cos_phase[n, i] + cosine * sin_phase[n, i])
 
 
 @njit_inlined
@@ -263,8 +265,8 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     normal, friction = law_forces(a, penetration, rate, slip_velocity, modes)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
     q = np.empty(n)
-    excitation_forces(float(t), a.amplitudes, np.cos(a.phases), np.sin(a.phases),
-                      a.excitation_frequency, q)
+    excitation_forces(float(t), a.harmonic_amplitudes, np.cos(a.harmonic_phases),
+                      np.sin(a.harmonic_phases), a.excitation_frequency, q)
     labels, grounded = cluster_labels(n, a.left, a.right, stuck)
     resultant = np.empty(n)
     resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right, interface_force, stuck,

@@ -1,7 +1,14 @@
 """Excitation: the aerodynamic force on each blade (paper §2).
 
-Q_i(t) = q0 + Σ_{n≥1} q_n sin(n l Ω t + φ_i), with engine order l, rotating speed Ω [rad/s]
-and a phase φ_i per blade from a phase pattern.
+Q_i(t) = s_i [q0 + Σ_{n≥1} q_n sin(n (l Ω t + φ_i))], with engine order l, rotating speed
+Ω [rad/s], a phase φ_i per blade from a phase pattern and the blade's excitation scale s_i
+(``Blade.excitation_scale``, 1 for a blade, 0 for an unforced node such as a damper).
+
+The force on a blade is a periodic function of the angle l Ω t + φ_i as a whole: the
+pattern the blade meets one excitation period later is the same pattern shifted by φ_i.
+Its n-th harmonic therefore carries the phase n φ_i. The paper (§2) writes φ_i on every
+harmonic but keeps only q1, where the two readings agree; with the anti-phase pattern
+(φ = 0, π, 2π, …) the even harmonics reach every blade in phase.
 """
 
 from __future__ import annotations
@@ -12,7 +19,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact_laws import check_real
+from contact_laws import check_int, check_real
+
+#: Largest engine order accepted: l counts the vanes, struts or burners a blade passes per
+#: revolution, a few hundred at most in any turbomachine; beyond 1000 the excitation
+#: frequency l Ω/2π is taken for a mistake (10⁶ at 6000 rpm would be 10⁸ Hz).
+ENGINE_ORDER_MAX = 1000
 
 
 @dataclass(frozen=True)
@@ -20,22 +32,60 @@ class AntiPhase:
     """φ_{i+1} − φ_i = π: neighbouring blades pushed in opposition (the paper's choice)."""
 
     def phases(self, n_blades: int) -> np.ndarray:
+        """φ_i = π i [rad] for the blades by position."""
         return math.pi * np.arange(n_blades, dtype=float)
 
 
 @dataclass(frozen=True)
 class TravellingWave:
-    """φ_i = 2π ND i / N: a wave travelling round a ring of N blades with ND nodal diameters."""
+    """φ_i = 2π ND i / N: a wave travelling round a ring of N blades with ND nodal diameters.
+
+    ``nodal_diameter`` ND must lie in [0, N − 1]: ND and N − ND are the same number of
+    nodal diameters travelling in opposite directions (N − ND is the backward wave), and
+    ND ≥ N repeats the phases of ND mod N, so it is refused as a mistake. The range is
+    checked when the number of blades is known (``phases``, or building a ``Scene``).
+    For engine-order forcing of a tuned disc ND = l mod N: use ``EngineOrderWave()``.
+    """
 
     nodal_diameter: int
 
     def __post_init__(self):
-        if isinstance(self.nodal_diameter, bool) or not isinstance(self.nodal_diameter, int):
-            raise TypeError(f"TravellingWave.nodal_diameter must be an int, "
-                            f"got {self.nodal_diameter!r}")
+        object.__setattr__(self, "nodal_diameter",
+                           check_int("TravellingWave", "nodal_diameter", self.nodal_diameter,
+                                     low=0))
 
     def phases(self, n_blades: int) -> np.ndarray:
+        """φ_i = 2π ND i / N [rad] for the N = ``n_blades`` blades by position."""
+        nd = self.nodal_diameter
+        if nd >= n_blades:
+            raise ValueError(f"TravellingWave.nodal_diameter must be in [0, N − 1] = "
+                             f"[0, {n_blades - 1}] for N = {n_blades} blades, got {nd}: ND ≥ N "
+                             f"repeats the phases of ND mod N = {nd % n_blades} (and N − ND is "
+                             "ND travelling backwards)")
         return 2.0 * math.pi * self.nodal_diameter * np.arange(n_blades) / n_blades
+
+
+@dataclass(frozen=True)
+class EngineOrderWave:
+    """The travelling wave that engine order l excites on a tuned disc: ND = l mod N.
+
+    A blade at angular position 2π i/N meets a stationary pattern of l lobes with the phase
+    φ_i = 2π l i / N, which is ``TravellingWave(l mod N)``. A ``Scene`` replaces this
+    pattern by that travelling wave, since only then are l and N both known.
+    """
+
+    @staticmethod
+    def nodal_diameter(n_blades: int, engine_order: int) -> int:
+        """ND = l mod N."""
+        return engine_order % n_blades
+
+    def wave(self, n_blades: int, engine_order: int) -> TravellingWave:
+        """The ``TravellingWave`` this pattern stands for on ``n_blades`` blades."""
+        return TravellingWave(self.nodal_diameter(n_blades, engine_order))
+
+    def phases(self, n_blades: int, engine_order: int) -> np.ndarray:
+        """φ_i = 2π (l mod N) i / N [rad] for the blades by position."""
+        return self.wave(n_blades, engine_order).phases(n_blades)
 
 
 @dataclass(frozen=True)
@@ -45,31 +95,44 @@ class ExplicitPhases:
     values: tuple[float, ...]
 
     def __post_init__(self):
-        values = tuple(check_real("ExplicitPhases", "values", v, unit="rad") for v in self.values)
+        if isinstance(self.values, str) or not isinstance(self.values, Sequence | np.ndarray):
+            raise TypeError("ExplicitPhases.values must be a sequence of phases (φ1, φ2, …) "
+                            f"[rad], one per blade, got {type(self.values).__name__} "
+                            f"{self.values!r}")
+        values = tuple(check_real("ExplicitPhases", "values", v, unit="rad")
+                       for v in self.values)
         object.__setattr__(self, "values", values)
 
     def phases(self, n_blades: int) -> np.ndarray:
+        """The given φ_i [rad]; raises unless there is one per blade."""
         if len(self.values) != n_blades:
             raise ValueError(f"ExplicitPhases has {len(self.values)} phases for "
                              f"{n_blades} blades")
         return np.array(self.values)
 
 
-PhasePattern = AntiPhase | TravellingWave | ExplicitPhases
+PhasePattern = AntiPhase | TravellingWave | EngineOrderWave | ExplicitPhases
+
+_PATTERNS = ("AntiPhase(), TravellingWave(nd), EngineOrderWave() or ExplicitPhases(values) "
+             "(a sequence of phases [rad] is taken as ExplicitPhases)")
 
 
 @dataclass(frozen=True, kw_only=True)
 class Excitation:
     """The harmonic force on every blade, locked to the rotation by the engine order.
 
+    Q_i(t) = s_i [q0 + Σ_{n≥1} q_n sin(n (l Ω t + φ_i))] (paper §2; harmonic n carries
+    n φ_i, see the module's docstring), with s_i the blade's ``excitation_scale``.
+
     Parameters
     ----------
     engine_order : int
-        l ≥ 1: excitation frequency f_e = l Ω/2π (the paper's l = 2).
+        l in [1, ``ENGINE_ORDER_MAX`` = 1000]: excitation frequency f_e = l Ω/2π (the
+        paper's l = 2).
     amplitudes : sequence of float
         (q0, q1, …, qn) [N]: the mean force q0 and the amplitude q_n of the n-th harmonic.
-    phases : AntiPhase, TravellingWave, ExplicitPhases or a sequence of float
-        The phase pattern φ_i; a sequence is taken as explicit phases [rad].
+    phases : AntiPhase, TravellingWave, EngineOrderWave, ExplicitPhases or a sequence
+        The phase pattern φ_i; a sequence of floats is taken as explicit phases [rad].
     """
 
     engine_order: int
@@ -77,20 +140,43 @@ class Excitation:
     phases: PhasePattern
 
     def __post_init__(self):
-        if (isinstance(self.engine_order, bool) or not isinstance(self.engine_order, int)
-                or self.engine_order < 1):
-            raise ValueError(f"Excitation.engine_order must be an int >= 1, "
-                             f"got {self.engine_order!r}")
+        object.__setattr__(self, "engine_order",
+                           check_int("Excitation", "engine_order", self.engine_order, low=1,
+                                     high=ENGINE_ORDER_MAX))
+        if isinstance(self.amplitudes, str | bytes) \
+                or not isinstance(self.amplitudes, Sequence | np.ndarray):
+            raise TypeError("Excitation.amplitudes must be a sequence (q0, q1, …) [N]: the "
+                            "mean force q0, then the amplitude of each harmonic (one "
+                            "harmonic of 50 N without mean force is (0.0, 50.0)); got "
+                            f"{type(self.amplitudes).__name__} {self.amplitudes!r}")
         amplitudes = tuple(check_real("Excitation", "amplitudes", q, unit="N")
                            for q in self.amplitudes)
         if not amplitudes:
             raise ValueError("Excitation.amplitudes needs at least q0 (the mean force)")
         object.__setattr__(self, "amplitudes", amplitudes)
-        if not isinstance(self.phases, AntiPhase | TravellingWave | ExplicitPhases):
-            if not isinstance(self.phases, Sequence | np.ndarray):
-                raise TypeError("Excitation.phases must be AntiPhase(), TravellingWave(nd), "
-                                f"ExplicitPhases(...) or a sequence of floats, got {self.phases!r}")
+        if not isinstance(self.phases, PhasePattern):
+            if isinstance(self.phases, str | bytes) \
+                    or not isinstance(self.phases, Sequence | np.ndarray):
+                hint = (" (the paper's pattern, φ_{i+1} − φ_i = π, is AntiPhase())"
+                        if isinstance(self.phases, str) else "")
+                raise TypeError(f"Excitation.phases must be {_PATTERNS}, got "
+                                f"{type(self.phases).__name__} {self.phases!r}{hint}")
             object.__setattr__(self, "phases", ExplicitPhases(tuple(self.phases)))
+
+    @property
+    def n_harmonics(self) -> int:
+        """The number of harmonics n ≥ 1 (amplitudes beyond q0)."""
+        return len(self.amplitudes) - 1
+
+    def blade_phases(self, n_blades: int) -> np.ndarray:
+        """φ_i [rad] of the fundamental for ``n_blades`` blades by position."""
+        if isinstance(self.phases, EngineOrderWave):
+            return self.phases.phases(n_blades, self.engine_order)
+        return self.phases.phases(n_blades)
+
+    def harmonic_phases(self, n_blades: int) -> np.ndarray:
+        """n φ_i [rad]: row n (0 … number of harmonics) holds the phases of harmonic n."""
+        return np.arange(len(self.amplitudes))[:, None] * self.blade_phases(n_blades)[None, :]
 
     def frequency(self, speed_rpm: float) -> float:
         """f_e = l Ω/60 [Hz] at ``speed_rpm`` [rev/min]."""

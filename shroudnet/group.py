@@ -13,6 +13,8 @@ from collections.abc import Hashable, Sequence
 
 import networkx as nx
 
+from contact_laws import check_int
+
 from .blade import Blade
 from .interface import Interface
 
@@ -28,7 +30,7 @@ class BladeGroup:
     ...                    friction=Coulomb(mu=0.3))
     >>> group = BladeGroup.chain(3, blade, shroud)
     >>> group.blades
-    ['blade0', 'blade1', 'blade2']
+    ['blade1', 'blade2', 'blade3']
     """
 
     def __init__(self) -> None:
@@ -77,12 +79,15 @@ class BladeGroup:
     @classmethod
     def chain(cls, n: int, blade: Blade | Sequence[Blade], interface: Interface,
               names: Sequence[Hashable] | None = None) -> BladeGroup:
-        """A packet of ``n`` blades joined in a row: interfaces (0, 1), (1, 2), …, (n−2, n−1).
+        """A packet of ``n ≥ 1`` blades in a row, each joined to the next by ``interface``.
 
-        ``blade`` is one blade for all or a sequence of n (a mistuned packet).
+        The blades are named ``"blade1"`` … ``"bladen"`` as in the paper, unless ``names``
+        gives n names; their positions are 0 … n−1 in that order. ``blade`` is one blade
+        for all or a sequence of n (a mistuned packet).
         """
         group = cls()
-        for name, one in zip(_names(n, names, "chain"), _blades(n, blade, "chain")):
+        names = _names(n, names, "chain")
+        for name, one in zip(names, _blades(len(names), blade, "chain")):
             group.add_blade(name, one)
         for left, right in zip(group.blades, group.blades[1:]):
             group.connect(left, right, interface)
@@ -91,8 +96,9 @@ class BladeGroup:
     @classmethod
     def ring(cls, n: int, blade: Blade | Sequence[Blade], interface: Interface,
              names: Sequence[Hashable] | None = None) -> BladeGroup:
-        """A full shrouded disc of ``n ≥ 3`` blades: a chain closed by the interface (n−1, 0)."""
-        if isinstance(n, bool) or not isinstance(n, int) or n < 3:
+        """A full shrouded disc of ``n ≥ 3`` blades: a ``chain`` whose last blade is joined
+        to its first."""
+        if check_int("BladeGroup.ring", "n", n) < 3:
             raise ValueError(f"ring needs n >= 3 blades, got {n!r}")
         group = cls.chain(n, blade, interface, names)
         group.connect(group.blades[-1], group.blades[0], interface)
@@ -130,9 +136,8 @@ class BladeGroup:
 
 
 def _names(n, names, preset):
-    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        raise ValueError(f"{preset} needs a number of blades n >= 1, got {n!r}")
-    names = [f"blade{i}" for i in range(n)] if names is None else list(names)
+    n = check_int(f"BladeGroup.{preset}", "n", n, low=1)
+    names = [f"blade{i}" for i in range(1, n + 1)] if names is None else list(names)
     if len(names) != n:
         raise ValueError(f"{preset} got {len(names)} names for {n} blades")
     return names

@@ -159,7 +159,8 @@ def kernel_scene(scene: Scene) -> KernelScene:
         normal_kind=normal_kind, normal_params=_rows(a.normal_laws),
         friction_kind=friction_kind,
         friction_params=_rows(a.friction_laws),
-        amplitudes=a.amplitudes, cos_phase=np.cos(a.phases), sin_phase=np.sin(a.phases),
+        amplitudes=a.harmonic_amplitudes, cos_phase=np.cos(a.harmonic_phases),
+        sin_phase=np.sin(a.harmonic_phases),
         excitation_frequency=float(a.excitation_frequency))
 
 

@@ -5,6 +5,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Hashable
 from dataclasses import dataclass
@@ -15,7 +16,7 @@ import numpy as np
 
 from contact_laws import FrictionLaw, NormalLaw, check_real
 
-from .excitation import Excitation
+from .excitation import EngineOrderWave, Excitation
 from .group import BladeGroup
 
 #: Below this |cos α| friction has no component along x: such an interface never sticks.
@@ -45,8 +46,11 @@ class SceneArrays:
     static_mu: np.ndarray      # μ_s = μ(0), 0 without friction
     regularisation: np.ndarray  # v_ε [m/s] of a regularised law, else 0
     amplitudes: np.ndarray     # (q0, q1, …, qn) [N]
-    phases: np.ndarray         # φ_i [rad]
+    phases: np.ndarray         # φ_i [rad], the phases of the fundamental
     excitation_frequency: float  # l Ω [rad/s]
+    excitation_scale: np.ndarray   # s_i [-], the factor on Q(t) of each blade
+    harmonic_amplitudes: np.ndarray  # s_i q_n [N]: row n (0 … n_harmonics), column i
+    harmonic_phases: np.ndarray      # n φ_i [rad]: row n, column i (paper §2, see excitation)
 
     @property
     def n_blades(self) -> int:
@@ -56,12 +60,21 @@ class SceneArrays:
     def n_interfaces(self) -> int:
         return len(self.gap)
 
+    @property
+    def static_deflection(self) -> float:
+        """x_s = max_i s_i Σ|q_n| / k_i [m]: the largest blade deflection under the whole
+        excitation applied statically."""
+        return float((np.abs(self.harmonic_amplitudes).sum(axis=0) / self.stiffness).max())
+
 
 @dataclass(frozen=True, kw_only=True, eq=False)
 class Scene:
     """Everything a simulation needs: the group, its excitation and the rotating speed.
 
     The group is copied and frozen, so editing the original later does not change the scene.
+    An ``EngineOrderWave`` phase pattern is replaced by the ``TravellingWave`` it stands for
+    on this group (ND = l mod N). Laws that are not built into ``contact_laws`` are probed
+    at construction (``check_user_laws``): a sampled check of their contract, not a proof.
 
     Parameters
     ----------
@@ -87,9 +100,15 @@ class Scene:
         frozen = BladeGroup()
         frozen.graph = nx.freeze(self.group.graph.copy())
         object.__setattr__(self, "group", frozen)
-        self.excitation.phases.phases(len(frozen.blades))  # raises if the count is wrong
+        n_blades = len(frozen.blades)
+        if isinstance(self.excitation.phases, EngineOrderWave):
+            wave = self.excitation.phases.wave(n_blades, self.excitation.engine_order)
+            object.__setattr__(self, "excitation",
+                               dataclasses.replace(self.excitation, phases=wave))
+        self.excitation.blade_phases(n_blades)  # raises if the count or the ND is wrong
         for name in frozen.blades:
             frozen.blade(name).stiffness_at(self.speed_rpm)  # raises outside a table's range
+        check_user_laws(self)
 
     @property
     def blades(self) -> list[Hashable]:
@@ -130,6 +149,7 @@ class Scene:
         frictions = tuple(i.friction for i in interfaces)
         exact = np.array([f is not None and f.regularisation_velocity == 0.0 for f in frictions],
                          dtype=bool)
+        scale = np.array([b.excitation_scale for b in blades], dtype=float)
         return SceneArrays(
             mass=np.array([b.mass for b in blades], dtype=float),
             damping=np.array([b.damping for b in blades], dtype=float),
@@ -147,6 +167,128 @@ class Scene:
             regularisation=np.array([0.0 if f is None else f.regularisation_velocity
                                      for f in frictions]),
             amplitudes=np.array(self.excitation.amplitudes, dtype=float),
-            phases=self.excitation.phases.phases(len(names)).astype(float),
+            phases=self.excitation.blade_phases(len(names)).astype(float),
             excitation_frequency=self.excitation.engine_order * self.omega,
+            excitation_scale=scale,
+            harmonic_amplitudes=np.array(self.excitation.amplitudes, dtype=float)[:, None]
+            * scale[None, :],
+            harmonic_phases=self.excitation.harmonic_phases(len(names)).astype(float),
         )
+
+
+# ---- the contract of user laws, probed --------------------------------------------------
+
+#: Penetrations probed, as multiples of the scene's length scale (see ``check_user_laws``).
+PROBE_PENETRATIONS = tuple(10.0**k for k in range(-6, 2))
+#: Slip speeds probed [m/s], besides 0: one per decade.
+PROBE_SLIP_SPEEDS = tuple(10.0**k for k in range(-6, 3))
+#: Length scale [m] when the scene has neither gaps nor excitation to give one.
+PROBE_FALLBACK_LENGTH = 1e-6
+#: Relative slack on μ(v) ≤ μ_s, for a law that computes μ(0) by a different rounding.
+PROBE_MU_SLACK = 1e-12
+
+
+def _builtin(law) -> bool:
+    return type(law).__module__.split(".")[0] == "contact_laws"
+
+
+def check_user_laws(scene: Scene) -> None:
+    """Probe every law not built into ``contact_laws`` at sample points; raise on a breach.
+
+    Built-in laws hold their contract by their parameters' ranges; a law of one's own is
+    only called, so its contract (``contact_laws.NormalLaw``, ``FrictionLaw``) is checked
+    here by sampling, not proved. With the length scale L = max(|Δ_e|, x_s) (the largest
+    gap, or the static deflection x_s under the whole excitation; 1 µm without either) and
+    the rate scale r = L l Ω:
+
+    - a normal law must return a finite N ≥ 0 at penetrations δ = L·10⁻⁶ … 10 L (one per
+      decade) and rates δ̇ = 0, ±r, and a finite N at δ = −10⁻³ L (a trial state of a step
+      that separates) if the contact can open;
+    - a friction law must return a finite μ with 0 ≤ μ(v) ≤ μ_s at v = 0 and 10⁻⁶ … 10²
+      m/s (one per decade), μ_s being its ``static_coefficient``, the stick limit the scene
+      uses. A regularised law is probed through the exact law it smooths.
+
+    Raises ``ValueError`` naming the interface, the law, the point and the value.
+    """
+    group = scene.group
+    excitation = scene.excitation
+    deflection = max(group.blade(name).excitation_scale * sum(map(abs, excitation.amplitudes))
+                     / group.blade(name).stiffness_at(scene.speed_rpm)
+                     for name in group.blades)
+    length = max([abs(interface.gap) for _, _, interface in group.interfaces] + [deflection])
+    if not length > 0.0:
+        length = PROBE_FALLBACK_LENGTH
+    rate = length * excitation.engine_order * scene.omega
+    for e, (left, right, interface) in enumerate(group.interfaces):
+        where = f"interface {e} ({left!r}, {right!r})"
+        if not _builtin(interface.normal):
+            _probe_normal(interface.normal, where, length, rate)
+        if interface.friction is not None and not _builtin(interface.friction.exact):
+            _probe_friction(interface.friction.exact, where)
+
+
+def _evaluate(law, point, where, kind):
+    """The law's value at ``point`` as a float, or a ValueError saying why it has none."""
+    try:
+        value = law(*point)
+    except (ArithmeticError, TypeError, ValueError) as error:
+        raise ValueError(f"{where}: {kind} {law!r} raised {type(error).__name__} "
+                         f"({error}) at {_point(point)}") from error
+    if isinstance(value, bool) or not isinstance(value, int | float | np.floating | np.integer):
+        raise ValueError(f"{where}: {kind} {law!r} returned {type(value).__name__} "
+                         f"{value!r} at {_point(point)}, not a real number (write max(δ, 0) "
+                         "before a fractional power)")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{where}: {kind} {law!r} returned {value} at {_point(point)}; it "
+                         "must stay finite")
+    return value
+
+
+def _point(point) -> str:
+    if len(point) == 2:
+        return f"penetration δ = {point[0]:.3g} m, rate δ̇ = {point[1]:.3g} m/s"
+    return f"slip speed |v| = {point[0]:.3g} m/s"
+
+
+def _probe_normal(law, where, length, rate):
+    kind = "normal law"
+    for factor in PROBE_PENETRATIONS:
+        for speed in (0.0, rate, -rate):
+            point = (factor * length, speed)
+            force = _evaluate(law, point, where, kind)
+            if force < 0.0:
+                raise ValueError(
+                    f"{where}: {kind} {law!r} gives N = {force:.6g} N < 0 at {_point(point)}; "
+                    "a closed contact only pushes, so N(δ, δ̇) must be ≥ 0 for δ > 0 (clamp "
+                    "it, e.g. max(…, 0.0)). Checked by sampling δ over L·1e-6 … 10 L with "
+                    f"L = {length:.3g} m and δ̇ = 0, ±{rate:.3g} m/s.")
+    if type(law).opens:
+        for speed in (0.0, rate, -rate):
+            _evaluate(law, (-1e-3 * length, speed), where, kind)
+
+
+def _probe_friction(law, where):
+    kind = "friction law"
+    try:
+        static = float(law.static_coefficient)
+    except (ArithmeticError, TypeError, ValueError) as error:
+        raise ValueError(f"{where}: {kind} {law!r} has no static coefficient μ_s: "
+                         f"{type(error).__name__} ({error})") from error
+    if not (math.isfinite(static) and static >= 0.0):
+        raise ValueError(f"{where}: {kind} {law!r} has a static coefficient μ_s = {static:g}; "
+                         "it must be finite and ≥ 0")
+    speeds = (0.0,) + PROBE_SLIP_SPEEDS
+    values = [_evaluate(law, (speed,), where, kind) for speed in speeds]
+    for speed, mu in zip(speeds, values):
+        if mu < 0.0:
+            raise ValueError(f"{where}: {kind} {law!r} gives μ = {mu:.10g} < 0 at "
+                             f"{_point((speed,))}; μ(v) must be ≥ 0")
+    highest = int(np.argmax(values))
+    if values[highest] > static * (1.0 + PROBE_MU_SLACK):
+        raise ValueError(
+            f"{where}: {kind} {law!r} gives μ = {values[highest]:.10g} at "
+            f"{_point((speeds[highest],))}, above its static coefficient μ_s = μ(0) = "
+            f"{static:.10g}, the stick limit: a slipping interface would carry more friction "
+            "than a stuck one can hold. μ(v) must stay within [0, μ_s]; checked by sampling "
+            "v = 0 and 1e-6 … 1e2 m/s.")

@@ -8,6 +8,8 @@ from enum import IntEnum
 
 import numpy as np
 
+from contact_laws import check_int
+
 from .scene import Scene
 
 
@@ -85,10 +87,13 @@ class Simulation:
     samples_per_period: int
     steps: int               # Runge–Kutta steps taken (accepted ones, for Adaptive)
 
-    def _steady(self, skip: float) -> slice:
-        if skip < 0 or skip * self.samples_per_period >= len(self.t):
-            raise ValueError(f"skip must be in [0, {self.periods}) periods, got {skip}")
-        return slice(int(round(skip * self.samples_per_period)), None)
+    def _steady(self, skip: int, owner: str) -> slice:
+        """The rows from t = skip T_e on; ``skip`` is a whole number of periods (an int, a
+        numpy integer or a float of integral value) in [0, periods]."""
+        skip = check_int(owner, "skip", skip, whole_floats=True)
+        if not 0 <= skip <= self.periods:
+            raise ValueError(f"skip must be in [0, {self.periods}] periods, got {skip}")
+        return slice(skip * self.samples_per_period, None)
 
     @property
     def periods(self) -> int:
@@ -98,18 +103,24 @@ class Simulation:
     def poincare(self, blade: Hashable | int, skip: int = 0) -> np.ndarray:
         """Stroboscopic points (x [m], ẋ [m/s]) of a blade at t = k T_e, k ≥ skip.
 
-        ``blade`` is a name or a 0-based position. Returns an array (n_points × 2).
+        ``blade`` is a name or a 0-based position; ``skip`` a whole number of periods in
+        [0, periods]. Returns an array (n_points × 2).
         """
         i = self.scene.blade_position(blade)
-        if isinstance(skip, bool) or not isinstance(skip, int | np.integer):
-            raise TypeError(f"skip must be a whole number of periods, got {skip!r}")
-        rows = slice(self._steady(skip).start, None, self.samples_per_period)
+        rows = slice(self._steady(skip, "Simulation.poincare").start, None,
+                     self.samples_per_period)
         return np.column_stack([self.x[rows, i], self.v[rows, i]])
 
-    def energy_density(self, blade: Hashable | int, skip: float = 0) -> float:
-        """E_ρ = ∫ x² dt / (t2 − t1) [m²] after ``skip`` periods (the paper's §3.2)."""
+    def energy_density(self, blade: Hashable | int, skip: int) -> float:
+        """E_ρ = ∫ x² dt / (t2 − t1) [m²] of a blade after ``skip`` periods (the paper's §3.2).
+
+        ``skip``, the transient periods left out, is required: a mean square that includes
+        the transient is not the steady response's. It is a whole number of periods in
+        [0, periods − 1] (an int, a numpy integer or a float of integral value); give 0 for a
+        run that starts on the steady state.
+        """
         i = self.scene.blade_position(blade)
-        rows = self._steady(skip)
+        rows = self._steady(skip, "Simulation.energy_density")
         t, x = self.t[rows], self.x[rows, i]
         if len(t) < 2:
             raise ValueError("energy_density needs at least two samples after skip")

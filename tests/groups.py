@@ -89,5 +89,5 @@ def external_forces(scene, t, x, v):
     a = scene.arrays
     q = np.full(a.n_blades, scene.excitation.amplitudes[0])
     for h, amplitude in enumerate(scene.excitation.amplitudes[1:], start=1):
-        q = q + amplitude * np.sin(h * a.excitation_frequency * t + a.phases)
-    return q - a.damping * v - a.stiffness * x
+        q = q + amplitude * np.sin(h * (a.excitation_frequency * t + a.phases))
+    return a.excitation_scale * q - a.damping * v - a.stiffness * x
