@@ -20,6 +20,7 @@ def compute(gamma1=2.2, speed_rpm=6000.0, q1=50.0):
 
 
 def main():
+    """Print the scene's parameters and forces; returns what ``compute`` gives."""
     scene, stuck = compute()
     model = paper_frequency_model()
     print(f"f_d1(Ω) = sqrt({model.f0:.2f}² + {model.coefficient} (Ω/60)²) Hz")
@@ -37,6 +38,7 @@ def main():
               f"({'holds' if abs(stuck.friction_force[e]) <= limit else 'breaks away'})")
     print(f"  cluster acceleration = {stuck.acceleration[0]:.4g} m/s² "
           f"(angle α = {math.degrees(math.asin(a.sin_angle[0])):.0f}°)")
+    return scene, stuck
 
 
 if __name__ == "__main__":

@@ -16,6 +16,7 @@ def compute(gamma1=2.2, speed_rpm=6000.0, q1=50.0, periods=200):
 
 
 def main(periods=200, skip=150):
+    """Simulate and print the summary; returns the Simulation."""
     sim = compute(periods=periods)
     print(f"{periods} periods of T_e = {sim.scene.excitation_period * 1e3:.3f} ms")
     print("events:", ", ".join(f"{k} {v}" for k, v in sim.events.counts.items()))
@@ -28,6 +29,7 @@ def main(periods=200, skip=150):
     for x, v in points[-4:]:
         print(f"  {x * 1e3:+.5f}  {v:+.5f}")
     print(f"E_rho = {sim.energy_density('blade2', skip=skip):.4e} m^2")
+    return sim
 
 
 if __name__ == "__main__":

@@ -7,37 +7,100 @@
 
 ``shroudnet COMMAND --help`` explains each. Scene files are described in
 ``shroudnet.scenefile``; examples are in ``examples/scenes/``.
+
+Whatever goes wrong is told in one line, ``shroudnet COMMAND: error: …``, with exit status
+2 (bad input: a file, a folder, an option), 1 (a fault of shroudnet itself; set
+``SHROUDNET_TRACEBACK=1`` to see where) or 130 (interrupted with Ctrl-C).
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
+import os
+import re
 import sys
 import time
+import zipfile
 from dataclasses import replace
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 
 from . import results, scenefile
 from .analysis import classify
+from .progress import ProgressReporter, TerminalProgress
 from .simulate import simulate
 from .simulation import SimulationError
 from .sweep import sweep
 
+#: Exit statuses.
+BAD_INPUT, FAULT, INTERRUPTED = 2, 1, 130
+
+#: Errors that mean bad input (a file, a folder, an option, a parameter value), told in a
+#: line: ``SceneFileError`` and ``ResultsError`` are ``ValueError``s.
+_INPUT_ERRORS = (ValueError, OSError, EOFError, zipfile.BadZipFile, SimulationError)
+
+
+class UsageError(ValueError):
+    """An option that cannot work (checked before any simulation runs)."""
+
+
+class Interrupted(Exception):
+    """Ctrl-C, with what was kept and how to go on."""
+
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the ``shroudnet`` command with ``argv`` (default: the process's); the exit status."""
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["bench"]:  # its options, --help included, are the benchmark's own
-        from .bench import main as bench_main
-        bench_main(argv[1:])
-        return 0
+        return _guarded("bench", lambda: _bench(argv[1:]))
     args = _parser().parse_args(argv)
+    return _guarded(args.name, lambda: args.command(args))
+
+
+def _bench(options: list[str]) -> int:
+    from .bench import main as bench_main
+    bench_main(options)
+    return 0
+
+
+def _guarded(name: str, command) -> int:
+    """Call ``command()``; tell any failure in one line and give its exit status."""
     try:
-        return args.command(args)
-    except (scenefile.SceneFileError, results.ResultsError, SimulationError) as error:
-        print(f"shroudnet {args.name}: error: {error}", file=sys.stderr)
-        return 2
+        return command()
+    except (Interrupted, KeyboardInterrupt) as stop:
+        _say(name, str(stop) or "interrupted; nothing was saved")
+        return INTERRUPTED
+    except MemoryError:
+        _say(name, "error: not enough memory for this run; ask for fewer periods or fewer "
+                   "samples_per_period in [run]")
+        return BAD_INPUT
+    except _INPUT_ERRORS as error:
+        _say(name, f"error: {_describe(error)}")
+        return BAD_INPUT
+    except Exception as error:
+        if os.environ.get("SHROUDNET_TRACEBACK"):
+            raise
+        _say(name, f"error: unexpected {type(error).__name__}: {_describe(error)} (a fault of "
+                   "shroudnet; set SHROUDNET_TRACEBACK=1 to see where)")
+        return FAULT
+
+
+def _say(name: str, message: str) -> None:
+    print(f"shroudnet {name}: {message}", file=sys.stderr)
+
+
+def _describe(error: BaseException) -> str:
+    """An error's message on one line, its notes (which sweep point, ...) included."""
+    if isinstance(error, OSError) and error.strerror:
+        where = error.filename if error.filename is not None else ""
+        text = f"{where}: {error.strerror}" if where else error.strerror
+    else:
+        text = str(error) or type(error).__name__
+    notes = getattr(error, "__notes__", [])
+    return " ".join(" ".join([text, *(f"({note})" for note in notes)]).split())
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -55,18 +118,21 @@ def _parser() -> argparse.ArgumentParser:
         "writes the results (.npz, loads back with shroudnet.results.load) and the response "
         "figure (.png) of the [run] blade.")
     run.add_argument("scene", type=Path, help="scene file (TOML)")
-    run.add_argument("--periods", type=int, help="excitation periods (default: [run] periods)")
+    run.add_argument("--periods", type=_whole(1),
+                     help="excitation periods (default: [run] periods)")
     run.add_argument("--output", "-o", type=Path, default=Path("."),
                      help="folder for SCENE.npz and SCENE.png (default: here)")
     run.add_argument("--no-figure", action="store_true", help="write the results only")
+    _laws_option(run)
     run.set_defaults(command=_run, name="run")
 
     sweep_ = commands.add_parser(
         "sweep", help="sweep one number of a scene file: bifurcation data and diagram",
         description="Run the steady response of SCENE.toml for each value of one of its "
         "numbers, on every core. Each point is saved in the output folder as it finishes; "
-        "run the same command again to resume an interrupted sweep. Writes the diagram "
-        "bifurcation.png there.")
+        "run the same command again to resume an interrupted sweep. A point whose "
+        "simulation fails is told (its value and why) and left out of the diagram; the "
+        "others go on. Writes the diagram bifurcation.png there.")
     sweep_.add_argument("scene", type=Path, help="scene file (TOML)")
     sweep_.add_argument("--param", required=True, metavar="PATH",
                         help="the number to sweep, as a dotted path into the file: "
@@ -74,15 +140,21 @@ def _parser() -> argparse.ArgumentParser:
                         "group.interface.gap, ...")
     sweep_.add_argument("--values", required=True, nargs="+", metavar="VALUE",
                         help="the values: numbers, or START:STOP:COUNT for COUNT evenly "
-                        "spaced ones")
-    sweep_.add_argument("--transient", type=int,
+                        "spaced ones; negative ones too (--values -1e-5:2e-5:4)")
+    sweep_.add_argument("--transient", type=_whole(0),
                         help="periods before recording (default: [run] transient)")
-    sweep_.add_argument("--record", type=int, default=100,
-                        help="periods recorded per value (default 100)")
-    sweep_.add_argument("--workers", type=int, help="worker processes (default: every core)")
+    sweep_.add_argument("--record", type=_whole(3), default=100,
+                        help="periods recorded per value, at least 3 (default 100)")
+    sweep_.add_argument("--workers", type=_whole(1),
+                        help="worker processes (default: every core)")
     sweep_.add_argument("--output", "-o", type=Path,
                         help="folder for the points and the diagram "
                         "(default: SCENE-sweep-PATH, here)")
+    sweep_.add_argument("--retry-failed", action="store_true",
+                        help="on resuming, run again the points whose simulation failed "
+                        "(by default they are kept: the same code fails the same way)")
+    _laws_option(sweep_)
+    _negative_numbers_are_values(sweep_)
     sweep_.set_defaults(command=_sweep, name="sweep")
 
     plot = commands.add_parser(
@@ -92,6 +164,7 @@ def _parser() -> argparse.ArgumentParser:
     plot.add_argument("results", type=Path, help="a .npz file of 'run' or a folder of 'sweep'")
     plot.add_argument("--output", "-o", type=Path,
                       help="figure to write (default: beside RESULTS, .png)")
+    _laws_option(plot)
     plot.set_defaults(command=_plot, name="plot")
 
     bench = commands.add_parser(
@@ -102,15 +175,50 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _whole(low: int):
+    """An argparse type: a whole number >= ``low``."""
+    def whole(text: str) -> int:
+        try:
+            number = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a whole number >= {low}, "
+                                             f"got {text!r}") from None
+        if number < low:
+            raise argparse.ArgumentTypeError(f"must be a whole number >= {low}, got {number}")
+        return number
+    whole.__name__ = f"whole number >= {low}"
+    return whole
+
+
+def _laws_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--laws", action="append", default=[], metavar="MODULE",
+        help="allow the scene file to name contact laws of one's own from MODULE (a Python "
+        "module on the path or in this folder) as 'MODULE:Class'. This imports MODULE, "
+        "which RUNS ITS CODE: give only modules you trust. Without it a scene file names "
+        "only the laws of contact_laws, and reading it runs no code. May be repeated.")
+
+
+def _negative_numbers_are_values(parser: argparse.ArgumentParser) -> None:
+    """Let ``-1e-5`` and ``-1e-5:2e-5:4`` be values, not options (argparse reads only plain
+    negative numbers such as ``-1`` or ``-0.5`` so; the parser has no option that starts
+    with a digit, so none is shadowed)."""
+    parser._negative_number_matcher = re.compile(r"^-\.?\d")
+
+
 def _run(args) -> int:
-    loaded = scenefile.load(args.scene)
+    loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
     settings = loaded.run
     periods = settings.periods if args.periods is None else args.periods
     if periods <= settings.transient:
-        raise scenefile.SceneFileError(f"--periods must exceed the transient of "
-                                       f"{settings.transient} periods, got {periods}")
+        raise UsageError(f"--periods must exceed the transient of {settings.transient} "
+                         f"periods, got {periods}")
     settings = replace(settings, periods=periods)
     scene = loaded.scene
+    stem = args.output / args.scene.stem
+    _check_folder(args.output, "--output")
+    for suffix in (".npz", ".png"):
+        _check_file(stem.with_suffix(suffix), "--output")
     start = time.perf_counter()
     sim = simulate(scene, periods, method=settings.method,
                    samples_per_period=settings.samples_per_period,
@@ -136,12 +244,49 @@ def _run(args) -> int:
           f"{ledger.damping_loss:.6g} + friction {ledger.friction_loss:.6g} + contact "
           f"{ledger.contact_loss:.3g} + stored {ledger.stored_change:.3g} + residual "
           f"{ledger.residual:.2e} ({_share(ledger.residual, ledger.excitation_work)})")
-    stem = args.output / args.scene.stem
     saved = [results.save_simulation(stem.with_suffix(".npz"), sim, settings)]
     if not args.no_figure:
         saved.append(_save_response(sim, settings, stem.with_suffix(".png")))
     print("saved    " + ", ".join(map(str, saved)))
     return 0
+
+
+def _import_laws(names: list[str]) -> tuple[ModuleType, ...]:
+    """Import the modules of ``--laws`` (running their code, as the option says)."""
+    modules = []
+    for name in names:
+        if os.getcwd() not in sys.path:
+            sys.path.append(os.getcwd())
+        try:
+            modules.append(importlib.import_module(name))
+        except ImportError as error:
+            raise UsageError(f"--laws {name}: cannot import it: {error}") from None
+        except Exception as error:
+            raise UsageError(f"--laws {name}: importing it failed: {type(error).__name__}: "
+                             f"{_describe(error)}") from None
+    return tuple(modules)
+
+
+def _check_folder(folder: Path, option: str, requested: Path | None = None) -> None:
+    """Fail now, before any work, if files cannot be written in ``folder`` (made if
+    missing); the message names ``requested`` (default ``folder``), what the user gave."""
+    requested = folder if requested is None else requested
+    existing = folder
+    while not existing.exists():  # a path under a file does not exist either
+        existing = existing.parent
+    if not existing.is_dir():
+        raise UsageError(f"{option} {requested}: {existing} is a file, not a folder")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise UsageError(f"{option} {requested}: cannot write in {existing} "
+                         "(permission denied)")
+
+
+def _check_file(path: Path, option: str) -> None:
+    """Fail now if the file ``path`` cannot be written: a folder of that name is in the way,
+    a part of its folder is a file, or its folder is not writable."""
+    if path.is_dir():
+        raise UsageError(f"{option} {path}: is a folder, so the file cannot be written")
+    _check_folder(path.parent, option, requested=path)
 
 
 def _share(part: float, whole: float) -> str:
@@ -158,43 +303,99 @@ def _save_response(sim, settings, path: Path) -> Path:
 
 
 def _sweep(args) -> int:
-    loaded = scenefile.load(args.scene)
+    laws = _import_laws(args.laws)
+    loaded = scenefile.load(args.scene, laws=laws)
     values = _values(args.values)
-    scene_at = scenefile.SceneAt(loaded.document, args.param)
-    for value in (values[0], values[-1]):  # a bad path or value fails before any work
+    scene_at = scenefile.SceneAt(loaded.document, args.param, laws=laws)
+    for value in values:  # a bad path or value fails before any work
         scene_at(value)
     settings = loaded.run
     transient = settings.transient if args.transient is None else args.transient
     folder = args.output or Path(f"{args.scene.stem}-sweep-{args.param}")
+    _check_folder(folder, "--output")
+    _check_file(folder / "bifurcation.png", "--output")
     start = time.perf_counter()
-    result = sweep(scene_at, values, parameter=args.param, blade=settings.blade,
-                   transient=transient, record=args.record, method=settings.method,
-                   workers=args.workers, save_to=folder)
+    try:
+        result = sweep(scene_at, values, parameter=args.param, blade=settings.blade,
+                       transient=transient, record=args.record, method=settings.method,
+                       workers=args.workers, save_to=folder, progress=_sweep_progress(),
+                       retry_failed=args.retry_failed)
+    except KeyboardInterrupt:
+        raise Interrupted(_kept(folder, len(values))) from None
     took = time.perf_counter() - start
     labels, counts = np.unique(result.labels, return_counts=True)
     print(f"swept    {args.param} over {len(values)} values from {values[0]:g} to "
           f"{values[-1]:g} in {took:.1f} s")
     print("motions  " + ", ".join(f"{label} ×{count}" for label, count in zip(labels, counts)))
+    failures = result.failures
+    if failures:
+        print(f"failed   {len(failures)} of {len(values)} points, left out of the diagram: "
+              + ", ".join(f"{args.param} = {failure.value:g}" for failure in failures))
+        print("         (why: above, and in each point's file; run again with "
+              "--retry-failed after changing what made them fail)")
+    if len(failures) == len(values):
+        raise UsageError(f"every point failed, so there is no diagram; the first: "
+                         f"{failures[0]}")
     figure = _save_diagram(result, folder / "bifurcation.png")
     print(f"saved    {folder}/ (one file per point), {figure}")
     return 0
 
 
+class _Notices(ProgressReporter):
+    """Tells a sweep's notices (a failed point and why, a damaged file computed again) on
+    standard error, one line each, and nothing of its progress."""
+
+    def notice(self, message: str) -> None:
+        _say("sweep", message)
+
+
+def _sweep_progress() -> ProgressReporter:
+    """The terminal's progress line, with notices above it; on a pipe, the notices only."""
+    return TerminalProgress("sweep") if sys.stderr.isatty() else _Notices()
+
+
+def _kept(folder: Path, total: int) -> str:
+    """What Ctrl-C left of a sweep, and how to finish it."""
+    saved = len(list(folder.glob("points/*.npz")))
+    return (f"interrupted; the {saved} of {total} points saved in {folder}/ are kept: run "
+            "the same command again to compute only the missing ones")
+
+
 def _values(tokens: list[str]) -> list[float]:
+    """The numbers of ``--values``: each token a number or START:STOP:COUNT."""
     values = []
     for token in tokens:
-        try:
-            if ":" in token:
-                start, stop, count = token.split(":")
-                values.extend(np.linspace(float(start), float(stop), int(count)).tolist())
-            else:
-                values.append(float(token))
-        except ValueError:
-            raise scenefile.SceneFileError(f"--values: {token!r} is neither a number nor "
-                                           "START:STOP:COUNT") from None
+        values.extend(_range(token) if ":" in token else [_number(token, token)])
     if not values:
-        raise scenefile.SceneFileError("--values: give at least one value")
+        raise UsageError("--values: give at least one value")
     return values
+
+
+def _range(token: str) -> list[float]:
+    """COUNT evenly spaced values from START to STOP, both included."""
+    parts = token.split(":")
+    if len(parts) != 3:
+        raise UsageError(f"--values: {token!r} is neither a number nor START:STOP:COUNT")
+    start, stop = (_number(part, token) for part in parts[:2])
+    try:
+        count = int(parts[2])
+    except ValueError:
+        count = 0
+    if count < 1:
+        raise UsageError(f"--values: in {token!r}, COUNT must be a whole number >= 1, got "
+                         f"{parts[2]!r}")
+    return np.linspace(start, stop, count).tolist()
+
+
+def _number(text: str, token: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise UsageError(f"--values: {token!r} is neither a number nor "
+                         "START:STOP:COUNT") from None
+    if not np.isfinite(value):
+        raise UsageError(f"--values: every value must be finite, got {text!r} in {token!r}")
+    return value
 
 
 def _save_diagram(result, path: Path) -> Path:
@@ -205,12 +406,27 @@ def _save_diagram(result, path: Path) -> Path:
 
 
 def _plot(args) -> int:
-    saved = results.load(args.results)
+    laws = _import_laws(args.laws)  # a saved scene names its laws as its scene file did
+    saved = _load_results(args.results, laws)
     if args.results.is_dir():
         path = args.output or args.results / "bifurcation.png"
+        _check_file(path, "--output")
         _save_diagram(saved, path)
     else:
         path = args.output or args.results.with_suffix(".png")
-        _save_response(saved, results.load_run_settings(args.results), path)
+        _check_file(path, "--output")
+        _save_response(saved, results.load_run_settings(args.results, laws=laws), path)
     print(f"saved    {path}")
     return 0
+
+
+def _load_results(path: Path, laws: tuple[ModuleType, ...]):
+    """``results.load``, with any failure to read told as the file's."""
+    try:
+        return results.load(path, laws=laws)
+    except results.ResultsError:
+        raise
+    except (ValueError, TypeError, KeyError, AttributeError, IndexError, EOFError,
+            zipfile.BadZipFile) as error:
+        raise results.ResultsError(f"{path}: not a shroudnet results file or folder "
+                                   f"({type(error).__name__}: {_describe(error)})") from None

@@ -7,7 +7,8 @@ A scene file holds one document (SI units; speeds in rev/min)::
     [excitation]
     engine_order = 2
     amplitudes = [0.0, 50.0]          # q0, q1, … [N]
-    phases = "anti-phase"             # or {travelling_wave = 3}, or [φ1, φ2, …] [rad]
+    phases = "anti-phase"             # or "engine-order" (ND = l mod N), or
+                                      # {travelling_wave = 3}, or [φ1, φ2, …] [rad]
 
     [[blades]]                        # one table per blade, in order
     name = "blade1"
@@ -16,6 +17,7 @@ A scene file holds one document (SI units; speeds in rev/min)::
     frequency = 210.0                 # f_d1 [Hz]; or {f0 = …, coefficient = …} (Southwell);
                                       # or {speeds_rpm = […], frequencies = […]}; or
                                       # stiffness = … [N/m] instead of a frequency
+    excitation_scale = 1.0            # s_i ≥ 0, its share of Q(t); optional (0: unforced)
 
     fixed = ["disc"]                  # fixed nodes (x ≡ 0), optional
 
@@ -35,8 +37,18 @@ A scene file holds one document (SI units; speeds in rev/min)::
 
 Identical blades may be given once instead, as ``[group]`` with ``shape = "ring"`` or
 ``"chain"``, ``count``, ``blade = {…}`` and ``interface = {…}``. A law is named by its
-class in ``contact_laws``, or as ``"module:Class"`` for a law of one's own; its other keys
-are the law's fields. ``Regularised`` takes ``law = {…}`` and ``velocity``.
+class in ``contact_laws``; its other keys are the law's fields. ``Regularised`` takes
+``law = {…}`` and ``velocity``.
+
+A law of one's own is named ``"module:Class"``. Reading a file never imports a module nor
+runs any code of its own choosing: the class must come from a module that is already
+imported, or be passed in ``laws``::
+
+    import my_laws                                   # the user chooses to run this code
+    scenefile.load("group.toml")                     # finds "my_laws:CubicSpring"
+    scenefile.load("group.toml", laws=[CubicSpring])  # or allow the classes explicitly
+
+(on the command line: ``shroudnet run group.toml --laws my_laws``).
 
 Every key is checked before anything runs: a bad file raises ``SceneFileError`` naming
 the file, the key and what is allowed there.
@@ -45,17 +57,19 @@ the file, the key and what is allowed there.
 from __future__ import annotations
 
 import dataclasses
-import importlib
 import math
+import sys
 import tomllib
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import contact_laws
 
 from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
-from .excitation import AntiPhase, Excitation, ExplicitPhases, TravellingWave
+from .excitation import AntiPhase, EngineOrderWave, Excitation, ExplicitPhases, TravellingWave
 from .group import BladeGroup
 from .interface import Interface
 from .scene import Scene
@@ -88,6 +102,10 @@ class RunSettings:
                              f"got {self.transient!r}")
 
 
+#: What ``laws`` may hold: law classes, or modules whose law classes are allowed.
+Laws = Iterable[type | ModuleType]
+
+
 @dataclass(frozen=True)
 class SceneFile:
     """A scene file read: the scene, its run settings and the document they came from."""
@@ -97,26 +115,87 @@ class SceneFile:
     document: dict
 
 
-def load(path: str | Path) -> SceneFile:
-    """Read a scene file; raises ``SceneFileError`` naming the key at fault."""
+def load(path: str | Path, *, laws: Laws = ()) -> SceneFile:
+    """Read a scene file; raises ``SceneFileError`` naming the key at fault.
+
+    ``laws``: law classes of one's own (or modules holding them) that the file may name as
+    ``"module:Class"``, besides those of modules already imported. Nothing is imported.
+    """
     path = Path(path)
+    document = _parse(path, _text(path))
+    return read(document, source=str(path), laws=laws)
+
+
+def _text(path: Path) -> str:
+    """The text of a scene file, or a ``SceneFileError`` saying why it cannot be read."""
+    if path.is_dir():
+        raise SceneFileError(f"{path}: is a folder; give a scene file (.toml)")
+    if path.exists() and not path.is_file():
+        raise SceneFileError(f"{path}: is not a regular file; give a scene file (.toml)")
     try:
-        document = tomllib.loads(path.read_text(encoding="utf-8"))
+        return path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise SceneFileError(f"{path}: no such scene file") from None
+    except UnicodeDecodeError as error:
+        raise SceneFileError(f"{path}: not a text file (UTF-8 TOML): byte {error.start} "
+                             f"cannot be decoded") from None
+    except OSError as error:
+        raise SceneFileError(f"{path}: cannot be read: {error.strerror or error}") from None
+
+
+def _parse(path: Path, text: str) -> dict:
+    if not text.strip():
+        raise SceneFileError(f"{path}: the file is empty; a scene file needs speed_rpm, "
+                             "[excitation], [[blades]] and [[interfaces]] (or [group]); "
+                             "see examples/scenes/")
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise SceneFileError(f"{path}: not valid TOML: {error}") from None
-    return read(document, source=str(path))
+    except RecursionError:
+        raise SceneFileError(f"{path}: not a scene file: its tables or lists are nested too "
+                             "deeply to read") from None
 
 
-def read(document: dict, *, source: str = "scene") -> SceneFile:
-    """Build the scene and run settings of a document (a parsed scene file)."""
+def read(document: dict, *, source: str = "scene", laws: Laws = ()) -> SceneFile:
+    """Build the scene and run settings of a document (a parsed scene file).
+
+    ``laws`` as for ``load``.
+    """
+    own = _own_laws(laws)
     try:
-        scene, run = _scene(document), _run(document.get("run", {}))
+        if not isinstance(document, dict):
+            raise _KeyError("the file", "must be a table of keys, got "
+                                        f"{type(document).__name__}")
+        scene, run = _scene(document, own), _run(document.get("run", {}))
         _build("run.blade", lambda: scene.blade_position(run.blade))
         return SceneFile(scene=scene, run=run, document=document)
     except _KeyError as error:
         raise SceneFileError(f"{source}: {error.key}: {error.message}") from None
+
+
+def _own_laws(laws: Laws) -> dict[str, type]:
+    """The allowed laws of one's own by the ``"module:Class"`` names a file may give them."""
+    if isinstance(laws, type | ModuleType | str):
+        raise TypeError(f"laws must be a list of law classes or modules, got {laws!r}")
+    own = {}
+    for item in laws:
+        if isinstance(item, ModuleType):
+            for attribute, value in vars(item).items():
+                if _is_law(value):
+                    own[f"{item.__name__}:{attribute}"] = value
+                    own[f"{value.__module__}:{value.__qualname__}"] = value
+        elif _is_law(item):
+            own[f"{item.__module__}:{item.__qualname__}"] = item
+        else:
+            raise TypeError(f"laws must hold NormalLaw or FrictionLaw classes, or modules, "
+                            f"got {item!r}")
+    return own
+
+
+def _is_law(value) -> bool:
+    bases = (contact_laws.NormalLaw, contact_laws.FrictionLaw)
+    return isinstance(value, type) and issubclass(value, bases) and value not in bases
 
 
 # ---- reading ------------------------------------------------------------------------------
@@ -130,19 +209,20 @@ class _KeyError(Exception):
 _TOP = {"speed_rpm", "excitation", "blades", "fixed", "interfaces", "group", "run"}
 
 
-def _scene(document: dict) -> Scene:
+def _scene(document: dict, own: dict[str, type]) -> Scene:
     _only(document, _TOP, "the file")
     if "group" in document and ("blades" in document or "interfaces" in document):
         raise _KeyError("group", "give either [group] or [[blades]] and [[interfaces]], "
                                  "not both")
-    group = _shorthand(document["group"]) if "group" in document else _explicit(document)
+    group = _shorthand(document["group"], own) if "group" in document \
+        else _explicit(document, own)
     excitation = _excitation(_table(document, "excitation", "excitation"))
     speed = _number(document, "speed_rpm", "speed_rpm", low=0.0)
     return _build("the scene", lambda: Scene(group=group, excitation=excitation,
                                              speed_rpm=speed))
 
 
-def _explicit(document: dict) -> BladeGroup:
+def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
     group = BladeGroup()
     blades = _list(document, "blades", "blades")
     if not blades:
@@ -167,12 +247,12 @@ def _explicit(document: dict) -> BladeGroup:
         _only(entry, {"left", "right"} | _INTERFACE_KEYS, key)
         left, right = (_node(entry, end, f"{key}.{end}") for end in ("left", "right"))
         interface = _interface({k: v for k, v in entry.items() if k not in ("left", "right")},
-                               key)
+                               key, own)
         _build(key, lambda: group.connect(left, right, interface))
     return group
 
 
-def _shorthand(table) -> BladeGroup:
+def _shorthand(table, own: dict[str, type]) -> BladeGroup:
     table = _as_table(table, "group")
     _only(table, {"shape", "count", "blade", "interface"}, "group")
     shape = table.get("shape")
@@ -184,12 +264,13 @@ def _shorthand(table) -> BladeGroup:
         raise _KeyError("group.count", f"must be an integer >= {3 if shape == 'ring' else 1} "
                                        f"for a {shape}, got {count!r}")
     blade = _blade(_table(table, "blade", "group.blade"), "group.blade")
-    interface = _interface(_table(table, "interface", "group.interface"), "group.interface")
+    interface = _interface(_table(table, "interface", "group.interface"), "group.interface",
+                           own)
     build = BladeGroup.ring if shape == "ring" else BladeGroup.chain
     return _build("group", lambda: build(count, blade, interface))
 
 
-_BLADE_KEYS = {"mass", "damping", "frequency", "stiffness"}
+_BLADE_KEYS = {"mass", "damping", "frequency", "stiffness", "excitation_scale"}
 
 
 def _blade(table: dict, key: str) -> Blade:
@@ -198,6 +279,9 @@ def _blade(table: dict, key: str) -> Blade:
         raise _KeyError(key, "give a blade either frequency [Hz] or stiffness [N/m]")
     arguments = {"mass": _number(table, "mass", f"{key}.mass"),
                  "damping": _number(table, "damping", f"{key}.damping")}
+    if "excitation_scale" in table:
+        arguments["excitation_scale"] = _number(table, "excitation_scale",
+                                                f"{key}.excitation_scale", low=0.0)
     if "stiffness" in table:
         arguments["stiffness"] = _number(table, "stiffness", f"{key}.stiffness")
     else:
@@ -220,25 +304,25 @@ def _frequency(value, key):
 _INTERFACE_KEYS = {"gap", "angle", "normal", "friction"}
 
 
-def _interface(table: dict, key: str) -> Interface:
+def _interface(table: dict, key: str, own: dict[str, type]) -> Interface:
     _only(table, _INTERFACE_KEYS, key)
     normal = _law(_table(table, "normal", f"{key}.normal"), f"{key}.normal",
-                  contact_laws.NormalLaw)
+                  contact_laws.NormalLaw, own)
     friction = None
     if "friction" in table:
         friction = _law(_table(table, "friction", f"{key}.friction"), f"{key}.friction",
-                        contact_laws.FrictionLaw)
+                        contact_laws.FrictionLaw, own)
     return _build(key, lambda: Interface(gap=_number(table, "gap", f"{key}.gap"),
                                          angle=_number(table, "angle", f"{key}.angle"),
                                          normal=normal, friction=friction))
 
 
-def _law(table: dict, key: str, kind: type):
+def _law(table: dict, key: str, kind: type, own: dict[str, type]):
     name = table.get("law")
     if not isinstance(name, str):
         raise _KeyError(f"{key}.law", f"must name a {kind.__name__} ({_law_names(kind)}), "
                                       f"got {name!r}")
-    law_class = _law_class(name, kind, f"{key}.law")
+    law_class = _law_class(name, kind, f"{key}.law", own)
     fields = {f.name for f in dataclasses.fields(law_class) if f.init}
     arguments = {k: v for k, v in table.items() if k != "law"}
     _only(arguments, fields, key, what=f"fields of {name}")
@@ -247,23 +331,48 @@ def _law(table: dict, key: str, kind: type):
     if missing:
         raise _KeyError(key, f"{name} needs {', '.join(missing)}")
     if "law" in fields:  # a law wrapping another (Regularised)
-        arguments["law"] = _law(_table(arguments, "law", f"{key}.law"), f"{key}.law", kind)
+        arguments["law"] = _law(_table(arguments, "law", f"{key}.law"), f"{key}.law", kind,
+                                own)
     return _build(key, lambda: law_class(**arguments))
 
 
-def _law_class(name: str, kind: type, key: str) -> type:
+def _law_class(name: str, kind: type, key: str, own: dict[str, type]) -> type:
+    """The class a law's name gives: built in, allowed in ``own``, or of an imported module."""
     if ":" in name:
-        module, _, attribute = name.partition(":")
-        try:
-            law_class = getattr(importlib.import_module(module), attribute)
-        except (ImportError, AttributeError) as error:
-            raise _KeyError(key, f"cannot import {name!r}: {error}") from None
+        law_class = own.get(name) or _imported(name, key)
     else:
         law_class = getattr(contact_laws, name, None)
-    if not (isinstance(law_class, type) and issubclass(law_class, kind)):
+    if not (isinstance(law_class, type) and issubclass(law_class, kind)
+            and law_class is not kind):
         raise _KeyError(key, f"{name!r} is not a {kind.__name__}; built in: "
-                             f"{_law_names(kind)}, or 'module:Class' for your own")
+                             f"{_law_names(kind)}; or 'module:Class' for a law of one's own")
+    if not dataclasses.is_dataclass(law_class):
+        raise _KeyError(key, f"{name!r} is not a dataclass; a law is a frozen dataclass "
+                             "(see contact_laws.base)")
     return law_class
+
+
+def _imported(name: str, key: str):
+    """What ``"module:Class"`` names in a module already imported; never imports one.
+
+    Attributes are read from the namespaces themselves (``vars``), so that no module or
+    class hook runs either.
+    """
+    module_name, _, qualname = name.partition(":")
+    module = sys.modules.get(module_name)
+    if module is None:
+        raise _KeyError(key, f"{name!r}: module {module_name!r} is not imported, and reading "
+                             "a scene file never imports one (that would run its code). "
+                             f"To allow it: import {module_name} before reading, or pass "
+                             "the class in laws=[...] to scenefile.load or read, or on the "
+                             f"command line add --laws {module_name}")
+    value: Any = module
+    for part in qualname.split("."):
+        namespace = getattr(value, "__dict__", None)
+        if part not in (namespace or {}):
+            raise _KeyError(key, f"{name!r}: module {module_name!r} has no {qualname!r}")
+        value = namespace[part]
+    return value
 
 
 def _law_names(kind: type) -> str:
@@ -280,14 +389,17 @@ def _excitation(table: dict) -> Excitation:
     phases = table.get("phases", "anti-phase")
     if phases == "anti-phase":
         pattern = AntiPhase()
+    elif phases == "engine-order":
+        pattern = EngineOrderWave()
     elif isinstance(phases, dict) and set(phases) == {"travelling_wave"}:
         pattern = _build("excitation.phases",
                          lambda: TravellingWave(phases["travelling_wave"]))
     elif isinstance(phases, list):
         pattern = _build("excitation.phases", lambda: ExplicitPhases(tuple(phases)))
     else:
-        raise _KeyError("excitation.phases", 'must be "anti-phase", {travelling_wave = nd} '
-                                             f"or a list of phases [rad], got {phases!r}")
+        raise _KeyError("excitation.phases", 'must be "anti-phase", "engine-order", '
+                                             "{travelling_wave = nd} or a list of phases "
+                                             f"[rad], got {phases!r}")
     amplitudes = table["amplitudes"]
     if not isinstance(amplitudes, list):
         raise _KeyError("excitation.amplitudes", f"must be a list [q0, q1, …] [N], "
@@ -406,6 +518,8 @@ def document(scene: Scene, run: RunSettings | None = None) -> dict:
 
 def _blade_document(blade: Blade) -> dict:
     out = {"mass": float(blade.mass), "damping": float(blade.damping)}
+    if blade.excitation_scale != 1.0:
+        out["excitation_scale"] = float(blade.excitation_scale)
     if blade.frequency is None:
         out["stiffness"] = float(blade.stiffness)
         return out
@@ -455,7 +569,9 @@ def with_value(document: dict, path: str, value: float) -> dict:
 
     ``path`` walks tables by key and lists by index: ``speed_rpm``,
     ``interfaces.0.normal.stiffness``, ``excitation.amplitudes.1``,
-    ``group.interface.gap``. Raises ``SceneFileError`` if no number is there.
+    ``group.interface.gap``. An integer stays an integer (``excitation.engine_order``,
+    ``run.periods``): ``value`` must then be a whole number. Raises ``SceneFileError`` if
+    no number is there, or a fraction is given for an integer.
     """
     copy = _deep_copy(document)
     *parents, last = path.split(".")
@@ -471,11 +587,23 @@ def with_value(document: dict, path: str, value: float) -> dict:
         walked.append(part)
     if isinstance(node, bool) or not isinstance(node, int | float):
         raise SceneFileError(f"--param {path}: holds {node!r}, not a number")
+    new = _like(node, value, path)
     if isinstance(container, list):
-        container[int(last)] = float(value)
+        container[int(last)] = new
     else:
-        container[last] = float(value)
+        container[last] = new
     return copy
+
+
+def _like(old: int | float, value: float, path: str) -> int | float:
+    """``value`` as the kind of number ``old`` is: an int for an int, else a float."""
+    value = float(value)
+    if not isinstance(old, int):
+        return value
+    if not (math.isfinite(value) and value == round(value)):
+        raise SceneFileError(f"--param {path}: holds an integer ({old}), so each value must "
+                             f"be a whole number, got {value:g}")
+    return int(value)
 
 
 def _keys(container) -> str:
@@ -496,11 +624,15 @@ def _deep_copy(value):
 
 @dataclass(frozen=True)
 class SceneAt:
-    """value ↦ the scene of ``document`` with ``path`` set to value (picklable, for sweeps)."""
+    """value ↦ the scene of ``document`` with ``path`` set to value (picklable, for sweeps).
+
+    ``laws`` as for ``load``: the laws of one's own the document may name.
+    """
 
     document: dict
     path: str
+    laws: tuple = ()
 
     def __call__(self, value: float) -> Scene:
         return read(with_value(self.document, self.path, value),
-                    source=f"{self.path} = {value:g}").scene
+                    source=f"{self.path} = {value:g}", laws=self.laws).scene

@@ -1,11 +1,11 @@
 """Scene files, saved results and the ``shroudnet`` command, end to end."""
 
 import json
+import math
 import os
 import signal
 import subprocess
 import sys
-import time
 from dataclasses import asdict
 from pathlib import Path
 
@@ -49,6 +49,21 @@ def test_every_shipped_scene_reads_and_writes_back_to_the_same_scene(name):
     assert again.run == loaded.run
     np.testing.assert_array_equal(again.scene.arrays.stiffness, loaded.scene.arrays.stiffness)
     np.testing.assert_array_equal(again.scene.arrays.phases, loaded.scene.arrays.phases)
+
+
+def test_an_unforced_node_and_an_engine_order_wave_read_and_write_back():
+    """``excitation_scale`` survives the round trip; ``"engine-order"`` becomes the
+    travelling wave with ND = l mod N, here 2 mod 3 = 2."""
+    document = scenefile.document(three_blade_paper())
+    document["blades"][0]["excitation_scale"] = 0.0
+    document["excitation"]["phases"] = "engine-order"
+    scene = scenefile.read(document).scene
+    np.testing.assert_array_equal(scene.arrays.excitation_scale, [0.0, 1.0, 1.0])
+    np.testing.assert_allclose(scene.arrays.phases, [0.0, 4 * math.pi / 3, 8 * math.pi / 3])
+    again = scenefile.document(scene)
+    assert again["blades"][0]["excitation_scale"] == 0.0
+    assert "excitation_scale" not in again["blades"][1]
+    assert again["excitation"]["phases"] == {"travelling_wave": 2}
 
 
 def test_a_user_law_is_named_by_its_module():
@@ -216,25 +231,54 @@ def test_an_interrupted_sweep_resumes_without_losing_or_repeating_a_point(tmp_pa
         sweep(scene_at, values[:3], save_to=folder, **options)
 
 
+#: A ``shroudnet`` process killed (SIGKILL) half-way through writing its point file number
+#: $KILL_AT (0-based, in the order written): the kill lands in the middle of a write,
+#: always at the same point, whatever the speed of the machine.
+KILLED_WHILE_WRITING = """
+import os, signal, sys
+from pathlib import Path
+
+replace, written = os.replace, 0
+
+def replace_or_die(source, target):
+    global written
+    if Path(target).parent.name == "points":
+        if written == int(os.environ["KILL_AT"]):
+            os.truncate(source, os.path.getsize(source) // 2)
+            os.kill(os.getpid(), signal.SIGKILL)
+        written += 1
+    replace(source, target)
+
+os.replace = replace_or_die
+from shroudnet.cli import main
+sys.exit(main(sys.argv[1:]))
+"""
+
+
 @pytest.mark.slow
-def test_a_killed_command_line_sweep_resumes(tmp_path):
-    """SIGKILL mid-way through ``shroudnet sweep``: every point file left is whole, and
-    the same command finishes the rest."""
+def test_a_command_line_sweep_killed_while_writing_a_point_resumes(tmp_path, capsys):
+    """SIGKILL in the middle of writing the fourth point file: the three before it are
+    whole, the fourth is only a temporary file, and the same command finishes the rest
+    without computing the three again."""
     scene = small_paper_scene(tmp_path)
     folder = tmp_path / "sweep"
-    command = [sys.executable, "-m", "shroudnet", "sweep", str(scene), "--param",
-               "interfaces.0.normal.stiffness", "--values", "1.5e5:1.2e6:24", "--transient",
-               "300", "--record", "20", "--workers", "1", "-o", str(folder)]
-    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    deadline = time.monotonic() + 120
-    while time.monotonic() < deadline and len(list(folder.glob("points/*.npz"))) < 3:
-        time.sleep(0.01)
-    os.kill(process.pid, signal.SIGKILL)
-    process.wait()
-    kept = list(folder.glob("points/*.npz"))
-    assert 3 <= len(kept) < 24
-    for point in kept:
-        results._load_point(point)  # whole, not truncated
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
-    assert len(results.load(folder).points) == 24
-    assert not list(folder.glob("points/.*"))  # no temporary files left
+    arguments = ["sweep", str(scene), "--param", "interfaces.0.normal.stiffness",
+                 "--values", "1.5e5:1.2e6:6", "--transient", "5", "--record", "3",
+                 "--workers", "1", "-o", str(folder)]
+    killed = subprocess.run([sys.executable, "-c", KILLED_WHILE_WRITING, *arguments],
+                            env={**os.environ, "KILL_AT": "3"}, capture_output=True)
+    assert killed.returncode == -signal.SIGKILL, killed.stderr.decode()
+    kept = sorted(folder.glob("points/*.npz"))
+    assert [p.name for p in kept] == ["00000.npz", "00001.npz", "00002.npz"]
+    assert len(list(folder.glob("points/.00003.npz.*.part"))) == 1  # the write cut short
+    for point in kept:  # whole: every array reads back, its checksum intact
+        with np.load(point) as data:
+            for name in data.files:
+                data[name]
+    stamps = [p.stat().st_mtime_ns for p in kept]
+
+    assert main(arguments) == 0
+    assert "motions " in capsys.readouterr().out
+    assert [p.stat().st_mtime_ns for p in kept] == stamps  # not computed again
+    assert len(results.load(folder).points) == 6
+    assert not list(folder.glob("points/.*"))  # no temporary file left

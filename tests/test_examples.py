@@ -1,56 +1,166 @@
-"""Examples and the README's code run as they are shown."""
+"""Examples and the README's code run as they are shown, and compute what they claim.
+
+Each example runs with arguments small enough for a test, saves its figures in a temporary
+folder (never in the source tree), and its result is checked against what physics or the
+example's own definition fixes, not against numbers taken from an earlier run.
+"""
 
 import importlib.util
+import inspect
+import math
 import re
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+LABEL = re.compile(r"p\d+|quasi-periodic|chaotic")
 
 
 def test_readme_python_blocks_run():
+    """Each block as it runs pasted into a script of its own (``__name__ == "__main__"``)."""
     blocks = re.findall(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re.S)
     assert blocks
     for block in blocks:
-        exec(compile(block, "README.md", "exec"), {})
+        exec(compile(block, "README.md", "exec"), {"__name__": "__main__"})
 
 
-#: Each example with arguments small enough for a test, and the figures it must save.
+def load_example(name: str):
+    """The example script as a module of its own name, so that its functions pickle for a
+    sweep's worker processes as they do when the script runs as __main__."""
+    spec = importlib.util.spec_from_file_location(name, ROOT / "examples" / f"{name}.py")
+    example = importlib.util.module_from_spec(spec)
+    sys.modules[name] = example
+    spec.loader.exec_module(example)
+    return example
+
+
+# ---- what each example's result must satisfy ---------------------------------------------
+
+def check_paper_scene(example, result, arguments):
+    """Both shrouds pressed by one gap and stuck: N = k_c Δ sin α on each (eqs. 2–3), and
+    the three blades move as one stick cluster."""
+    scene, stuck = result
+    a = scene.arrays
+    gap, stiffness = a.gap[0], a.normal_laws[0].stiffness
+    np.testing.assert_allclose(stuck.normal_force, stiffness * gap * a.sin_angle, rtol=1e-12)
+    assert np.all(np.isfinite(stuck.friction_force))
+    assert len(set(stuck.cluster.tolist())) == 1
+    np.testing.assert_allclose(stuck.acceleration, stuck.acceleration[0], rtol=1e-12)
+
+
+def check_paper_three_blade(example, result, arguments):
+    """The forced response: arrays of the run's length, finite; the shrouds hit (the
+    paper's case); the energy ledger balances to the integrator's accuracy."""
+    sim, periods = result, arguments["periods"]
+    assert sim.periods == periods
+    assert sim.x.shape == sim.v.shape == (len(sim.t), 3)
+    assert len(sim.t) == periods * sim.samples_per_period + 1
+    assert np.all(np.isfinite(sim.x)) and np.all(np.isfinite(sim.v))
+    assert np.any(sim.normal_force > 0.0)
+    ledger = sim.energy
+    assert ledger.excitation_work > 0.0 and ledger.damping_loss > 0.0
+    assert abs(ledger.residual) < 1e-6 * ledger.excitation_work
+
+
+def check_paper_study(example, result, arguments):
+    """A response at each of the paper's values, classified; a diagram point per value."""
+    assert [claim.value for claim in result.claims] == list(example.CLAIMS)
+    for claim in result.claims:
+        assert claim.paper == example.CLAIMS[claim.value]
+        assert LABEL.fullmatch(claim.found.label)
+        assert claim.simulation.periods == arguments["transient"] + arguments["steady"]
+    diagram = result.diagram
+    assert len(diagram.points) == arguments["values"]
+    assert np.all(np.diff(diagram.values) > 0.0)
+    for point in diagram.points:
+        # one Poincaré point at each t = k T_e of the record, k = 0 … record
+        assert point.poincare.shape == (arguments["record"] + 1, 2)
+        assert np.all(np.isfinite(point.poincare))
+        assert math.isfinite(point.energy_density) and point.energy_density > 0.0
+        assert LABEL.fullmatch(point.classification.label)
+
+
+def check_campbell(example, result, arguments):
+    """Each crossing is where f_d1(Ω) meets the engine-order line l Ω / 60; with l = 2 the
+    paper's blade resonates at 6487.5 rpm (f_e = 216.25 Hz, §3.2), to the 1e-3 to which
+    the paper's fit of f_d1 reproduces it."""
+    from shroudnet.scenes import paper_frequency_model
+    model = paper_frequency_model()
+    assert result.crossings
+    for order, speed, frequency in result.crossings:
+        assert order in (1, 2, 3, 4)
+        assert frequency == pytest.approx(order * speed / 60.0, rel=1e-12)
+        assert model.at(speed) == pytest.approx(frequency, rel=1e-9)
+    second = [speed for order, speed, _ in result.crossings if order == 2]
+    assert second == [pytest.approx(6487.5, rel=1e-3)]
+
+
+def check_energy_density(example, result, arguments):
+    """A finite, positive E_ρ ratio at every point of each of the three figures."""
+    points = arguments["points"]
+    assert math.isfinite(result.free) and result.free > 0.0
+    assert len(result.by_gap) == len(example.FIG21_GAPS)
+    curves = [*result.by_gap.values(), result.by_size, result.by_angle]
+    for curve in curves:
+        assert curve.shape == (points,)
+        assert np.all(np.isfinite(curve)) and np.all(curve > 0.0)
+
+
+def check_work_precision(example, result, arguments):
+    """Every setting measured in the three regimes, each with a cost and a finite error."""
+    from shroudnet.precision import default_settings
+    regimes = list(result.floors)
+    assert len(regimes) == 3
+    assert len(result.measurements) == len(regimes) * len(default_settings())
+    for measurement in result.measurements:
+        assert measurement.regime in regimes
+        assert measurement.seconds_per_period > 0.0
+        assert math.isfinite(measurement.error) and measurement.error >= 0.0
+
+
+#: Each example: arguments small enough for a test, the figures it must save, its check.
+STUDY = {"transient": 20, "record": 5, "steady": 10}
 EXAMPLES = {
-    "paper_scene": ({}, []),
-    "paper_three_blade": ({"periods": 20, "skip": 10}, []),
-    "fig06_11_stiffness_ratio": ({"values": 4, "transient": 20, "record": 5, "steady": 10},
-                                 ["fig06_bifurcation_gamma1.png", "fig11_gamma1_8.8.png"]),
-    "fig12_15_rotating_speed": ({"values": 3, "transient": 20, "record": 5, "steady": 10},
-                                ["fig12_bifurcation_speed.png", "fig15_speed_5990.png"]),
-    "fig16_19_excitation_amplitude": ({"values": 3, "transient": 20, "record": 5,
-                                       "steady": 10},
-                                      ["fig16_bifurcation_q1.png", "fig19_q1_50.png"]),
-    "fig20_campbell": ({}, ["fig20_campbell.png"]),
+    "paper_scene": ({}, [], check_paper_scene),
+    "paper_three_blade": ({"periods": 20, "skip": 10}, [], check_paper_three_blade),
+    "fig06_11_stiffness_ratio": ({"values": 4, **STUDY},
+                                 ["fig06_bifurcation_gamma1.png", "fig11_gamma1_8.8.png"],
+                                 check_paper_study),
+    "fig12_15_rotating_speed": ({"values": 3, **STUDY},
+                                ["fig12_bifurcation_speed.png", "fig15_speed_5990.png"],
+                                check_paper_study),
+    "fig16_19_excitation_amplitude": ({"values": 3, **STUDY},
+                                      ["fig16_bifurcation_q1.png", "fig19_q1_50.png"],
+                                      check_paper_study),
+    "fig20_campbell": ({}, ["fig20_campbell.png"], check_campbell),
     "work_precision": ({"transient": 10, "record": 5, "chaotic_record": 10, "repeats": 1},
-                       ["work_precision.png"]),
+                       ["work_precision.png"], check_work_precision),
     "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
                                 ["fig21_energy_density_gamma1.png",
                                  "fig22_energy_density_gap.png",
-                                 "fig23_energy_density_angle.png"]),
+                                 "fig23_energy_density_angle.png"], check_energy_density),
 }
 
 
 @pytest.mark.parametrize("name", sorted(EXAMPLES))
-def test_example_runs_and_saves_its_figures(name, capsys):
-    # Imported as a module of its own name, so that its functions pickle for the sweep's
-    # worker processes as they do when the script runs as __main__.
-    path = ROOT / "examples" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(name, path)
-    example = importlib.util.module_from_spec(spec)
-    sys.modules[name] = example
-    spec.loader.exec_module(example)
-    arguments, figures = EXAMPLES[name]
-    for figure in figures:
-        (ROOT / "examples" / "output" / figure).unlink(missing_ok=True)
-    example.main(**arguments)
+def test_example_computes_what_it_claims_and_saves_its_figures(name, tmp_path, capsys):
+    example = load_example(name)
+    arguments, figures, check = EXAMPLES[name]
+    output = {"output": tmp_path / "figures"} if figures else {}
+    result = example.main(**arguments, **output)
     assert capsys.readouterr().out
+    check(example, result, arguments)
     for figure in figures:
-        assert (ROOT / "examples" / "output" / figure).stat().st_size > 10_000
+        assert (tmp_path / "figures" / figure).stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("name", sorted(name for name, (_, figures, _) in EXAMPLES.items()
+                                        if figures))
+def test_example_saves_in_examples_output_unless_told_otherwise(name):
+    example = load_example(name)
+    assert inspect.signature(example.main).parameters["output"].default \
+        == ROOT / "examples" / "output"
+    assert "[OUTPUT_FOLDER]" in example.__doc__
