@@ -4,21 +4,49 @@ from __future__ import annotations
 
 import sys
 import time
+import warnings
 from collections.abc import Callable
 from typing import TextIO
 
 
-class TerminalProgress:
-    """A ``progress(done, total)`` callback that redraws one line on a terminal.
+class SweepWarning(UserWarning):
+    """A notice of a sweep given as a warning: a failed point, a saved file computed again."""
+
+
+class ProgressReporter:
+    """What a long run reports to, for those who want more than the counts.
+
+    1. ``reporter(done, total)`` after each point (and once before the first, with the
+       points already done);
+    2. ``reporter.notice(message)`` for what deserves a line of its own: a point whose
+       simulation failed, a saved file that is damaged and computed again.
+
+    Subclass it and override both. A plain callable ``progress(done, total)`` receives the
+    counts only; its run issues the notices as ``SweepWarning`` warnings, as this class
+    does by default.
+    """
+
+    def __call__(self, done: int, total: int) -> None:
+        """Called with the points done so far out of ``total``."""
+
+    def notice(self, message: str) -> None:
+        """Called with one line worth telling; by default, a ``SweepWarning``."""
+        warnings.warn(message, SweepWarning, stacklevel=2)
+
+
+class TerminalProgress(ProgressReporter):
+    """A progress reporter that redraws one line on a terminal.
 
     ``  sweep 120/400 points  3.2 points/s  1 min 27 s left`` — the rate counts from the
-    first call, when nothing is done yet; the line ends when ``done == total``.
+    first call, when nothing is done yet; the line ends when ``done == total``. A notice
+    is written on a line of its own above it.
     """
 
     def __init__(self, label: str = "sweep", stream: TextIO | None = None):
         self.label = label
         self.stream = sys.stderr if stream is None else stream
         self._start: float | None = None
+        self._line = ""  # the progress line now shown, "" when none is open
 
     def __call__(self, done: int, total: int) -> None:
         now = time.perf_counter()
@@ -33,6 +61,27 @@ class TerminalProgress:
                      else f"  {_duration((total - done) / rate)} left")
         end = "\n" if done == total else ""
         self.stream.write(f"\r{line:<60}{end}")
+        self.stream.flush()
+        self._line = "" if end else line
+
+    def notice(self, message: str) -> None:
+        """Write ``message`` on its own line, then the progress line again below it."""
+        self.stream.write(f"\r{'  ' + message:<60}\n")
+        if self._line:
+            self.stream.write(f"\r{self._line:<60}")
+        self.stream.flush()
+
+
+class NoticeLines(ProgressReporter):
+    """A progress reporter that shows no counts and writes each notice as a line, for
+    standard error that is not a terminal (a log): ``  gamma1 = 3.5 (point 7) failed: …``.
+    """
+
+    def __init__(self, stream: TextIO | None = None):
+        self.stream = sys.stderr if stream is None else stream
+
+    def notice(self, message: str) -> None:
+        self.stream.write(f"  {message}\n")
         self.stream.flush()
 
 
@@ -52,7 +101,8 @@ def progress_callback(progress, label: str = "sweep") -> Callable[[int, int], No
     """The callback ``progress`` asks for.
 
     ``"auto"``: a ``TerminalProgress`` on standard error when it is a terminal, else none;
-    ``True``: always one; ``False`` or ``None``: none (silent); a callable: itself.
+    ``True``: always one; ``False`` or ``None``: none (silent); a callable (a
+    ``ProgressReporter`` or a plain ``progress(done, total)``): itself.
     """
     if progress == "auto":
         return TerminalProgress(label) if sys.stderr.isatty() else None

@@ -3,48 +3,71 @@
 A simulation is one ``.npz`` file: its arrays, and a JSON header ``meta`` holding the
 format, the scene as a scene-file document (``scenefile.document``), the settings, the
 event counts and the energy ledger. ``load_simulation`` rebuilds the same ``Simulation``,
-scene included.
+scene included; ``load_arrays`` reads everything but the scene, which it leaves as its
+document, so that a run whose laws are not importable here still loads.
 
 A sweep is a folder: ``sweep.json`` (parameter, values, settings, and what the scenes
-came from) and ``points/00012.npz``, one file per finished point, written as it finishes.
-``SweepStore`` reopens the folder of an interrupted sweep, so that it runs only the points
-still missing; ``load_sweep`` reads a finished one.
+came from) and ``points/00012.npz``, one file per finished point, written as it finishes;
+a failed point's file holds the message of what stopped it. ``SweepStore`` reopens the
+folder of an interrupted sweep, so that it runs only the points still missing;
+``load_sweep`` reads a finished one. Each point file carries the fingerprint of the sweep
+it belongs to (a hash of ``sweep.json``'s content).
 
 Every file is written to a temporary name in its folder and renamed into place, so a run
-killed at any moment leaves either the whole file or none.
+killed at any moment leaves either the whole file or none. A file damaged anyway (cut
+short by a full disk, a flipped bit, edited by hand) raises ``ResultsError`` naming the
+file and what is wrong with it, never a bare zip, JSON or numpy error. Resuming a sweep
+computes a damaged point again, with a notice; a damaged ``sweep.json`` is written again
+from the sweep's arguments when every readable point carries their fingerprint, and is
+otherwise refused with ``ResultsError`` saying what to do.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
 import json
+import math
 import os
 import tempfile
-from collections.abc import Callable
-from dataclasses import asdict
+import warnings
+from collections.abc import Callable, Iterable
+from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
 
 from . import scenefile
 from .analysis import Classification
-from .simulation import EnergyLedger, EventLog, Simulation
-from .sweep import Sweep, SweepPoint
+from .simulation import EnergyLedger, EventKind, EventLog, Simulation
+from .sweep import Sweep, SweepPoint, SweepWarning
 
 #: Version of the file layout, stored in every file.
 FORMAT = 1
 
 
 class ResultsError(ValueError):
-    """A results file or folder that cannot be read, or a sweep folder that holds another
-    sweep."""
+    """A results file or folder that cannot be read or written, or a sweep folder that
+    holds another sweep. The message names the file."""
 
+
+# ---- writing and reading one file ---------------------------------------------------------
 
 def atomic_write(path: str | Path, write: Callable[[object], None]) -> Path:
-    """Call ``write(file)`` on a temporary file beside ``path``, then rename it to ``path``."""
+    """Call ``write(file)`` on a temporary file beside ``path``, then rename it to ``path``.
+
+    Raises ``ResultsError`` when ``path`` is a folder, when a part of its folder is a file,
+    or when the folder cannot be written.
+    """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
-                                         suffix=".part")
+    _make_folder(path.parent, f"cannot save {path}")
+    if path.is_dir():
+        raise ResultsError(f"{path}: is a folder; give the name of a file to save to")
+    try:
+        handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
+                                             suffix=".part")
+    except OSError as error:
+        raise ResultsError(f"cannot save {path}: {error.strerror or error}") from None
     try:
         with os.fdopen(handle, "wb") as file:
             write(file)
@@ -57,32 +80,193 @@ def atomic_write(path: str | Path, write: Callable[[object], None]) -> Path:
     return path
 
 
+def _make_folder(folder: Path, doing: str) -> None:
+    """Make ``folder`` (and its parents), or raise ``ResultsError`` saying why not."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except (FileExistsError, NotADirectoryError):
+        blocking = next((part for part in (folder, *folder.parents)
+                         if part.exists() and not part.is_dir()), folder)
+        raise ResultsError(f"{doing}: {blocking} is a file, not a folder") from None
+    except OSError as error:
+        raise ResultsError(f"{doing}: cannot make the folder {folder}: "
+                           f"{error.strerror or error}") from None
+
+
 def _save_npz(path, meta: dict, arrays: dict) -> Path:
     header = np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8)
     return atomic_write(path, lambda file: np.savez(file, meta=header, **arrays))
 
 
-def _load_npz(path) -> tuple[dict, dict]:
-    try:
-        with np.load(Path(path), allow_pickle=False) as data:
-            arrays = {name: data[name] for name in data.files}
-    except (OSError, ValueError) as error:
-        raise ResultsError(f"{path}: not a shroudnet results file ({error})") from None
-    if "meta" not in arrays:
-        raise ResultsError(f"{path}: not a shroudnet results file (no meta header)")
-    meta = json.loads(arrays.pop("meta").tobytes().decode())
+def _load_npz(path, kind: str | None = None) -> tuple[dict, dict]:
+    """The header (a dict, format checked) and the arrays of a results file; ``kind``, if
+    given, is the kind of file it must be."""
+    path = Path(path)
+    arrays = _read_archive(path)
+    meta = _header(path, arrays.pop("meta", None))
     if meta.get("format") != FORMAT:
         raise ResultsError(f"{path}: results format {meta.get('format')!r}; this shroudnet "
                            f"reads format {FORMAT}")
+    if kind is not None and meta.get("kind") != kind:
+        raise ResultsError(f"{path}: holds a {meta.get('kind')!r}, not a {kind}")
     return meta, arrays
+
+
+def _read_archive(path: Path) -> dict[str, np.ndarray]:
+    """Every array of the .npz file ``path``, or ``ResultsError`` saying why not."""
+    if not path.exists():
+        raise ResultsError(f"{path}: no such results file")
+    if path.is_dir():
+        raise ResultsError(f"{path}: is a folder, not a results file (.npz)")
+    if path.stat().st_size == 0:
+        raise ResultsError(f"{path}: the file is empty (a write cut short?); delete it "
+                           "and compute it again")
+    try:
+        data = np.load(path, allow_pickle=False)
+    except Exception as error:  # whatever the bytes are, say so
+        raise ResultsError(f"{path}: not a shroudnet results file, or damaged "
+                           f"({_reason(error)})") from None
+    if not isinstance(data, np.lib.npyio.NpzFile):
+        raise ResultsError(f"{path}: holds a single array (.npy), not a shroudnet results "
+                           "file (.npz)")
+    try:
+        with data:
+            return {name: data[name] for name in data.files}
+    except Exception as error:  # a damaged archive fails in many ways
+        raise ResultsError(f"{path}: damaged: cut short, or altered since it was written "
+                           f"({_reason(error)})") from None
+
+
+def _reason(error: BaseException) -> str:
+    return f"{type(error).__name__}: {error}" if str(error) else type(error).__name__
+
+
+def _header(path: Path, raw) -> dict:
+    """The JSON header ``meta`` of a results file, decoded and checked to be an object."""
+    if raw is None:
+        raise ResultsError(f"{path}: not a shroudnet results file (no meta header)")
+    if raw.dtype != np.uint8 or raw.ndim != 1:
+        raise ResultsError(f"{path}: its meta header is not text (an array of "
+                           f"{raw.dtype} of shape {raw.shape})")
+    try:
+        meta = json.loads(raw.tobytes().decode("utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
+        raise ResultsError(f"{path}: its meta header is not JSON ({error})") from None
+    if not isinstance(meta, dict):
+        raise ResultsError(f"{path}: its meta header must be a JSON object, got a "
+                           f"{type(meta).__name__}")
+    return meta
+
+
+# ---- checking what a file holds -----------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Field:
+    """What a header field must be, for ``_checked``: ``test(value)`` holds; ``allowed``
+    says so in words."""
+
+    name: str
+    allowed: str
+    test: Callable[[object], bool]
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def _is_count(value) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool) and value >= 0
+
+
+def _checked(path: Path, meta: dict, fields: Iterable[_Field], where: str = "meta") -> dict:
+    """``meta`` if every field is there and as allowed, else ``ResultsError`` naming it."""
+    for field in fields:
+        if field.name not in meta:
+            raise ResultsError(f"{path}: its {where} header has no {field.name!r}")
+        value = meta[field.name]
+        if not field.test(value):
+            raise ResultsError(f"{path}: {where}.{field.name} must be {field.allowed}, got "
+                               f"{_short(value)}")
+    return meta
+
+
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _number_table(names: Iterable[str]) -> Callable[[object], bool]:
+    names = set(names)
+    return lambda value: isinstance(value, dict) and set(value) == names \
+        and all(_is_number(v) for v in value.values())
+
+
+def _shape(path: Path, arrays: dict, name: str, shape: tuple, meaning: str) -> np.ndarray:
+    """``arrays[name]``, checked to be numbers of ``shape`` (None: any length there)."""
+    if name not in arrays:
+        raise ResultsError(f"{path}: has no array {name!r}")
+    array = arrays[name]
+    if not (np.issubdtype(array.dtype, np.number) or array.dtype == np.bool_):
+        raise ResultsError(f"{path}: array {name!r} holds {array.dtype}, not numbers")
+    if array.ndim != len(shape) or any(want is not None and have != want
+                                       for have, want in zip(array.shape, shape)):
+        wanted = " × ".join("any" if n is None else str(n) for n in shape) or "a scalar"
+        raise ResultsError(f"{path}: array {name!r} has shape {array.shape}; it must be "
+                           f"{wanted} ({meaning})")
+    return array
 
 
 # ---- a simulation -------------------------------------------------------------------------
 
+_SIMULATION_HEADER = (
+    _Field("scene", "a scene document (a JSON object)", lambda v: isinstance(v, dict)),
+    _Field("settings", "a JSON object", lambda v: isinstance(v, dict)),
+    _Field("energy", "the energy ledger: " + ", ".join(f.name for f in dataclasses.fields(
+        EnergyLedger)) + " [J]", _number_table(f.name for f in dataclasses.fields(EnergyLedger))),
+    _Field("event_counts", "a table of event counts by kind",
+           lambda v: isinstance(v, dict) and all(isinstance(k, str) and _is_count(n)
+                                                 for k, n in v.items())),
+    _Field("samples_per_period", "an int >= 1", lambda v: _is_count(v) and v >= 1),
+    _Field("steps", "an int >= 0", _is_count),
+)
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationArrays:
+    """Everything a simulation file holds, the scene left as its scene-file document.
+
+    ``load_simulation`` builds the ``Simulation`` from it; on its own it needs no law
+    class of the scene to be importable. Arrays as in ``Simulation``.
+    """
+
+    path: Path
+    document: dict           # the scene (and run settings), as ``scenefile.read`` takes it
+    settings: dict
+    t: np.ndarray            # (n_t,) [s]
+    x: np.ndarray            # (n_t × n_blades) [m]
+    v: np.ndarray            # (n_t × n_blades) [m/s]
+    normal_force: np.ndarray     # (n_t × n_interfaces) [N]
+    friction_force: np.ndarray   # (n_t × n_interfaces) [N]
+    modes: np.ndarray            # (n_t × n_interfaces) ``Mode`` values
+    work: np.ndarray             # (n_t × columns) cumulative [J]
+    events: EventLog
+    energy: EnergyLedger
+    samples_per_period: int
+    steps: int
+
+    @property
+    def periods(self) -> int:
+        """Number of excitation periods simulated."""
+        return (len(self.t) - 1) // self.samples_per_period
+
+
 def save_simulation(path: str | Path, sim: Simulation,
                     run: scenefile.RunSettings | None = None) -> Path:
     """Write ``sim`` to ``path`` (.npz), scene and settings included, and the scene file's
-    run settings (the blade and transient its summaries are about) when given."""
+    run settings (the blade and transient its summaries are about) when given.
+
+    Raises ``ResultsError`` when ``path`` cannot be written (a folder, or under a file).
+    """
     meta = {"format": FORMAT, "kind": "simulation",
             "scene": scenefile.document(sim.scene, run), "settings": sim.settings,
             "energy": asdict(sim.energy), "event_counts": sim.events.counts,
@@ -94,114 +278,374 @@ def save_simulation(path: str | Path, sim: Simulation,
     return _save_npz(path, meta, arrays)
 
 
-def load_simulation(path: str | Path) -> Simulation:
-    """Read a file written by ``save_simulation`` back into an equal ``Simulation``."""
-    meta, arrays = _load_npz(path)
-    if meta.get("kind") != "simulation":
-        raise ResultsError(f"{path}: holds a {meta.get('kind')}, not a simulation")
-    scene = scenefile.read(meta["scene"], source=f"{path} (its scene)").scene
-    events = EventLog(time=arrays["event_time"], interface=arrays["event_interface"],
-                      kind=arrays["event_kind"], counts=meta["event_counts"])
-    return Simulation(scene=scene, settings=meta["settings"], t=arrays["t"], x=arrays["x"],
-                      v=arrays["v"], normal_force=arrays["normal_force"],
-                      friction_force=arrays["friction_force"], modes=arrays["modes"],
-                      events=events, energy=EnergyLedger(**meta["energy"]),
-                      work=arrays["work"], samples_per_period=meta["samples_per_period"],
-                      steps=meta["steps"])
+def load_arrays(path: str | Path) -> SimulationArrays:
+    """Read a simulation file without rebuilding its scene.
+
+    Every array is checked against the others and against the numbers of blades and
+    interfaces of the scene document; raises ``ResultsError`` naming the file and what is
+    wrong.
+    """
+    path = Path(path)
+    meta, arrays = _load_npz(path, kind="simulation")
+    _checked(path, meta, _SIMULATION_HEADER)
+    blades, interfaces = _document_counts(path, meta["scene"])
+    samples = _shape(path, arrays, "t", (None,), "one time per sample")
+    n = len(samples)
+    if n < 1 or (n - 1) % meta["samples_per_period"]:
+        raise ResultsError(f"{path}: {n} samples are not a whole number of periods of "
+                           f"{meta['samples_per_period']} samples, plus one")
+    columns = {name: _shape(path, arrays, name, (n, count), f"{n} samples × {count} {what}")
+               for name, count, what in (("x", blades, "blades"), ("v", blades, "blades"),
+                                         ("normal_force", interfaces, "interfaces"),
+                                         ("friction_force", interfaces, "interfaces"),
+                                         ("modes", interfaces, "interfaces"))}
+    work = _shape(path, arrays, "work", (n, None), f"{n} samples × work columns")
+    return SimulationArrays(path=path, document=meta["scene"], settings=meta["settings"],
+                            t=samples, work=work, events=_events(path, arrays, meta,
+                                                                 interfaces),
+                            energy=EnergyLedger(**meta["energy"]),
+                            samples_per_period=meta["samples_per_period"],
+                            steps=meta["steps"], **columns)
 
 
-def load_run_settings(path: str | Path) -> scenefile.RunSettings:
+def _document_counts(path: Path, document: dict) -> tuple[int, int]:
+    """(blades, interfaces) listed in a saved scene document."""
+    counts = []
+    for key in ("blades", "interfaces"):
+        entries = document.get(key)
+        if not isinstance(entries, list):
+            raise ResultsError(f"{path}: its scene document has no list of {key}")
+        counts.append(len(entries))
+    return counts[0], counts[1]
+
+
+def _events(path: Path, arrays: dict, meta: dict, interfaces: int) -> EventLog:
+    time = _shape(path, arrays, "event_time", (None,), "one time per event")
+    count = len(time)
+    where = _shape(path, arrays, "event_interface", (count,), f"{count} events")
+    kind = _shape(path, arrays, "event_kind", (count,), f"{count} events")
+    if count and (where.min() < 0 or where.max() >= interfaces):
+        raise ResultsError(f"{path}: event_interface holds {where.min()} to {where.max()}; "
+                           f"the scene has interfaces 0 to {interfaces - 1}")
+    if count and not np.isin(kind, [k.value for k in EventKind]).all():
+        raise ResultsError(f"{path}: event_kind holds values that are no EventKind")
+    return EventLog(time=time, interface=where, kind=kind, counts=meta["event_counts"])
+
+
+def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation:
+    """Read a file written by ``save_simulation`` back into an equal ``Simulation``.
+
+    ``laws``: law classes of one's own (or modules holding them) that the scene names, as
+    for ``scenefile.load``. A law defined in a script run as a program lives in that
+    program's ``__main__`` only; elsewhere the scene cannot be rebuilt and this raises
+    ``ResultsError`` naming the law, while ``load_arrays`` still reads the rest.
+    """
+    data = load_arrays(path)
+    scene = _scene(data.path, data.document, laws).scene
+    if len(scene.blades) != data.x.shape[1] or len(scene.group.interfaces) != \
+            data.normal_force.shape[1]:
+        raise ResultsError(f"{path}: its arrays are for {data.x.shape[1]} blades and "
+                           f"{data.normal_force.shape[1]} interfaces; its scene has "
+                           f"{len(scene.blades)} and {len(scene.group.interfaces)}")
+    return Simulation(scene=scene, settings=data.settings, t=data.t, x=data.x, v=data.v,
+                      normal_force=data.normal_force, friction_force=data.friction_force,
+                      modes=data.modes, events=data.events, energy=data.energy,
+                      work=data.work, samples_per_period=data.samples_per_period,
+                      steps=data.steps)
+
+
+def _scene(path: Path, document: dict, laws: scenefile.Laws) -> scenefile.SceneFile:
+    """The scene file read from a saved document, or ``ResultsError`` saying why not."""
+    extra = {"laws": laws} if laws else {}
+    try:
+        return scenefile.read(document, source=f"{path} (its scene)", **extra)
+    except scenefile.SceneFileError as error:
+        own = _own_law_names(document)
+        if not own:
+            raise ResultsError(str(error)) from None
+        in_script = [name for name in own if name.startswith("__main__:")]
+        advice = ("it was defined in the script that made the run (module __main__), so "
+                  "only that script can rebuild it: move the law to a module of its own "
+                  "and import it from there" if in_script else
+                  "import the module that defines it before loading, or pass laws=[...]")
+        raise ResultsError(f"{path}: its scene cannot be rebuilt here, it uses the law "
+                           f"{', '.join(own)}: {advice}. results.load_arrays reads its "
+                           f"arrays and settings without the scene. ({error})") from None
+    except Exception as error:  # a document of the wrong shape
+        raise ResultsError(f"{path}: its scene document is damaged ({_reason(error)})") \
+            from None
+
+
+def _own_law_names(document) -> list[str]:
+    """The ``"module:Class"`` law names in a scene document, in order, once each."""
+    names: dict[str, None] = {}
+
+    def visit(node):
+        if isinstance(node, dict):
+            law = node.get("law")
+            if isinstance(law, str) and ":" in law:
+                names[law] = None
+            for value in node.values():
+                visit(value)
+        elif isinstance(node, list):
+            for value in node:
+                visit(value)
+
+    visit(document)
+    return list(names)
+
+
+def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefile.RunSettings:
     """The run settings saved with a simulation (the defaults if none were)."""
-    meta, _ = _load_npz(path)
-    return scenefile.read(meta["scene"], source=f"{path} (its scene)").run
+    data = load_arrays(path)
+    return _scene(data.path, data.document, laws).run
 
 
 # ---- a sweep, point by point --------------------------------------------------------------
 
-def _save_point(path: Path, point: SweepPoint) -> Path:
-    meta = {"format": FORMAT, "kind": "sweep point", "value": point.value,
+_POINT_HEADER = (
+    _Field("value", "a number", _is_number),
+    _Field("energy_density", "a number [m^2]", _is_number),
+    _Field("friction_loss_per_cycle", "a number [J]", _is_number),
+    _Field("classification", "a table of " + ", ".join(
+        f.name for f in dataclasses.fields(Classification)),
+        lambda v: isinstance(v, dict) and set(v) == {f.name for f in dataclasses.fields(
+            Classification)}),
+)
+_FAILURE_HEADER = (
+    _Field("value", "a number", _is_number),
+    _Field("message", "text", lambda v: isinstance(v, str)),
+)
+_POINT, _FAILED_POINT = "sweep point", "failed sweep point"
+
+
+def _save_point(path: Path, point: SweepPoint, fingerprint: str | None = None) -> Path:
+    """Write a point (or a failed point) to ``path``, with its sweep's ``fingerprint``."""
+    tag = {} if fingerprint is None else {"sweep": fingerprint}
+    if point.failed:
+        meta = {"format": FORMAT, "kind": _FAILED_POINT, "value": point.value,
+                "message": point.error, "tolerance": point.classification.tolerance, **tag}
+        return _save_npz(path, meta, {})
+    meta = {"format": FORMAT, "kind": _POINT, "value": point.value,
             "energy_density": point.energy_density,
             "friction_loss_per_cycle": point.friction_loss_per_cycle,
-            "classification": asdict(point.classification)}
+            "classification": asdict(point.classification), **tag}
     arrays = {"poincare": point.poincare, "final_x": point.final_state[0],
               "final_v": point.final_state[1]}
     return _save_npz(path, meta, arrays)
 
 
 def _load_point(path: Path) -> SweepPoint:
+    """The point (or failed point) in ``path``; ``ResultsError`` if it cannot be read."""
+    return _read_point(path)[0]
+
+
+def _read_point(path: Path) -> tuple[SweepPoint, str | None]:
+    """(the point in ``path``, the fingerprint of its sweep or None if it has none)."""
+    path = Path(path)
     meta, arrays = _load_npz(path)
-    return SweepPoint(value=meta["value"], poincare=arrays["poincare"],
-                      energy_density=meta["energy_density"],
-                      friction_loss_per_cycle=meta["friction_loss_per_cycle"],
-                      classification=Classification(**meta["classification"]),
-                      final_state=(arrays["final_x"], arrays["final_v"]))
+    fingerprint = meta.get("sweep")
+    if meta.get("kind") == _FAILED_POINT:
+        _checked(path, meta, _FAILURE_HEADER)
+        tolerance = meta.get("tolerance", math.nan)
+        return SweepPoint.failure(meta["value"], meta["message"],
+                                  tolerance if _is_number(tolerance) else math.nan), fingerprint
+    if meta.get("kind") != _POINT:
+        raise ResultsError(f"{path}: holds a {meta.get('kind')!r}, not a sweep point")
+    _checked(path, meta, _POINT_HEADER)
+    poincare = _shape(path, arrays, "poincare", (None, 2), "(x, v) per recorded period")
+    final_x = _shape(path, arrays, "final_x", (None,), "one value per blade")
+    final_v = _shape(path, arrays, "final_v", final_x.shape, "one value per blade")
+    try:
+        classification = Classification(**meta["classification"])
+    except (TypeError, ValueError) as error:
+        raise ResultsError(f"{path}: meta.classification is damaged ({error})") from None
+    return SweepPoint(value=meta["value"], poincare=poincare,
+                      energy_density=float(meta["energy_density"]),
+                      friction_loss_per_cycle=float(meta["friction_loss_per_cycle"]),
+                      classification=classification,
+                      final_state=(final_x, final_v)), fingerprint
+
+
+_MANIFEST_FIELDS = (
+    _Field("format", f"{FORMAT}", lambda v: v == FORMAT),
+    _Field("kind", "'sweep'", lambda v: v == "sweep"),
+    _Field("parameter", "text", lambda v: isinstance(v, str)),
+    _Field("values", "a list of numbers",
+           lambda v: isinstance(v, list) and all(_is_number(x) for x in v)),
+    _Field("settings", "a JSON object", lambda v: isinstance(v, dict)),
+    _Field("blade", "a blade name or position", lambda v: True),
+)
+
+
+def _read_manifest(path: Path) -> dict:
+    """The manifest ``sweep.json`` of a sweep folder, checked; ``ResultsError`` if it is
+    missing or damaged (the message says which)."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ResultsError(f"{path.parent}: not a sweep folder (no {path.name})") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise ResultsError(f"{path}: cannot be read ({_reason(error)})") from None
+    try:
+        manifest = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise ResultsError(f"{path}: damaged: not JSON ({error})") from None
+    if not isinstance(manifest, dict):
+        raise ResultsError(f"{path}: damaged: not a JSON object")
+    return _checked(path, manifest, _MANIFEST_FIELDS, where="sweep.json")
+
+
+def _fingerprint(manifest: dict) -> str:
+    """A short hash of a sweep's manifest, carried by each of its point files."""
+    text = json.dumps(manifest, sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _warn(message: str) -> None:
+    warnings.warn(message, SweepWarning, stacklevel=3)
 
 
 class SweepStore:
-    """The folder of one sweep: its manifest and a file per finished point.
+    """The folder of one sweep: its manifest and a file per finished (or failed) point.
 
     Opening a folder that already holds the same sweep (same manifest) resumes it;
-    one that holds another sweep is refused.
+    one that holds another sweep is refused. If ``sweep.json`` is missing or damaged
+    while points are saved, it is written again from ``manifest`` when every readable
+    point carries this sweep's fingerprint; otherwise ``ResultsError`` says what to do.
+    ``notice(message)`` hears of what was repaired or will be computed again (default:
+    a ``SweepWarning``).
     """
 
     MANIFEST = "sweep.json"
 
-    def __init__(self, folder: str | Path, manifest: dict):
+    def __init__(self, folder: str | Path, manifest: dict, *,
+                 notice: Callable[[str], None] | None = None):
         self.folder = Path(folder)
-        manifest = json.loads(json.dumps({"format": FORMAT, "kind": "sweep", **manifest}))
-        existing = self.folder / self.MANIFEST
-        if existing.exists():
-            found = json.loads(existing.read_text())
-            if found != manifest:
-                changed = sorted(k for k in set(found) | set(manifest)
-                                 if found.get(k) != manifest.get(k))
-                raise ResultsError(
-                    f"{self.folder} holds another sweep (its {', '.join(changed)} differ); "
-                    "resume it with the same arguments, or choose another folder")
-        else:
-            text = json.dumps(manifest, indent=2).encode()
-            atomic_write(existing, lambda file: file.write(text))
+        self.notice = _warn if notice is None else notice
+        if self.folder.exists() and not self.folder.is_dir():
+            raise ResultsError(f"{self.folder}: is a file; a sweep is saved to a folder (new, "
+                               "or holding this same sweep)")
+        self.manifest = json.loads(json.dumps({"format": FORMAT, "kind": "sweep", **manifest}))
+        self.fingerprint = _fingerprint(self.manifest)
+        self._open_manifest(self.folder / self.MANIFEST)
         for stale in self.folder.glob("points/.*.part"):  # a write cut short by a kill
             stale.unlink(missing_ok=True)
-        self.manifest = manifest
+
+    def _open_manifest(self, path: Path) -> None:
+        try:
+            found = _read_manifest(path)
+        except ResultsError as error:
+            if path.exists() or self._point_files():
+                self._rewrite_manifest(path, error)
+            else:
+                self._write_manifest(path)
+            return
+        if found != self.manifest:
+            changed = sorted(k for k in set(found) | set(self.manifest)
+                             if found.get(k) != self.manifest.get(k))
+            raise ResultsError(
+                f"{self.folder} holds another sweep (its {', '.join(changed)} differ); "
+                "resume it with the same arguments, or choose another folder")
+
+    def _rewrite_manifest(self, path: Path, error: ResultsError) -> None:
+        """Write the manifest again if the saved points are this sweep's, else refuse."""
+        foreign = []
+        for file in self._point_files():
+            try:
+                _, fingerprint = _read_point(file)
+            except ResultsError:
+                continue  # computed again anyway
+            if fingerprint != self.fingerprint:
+                foreign.append(file.name)
+        if foreign:
+            raise ResultsError(
+                f"{error}. Its {len(foreign)} saved point(s) ({', '.join(foreign[:3])}"
+                f"{', ...' if len(foreign) > 3 else ''}) cannot be matched to this sweep "
+                f"without it: delete {self.folder} (or its points/ folder) to start again, "
+                "or save to another folder") from None
+        self._write_manifest(path)
+        self.notice(f"{error}; written again from this sweep's arguments (the saved points "
+                    "carry their fingerprint)")
+
+    def _write_manifest(self, path: Path) -> None:
+        text = json.dumps(self.manifest, indent=2).encode()
+        atomic_write(path, lambda file: file.write(text))
+
+    def _point_files(self) -> list[Path]:
+        return sorted(self.folder.glob("points/[0-9]*.npz"))
 
     def finished(self) -> dict[int, SweepPoint]:
-        """The points already saved, by index."""
-        return _saved_points(self.folder, len(self.manifest["values"]))
+        """The points already saved (failed ones included), by index.
+
+        A file that cannot be read, or that holds another sweep's point, is left out (so
+        that the point is computed again) with a notice naming it.
+        """
+        values = self.manifest["values"]
+        points = {}
+        for index in range(len(values)):
+            path = _point_path(self.folder, index)
+            if not path.exists():
+                continue
+            try:
+                point, fingerprint = _read_point(path)
+            except ResultsError as error:
+                self.notice(f"{error}; computing this point again")
+                continue
+            if fingerprint not in (None, self.fingerprint) or point.value != values[index]:
+                self.notice(f"{path}: holds the point of another sweep; computing this "
+                            "point again")
+                continue
+            points[index] = point
+        return points
 
     def save(self, index: int, point: SweepPoint) -> None:
-        _save_point(_point_path(self.folder, index), point)
+        """Write the point (or failed point) of index ``index``."""
+        _save_point(_point_path(self.folder, index), point, self.fingerprint)
 
 
 def _point_path(folder: Path, index: int) -> Path:
     return folder / "points" / f"{index:05d}.npz"
 
 
-def _saved_points(folder: Path, count: int) -> dict[int, SweepPoint]:
-    return {i: _load_point(_point_path(folder, i)) for i in range(count)
-            if _point_path(folder, i).exists()}
-
-
 def load_sweep(folder: str | Path) -> Sweep:
-    """Read a sweep folder; raises ``ResultsError`` if points are missing."""
+    """Read a sweep folder, failed points included (``Sweep.failures``).
+
+    Raises ``ResultsError`` if points are missing or a file is damaged, naming it; running
+    the same sweep again with ``save_to=folder`` computes what is missing or damaged.
+    """
     folder = Path(folder)
+    if not folder.is_dir():
+        raise ResultsError(f"{folder}: not a sweep folder" + (
+            " (it is a file)" if folder.exists() else " (no such folder)"))
+    path = folder / SweepStore.MANIFEST
     try:
-        manifest = json.loads((folder / SweepStore.MANIFEST).read_text())
-    except FileNotFoundError:
-        raise ResultsError(f"{folder}: not a sweep folder (no {SweepStore.MANIFEST})") from None
-    if manifest.get("format") != FORMAT or manifest.get("kind") != "sweep":
-        raise ResultsError(f"{folder}: not a sweep folder of results format {FORMAT}")
-    points = _saved_points(folder, len(manifest["values"]))
-    missing = [i for i in range(len(manifest["values"])) if i not in points]
+        manifest = _read_manifest(path)
+    except ResultsError as error:
+        if not path.exists():
+            raise
+        raise ResultsError(f"{error}; run the same sweep again with save_to={folder} to "
+                           "write it again") from None
+    count = len(manifest["values"])
+    points = {}
+    for index in range(count):
+        file = _point_path(folder, index)
+        if file.exists():
+            try:
+                points[index] = _load_point(file)
+            except ResultsError as error:
+                raise ResultsError(f"{error}; run the same sweep again to compute this "
+                                   "point again") from None
+    missing = [i for i in range(count) if i not in points]
     if missing:
-        raise ResultsError(f"{folder}: {len(missing)} of {len(manifest['values'])} points are "
-                           "missing; run the same sweep again to finish it")
+        raise ResultsError(f"{folder}: {len(missing)} of {count} points are missing; run "
+                           "the same sweep again to finish it")
     return Sweep(parameter=manifest["parameter"], blade=manifest["blade"],
-                 points=tuple(points[i] for i in range(len(points))),
-                 settings=manifest["settings"])
+                 points=tuple(points[i] for i in range(count)), settings=manifest["settings"])
 
 
-def load(path: str | Path) -> Simulation | Sweep:
-    """A simulation file or a sweep folder, whichever ``path`` is."""
+def load(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation | Sweep:
+    """A simulation file or a sweep folder, whichever ``path`` is (``laws`` as for
+    ``load_simulation``)."""
     path = Path(path)
-    return load_sweep(path) if path.is_dir() else load_simulation(path)
+    return load_sweep(path) if path.is_dir() else load_simulation(path, laws=laws)

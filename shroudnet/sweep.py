@@ -3,12 +3,24 @@
 A sweep keeps, per value, only what a diagram needs (Poincaré points, E_ρ, the
 classification and the final state), never the time histories. Its points run on every core
 by default, on any ``concurrent.futures.Executor``, or on a dask cluster.
+
+A point whose simulation stops with a ``SimulationError`` (the Zeno guard, a collapsing
+step, a non-finite state) does not stop the sweep: it is kept as a *failed point*, a gap in
+the diagram, with its message (``Sweep.failures``). Every other exception is a bug or bad
+input and stops the sweep.
 """
 
 from __future__ import annotations
 
+import ctypes
+import math
 import os
 import pickle
+import signal
+import sys
+import threading
+import time
+import warnings
 from collections.abc import Callable, Hashable, Sequence
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
@@ -18,14 +30,23 @@ import cloudpickle
 import numpy as np
 
 from .analysis import Classification, classify, friction_loss_per_cycle
-from .progress import progress_callback
+from .progress import ProgressReporter, SweepWarning, progress_callback
 from .scene import Scene
 from .simulate import Accuracy, Adaptive, FixedStep, simulate
+from .simulation import SimulationError
+
+#: The label of a failed point's classification.
+FAILED = "failed"
 
 
 @dataclass(frozen=True)
 class SweepPoint:
-    """The steady response at one value of the swept parameter."""
+    """The steady response at one value of the swept parameter.
+
+    A *failed* point (``error`` set: the message of the ``SimulationError`` that stopped
+    its simulation) has no Poincaré points (shape (0, 2)), NaN for E_ρ and the friction
+    loss, the classification label "failed" and an empty final state.
+    """
 
     value: float
     poincare: np.ndarray                 # (record × 2): (x [m], ẋ [m/s]) at t = k T_e
@@ -33,11 +54,45 @@ class SweepPoint:
     friction_loss_per_cycle: float       # [J]
     classification: Classification
     final_state: tuple[np.ndarray, np.ndarray]  # (x, ẋ) at the end, to continue from
+    error: str | None = None             # why the point failed; None for a computed point
+
+    @property
+    def failed(self) -> bool:
+        """Whether the simulation of this point stopped with a ``SimulationError``."""
+        return self.error is not None
+
+    @classmethod
+    def failure(cls, value: float, message: str, tolerance: float = math.nan) -> SweepPoint:
+        """The failed point at ``value``, with the message of what stopped it."""
+        nothing = np.empty(0)
+        return cls(value=float(value), poincare=np.empty((0, 2)), energy_density=math.nan,
+                   friction_loss_per_cycle=math.nan,
+                   classification=Classification(label=FAILED, period=None, n_points=0,
+                                                 tolerance=tolerance, mismatch=math.nan,
+                                                 zero_one=math.nan, broadband=math.nan),
+                   final_state=(nothing, nothing.copy()), error=str(message))
+
+
+@dataclass(frozen=True)
+class SweepFailure:
+    """A point of a sweep whose simulation stopped: where, and why."""
+
+    parameter: str
+    index: int          # position of the value in the sweep's values (0-based)
+    value: float
+    message: str        # the ``SimulationError``'s message (time and interface)
+
+    def __str__(self) -> str:
+        return f"{self.parameter} = {self.value:g} (point {self.index}) failed: {self.message}"
 
 
 @dataclass(frozen=True)
 class Sweep:
-    """A bifurcation diagram's data: the points of a sweep, in the order they were run."""
+    """A bifurcation diagram's data: the points of a sweep, in the order of its values.
+
+    Failed points keep their place (``values`` lists every value); ``diagram`` leaves them
+    out, and ``failures`` lists them.
+    """
 
     parameter: str
     blade: Hashable | int
@@ -50,12 +105,21 @@ class Sweep:
 
     @property
     def labels(self) -> list[str]:
+        """Each point's classification label ("failed" for a failed point)."""
         return [p.classification.label for p in self.points]
+
+    @property
+    def failures(self) -> tuple[SweepFailure, ...]:
+        """The failed points, in order, each with its index, value and message."""
+        return tuple(SweepFailure(parameter=self.parameter, index=index, value=point.value,
+                                  message=point.error)
+                     for index, point in enumerate(self.points) if point.failed)
 
     def diagram(self, coordinate: int = 0) -> tuple[np.ndarray, np.ndarray]:
         """(parameter values, Poincaré coordinates) flattened for a scatter plot.
 
-        ``coordinate`` 0 is the displacement, 1 the velocity.
+        ``coordinate`` 0 is the displacement, 1 the velocity. Failed points have no
+        Poincaré points, so they leave a gap.
         """
         values = np.concatenate([np.full(len(p.poincare), p.value) for p in self.points])
         section = np.concatenate([p.poincare[:, coordinate] for p in self.points])
@@ -73,7 +137,7 @@ def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient
     sim = simulate(scene, record, method=method, samples_per_period=samples_per_period,
                    initial=start)
     return SweepPoint(value=float(value), poincare=sim.poincare(blade, skip=0),
-                      energy_density=sim.energy_density(blade),
+                      energy_density=sim.energy_density(blade, skip=0),
                       friction_loss_per_cycle=friction_loss_per_cycle(sim, skip=0),
                       classification=classify(sim, blade, skip=0, tolerance=tolerance),
                       final_state=(sim.x[-1].copy(), sim.v[-1].copy()))
@@ -84,7 +148,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
           record: int = 100, method=Adaptive(), samples_per_period: int = 50,
           continuation: bool = False, initial=None, tolerance: float = 1e-5,
           workers: int | None = None, executor=None, progress="auto",
-          save_to: str | os.PathLike | None = None) -> Sweep:
+          save_to: str | os.PathLike | None = None, retry_failed: bool = False) -> Sweep:
     """The steady response of ``scene_at(value)`` for each value, in the order given.
 
     Each point runs ``transient`` periods, then records ``record`` periods of which it keeps
@@ -92,6 +156,12 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     classification. Every point starts from ``initial`` (default rest) and is independent
     of the others, so the points run in parallel and the result is the same, bit for bit,
     however they are spread.
+
+    A point whose simulation stops with a ``SimulationError`` is kept as a failed point
+    (``SweepPoint.failed``, listed in ``Sweep.failures``) and reported as a notice (see
+    ``progress``); the sweep goes on. Any other exception stops the sweep, with a note
+    naming the point. Ctrl-C (``KeyboardInterrupt``) stops the sweep's own worker
+    processes at once and is raised again; the points saved so far are kept.
 
     Parameters
     ----------
@@ -103,24 +173,92 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         and E_ρ to about 1e-7 in periodic regimes.
     workers : int, optional
         Worker processes of the pool the sweep makes for itself; default every core of the
-        machine. 1 runs the points one after the other in this process.
+        machine. 1 runs the points one after the other in this process. The workers ignore
+        Ctrl-C (this process stops them) and exit when this process dies.
     executor : concurrent.futures.Executor or dask.distributed.Client, optional
         Run the points there instead (a thread pool gains nothing: the loop holds the GIL).
         A dask client runs them on its cluster (``pip install 'shroudnet[dask]'``).
     continuation : bool
-        Chain the points in order: each starts from the previous point's final state (the
-        first from ``initial``), so a forward and a backward sweep can land on different
-        coexisting attractors. Inherently serial: not allowed with ``workers`` > 1 or an
-        ``executor``.
+        Chain the points in order: each starts from the final state of the last point
+        before it that did not fail (the first from ``initial``), so a forward and a
+        backward sweep can land on different coexisting attractors. Inherently serial: not
+        allowed with ``workers`` > 1 or an ``executor``.
     progress : "auto", bool, None or callable
-        ``progress(done, total)`` after each point; "auto" shows points done, rate and time
-        left on standard error when it is a terminal; False or None is silent.
+        ``progress(done, total)`` after each point (failed points count as done); "auto"
+        shows points done, rate and time left on standard error when it is a terminal;
+        False or None is silent. Notices (a failed point, a saved file that is damaged and
+        computed again) go to ``progress.notice(message)`` when ``progress`` is a
+        ``shroudnet.progress.ProgressReporter`` (as the terminal display is), else they are
+        issued as ``SweepWarning`` warnings.
     save_to : path of a folder, optional
         Save each point there as it finishes (``shroudnet.results``). If the folder holds
         this same sweep, interrupted, only its missing points run: none is lost or
-        repeated, and the result is the same as an uninterrupted sweep's.
+        repeated, and the result is the same as an uninterrupted sweep's. A saved point
+        file that cannot be read is reported and computed again. Failed points are saved
+        too, and kept on resuming.
+    retry_failed : bool
+        On resuming from ``save_to``, run the failed points again instead of keeping them
+        (worth it after changing what made them fail, e.g. the code or the machine; the
+        simulation is deterministic, so the same code fails the same way).
+
+    Raises
+    ------
+    ValueError, TypeError
+        Bad arguments, named.
+    shroudnet.results.ResultsError
+        ``save_to`` holds another sweep, is a file, or its ``sweep.json`` is damaged and
+        its points cannot be matched to this sweep.
     """
     values = [float(v) for v in values]
+    _check_arguments(values, transient, record, method, workers, executor, continuation,
+                     scene_at, retry_failed)
+    executor = None if executor is None else _as_executor(executor)
+    if executor is None and not continuation:
+        workers = min(default_workers() if workers is None else workers, len(values))
+    serial = continuation or (executor is None and workers == 1)
+    pickled = None if serial else _pickled(scene_at)
+    report = progress_callback(progress)
+    notice = _notifier(report)
+    options = {"blade": blade, "transient": transient, "record": record, "method": method,
+               "samples_per_period": samples_per_period, "tolerance": tolerance}
+    settings = {"transient": transient, "record": record, "method": repr(method),
+                "samples_per_period": samples_per_period, "continuation": continuation,
+                "tolerance": tolerance, "initial": _listed(initial),
+                "scenes": _source(scene_at)}
+    points: list[SweepPoint | None] = [None] * len(values)
+    store = None
+    if save_to is not None:
+        store = _open_store(save_to, parameter, blade, values, settings, notice)
+        _resume(points, store.finished(), parameter, retry_failed, notice)
+    todo = [index for index, point in enumerate(points) if point is None]
+
+    def finished(index, point):
+        points[index] = point
+        if store is not None:
+            store.save(index, point)
+        if point.failed:
+            notice(str(SweepFailure(parameter, index, point.value, point.error)))
+        if report is not None:
+            report(sum(p is not None for p in points), len(values))
+
+    if report is not None:
+        report(len(values) - len(todo), len(values))
+    if todo and serial:
+        _one_by_one(scene_at, values, todo, points, initial, options, parameter, finished,
+                    chain=continuation)
+    elif todo and executor is not None:
+        _spread(executor, pickled, values, todo, initial, options, parameter, finished)
+    elif todo:
+        with _naming(parameter, values[todo[0]]):
+            _warm_kernel(scene_at(values[todo[0]]), method)
+        with _own_pool(min(workers, len(todo))) as pool:
+            _spread(pool, pickled, values, todo, initial, options, parameter, finished)
+    return Sweep(parameter=parameter, blade=blade, points=tuple(points), settings=settings)
+
+
+def _check_arguments(values, transient, record, method, workers, executor, continuation,
+                     scene_at, retry_failed) -> None:
+    """Raise ``ValueError``/``TypeError`` naming the first bad argument of ``sweep``."""
     if not values:
         raise ValueError("sweep needs at least one value")
     for name, number in (("transient", transient), ("record", record)):
@@ -142,50 +280,40 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
                          "runs serially; leave out workers and executor")
     if not callable(scene_at):
         raise TypeError(f"sweep.scene_at must be a callable value -> Scene, got {scene_at!r}")
-    executor = None if executor is None else _as_executor(executor)
-    if executor is None and not continuation:
-        workers = min(default_workers() if workers is None else workers, len(values))
-    serial = continuation or (executor is None and workers == 1)
-    pickled = None if serial else _pickled(scene_at)
-    report = progress_callback(progress)
-    options = {"blade": blade, "transient": transient, "record": record, "method": method,
-               "samples_per_period": samples_per_period, "tolerance": tolerance}
-    settings = {"transient": transient, "record": record, "method": repr(method),
-                "samples_per_period": samples_per_period, "continuation": continuation,
-                "tolerance": tolerance, "initial": _listed(initial),
-                "scenes": _source(scene_at)}
-    points: list[SweepPoint | None] = [None] * len(values)
-    store = None
-    if save_to is not None:
-        from .results import SweepStore  # results reads Sweep and SweepPoint from here
-        store = SweepStore(save_to, {"parameter": parameter, "blade": blade,
-                                     "values": values, "settings": settings})
-        for index, point in store.finished().items():
-            points[index] = point
-    todo = [index for index, point in enumerate(points) if point is None]
+    if not isinstance(retry_failed, bool):
+        raise TypeError(f"sweep.retry_failed must be True or False, got {retry_failed!r}")
 
-    def finished(index, point):
+
+def _notifier(report) -> Callable[[str], None]:
+    """Where notices go: the reporter's ``notice`` if it has the interface, else warnings."""
+    if isinstance(report, ProgressReporter):
+        return report.notice
+    return _warn
+
+
+def _warn(message: str) -> None:
+    warnings.warn(message, SweepWarning, stacklevel=3)
+
+
+def _open_store(save_to, parameter, blade, values, settings, notice):
+    """The sweep's folder (``results.SweepStore``), made or reopened."""
+    from .results import SweepStore  # results reads Sweep and SweepPoint from here
+    return SweepStore(save_to, {"parameter": parameter, "blade": blade, "values": values,
+                                "settings": settings}, notice=notice)
+
+
+def _resume(points: list, saved: dict, parameter: str, retry_failed: bool, notice) -> None:
+    """Put the saved points in place; failed ones only unless ``retry_failed``."""
+    kept = []
+    for index, point in saved.items():
+        if point.failed and retry_failed:
+            continue
         points[index] = point
-        if store is not None:
-            store.save(index, point)
-        if report is not None:
-            report(sum(p is not None for p in points), len(values))
-
-    if report is not None:
-        report(len(values) - len(todo), len(values))
-    if todo and serial:
-        if continuation and todo[0] > 0:
-            initial = points[todo[0] - 1].final_state
-        _one_by_one(scene_at, values, todo, initial, options, parameter, finished,
-                    chain=continuation)
-    elif todo and executor is not None:
-        _spread(executor, pickled, values, todo, initial, options, parameter, finished)
-    elif todo:
-        with _naming(parameter, values[todo[0]]):
-            _warm_kernel(scene_at(values[todo[0]]), method)
-        with ProcessPoolExecutor(max_workers=min(workers, len(todo))) as pool:
-            _spread(pool, pickled, values, todo, initial, options, parameter, finished)
-    return Sweep(parameter=parameter, blade=blade, points=tuple(points), settings=settings)
+        if point.failed:
+            kept.append(f"{point.value:g}")
+    if kept:
+        notice(f"kept {len(kept)} failed point(s) of the saved sweep ({parameter} = "
+               f"{', '.join(kept)}); pass retry_failed=True to run them again")
 
 
 def _listed(initial):
@@ -212,7 +340,12 @@ def default_workers() -> int:
 
 
 def _point(scene_at, value, initial, options) -> SweepPoint:
-    return steady_point(scene_at(value), value, initial=initial, **options)
+    """One point; a ``SimulationError`` makes it a failed point, anything else is raised."""
+    scene = scene_at(value)
+    try:
+        return steady_point(scene, value, initial=initial, **options)
+    except SimulationError as error:
+        return SweepPoint.failure(value, str(error), tolerance=options["tolerance"])
 
 
 def _remote_point(pickled_scene_at: bytes, value, initial, options) -> SweepPoint:
@@ -220,19 +353,33 @@ def _remote_point(pickled_scene_at: bytes, value, initial, options) -> SweepPoin
     return _point(pickle.loads(pickled_scene_at), value, initial, options)
 
 
-def _one_by_one(scene_at, values, todo, initial, options, parameter, finished, chain):
-    """The points ``todo`` in order, in this process; each goes to ``finished(index, point)``."""
-    state = initial
+def _one_by_one(scene_at, values, todo, points, initial, options, parameter, finished,
+                chain):
+    """The points ``todo`` in order, in this process; each goes to ``finished(index, point)``.
+
+    With ``chain``, each starts from the last point before it that did not fail.
+    """
     for index in todo:
+        start = _chain_start(points, index, initial) if chain else initial
         with _naming(parameter, values[index]):
-            point = _point(scene_at, values[index], state, options)
+            point = _point(scene_at, values[index], start, options)
         finished(index, point)
-        if chain:
-            state = point.final_state
+
+
+def _chain_start(points, index, initial):
+    """The final state of the last point before ``index`` that did not fail, else
+    ``initial``."""
+    for point in reversed(points[:index]):
+        if point is not None and not point.failed:
+            return point.final_state
+    return initial
 
 
 def _spread(executor: Executor, pickled, values, todo, initial, options, parameter, finished):
-    """The points ``todo`` on ``executor``; each goes to ``finished`` as it completes."""
+    """The points ``todo`` on ``executor``; each goes to ``finished`` as it completes.
+
+    Whatever stops this early (an error, Ctrl-C) cancels the points not yet started.
+    """
     futures = {executor.submit(_remote_point, pickled, values[index], initial, options): index
                for index in todo}
     try:
@@ -244,6 +391,87 @@ def _spread(executor: Executor, pickled, values, todo, initial, options, paramet
     finally:
         for future in futures:
             future.cancel()
+
+
+@contextmanager
+def _own_pool(workers: int):
+    """A process pool whose workers ignore Ctrl-C and exit with this process.
+
+    If the body stops early (an error, ``KeyboardInterrupt``), the workers are stopped at
+    once rather than left to finish the points they are running.
+    """
+    pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_started,
+                               initargs=(os.getpid(),))
+    try:
+        yield pool
+    except BaseException:
+        _stop_workers(pool)
+        raise
+    pool.shutdown(wait=True)
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """Terminate the pool's worker processes and shut it down without waiting for points.
+
+    ``ProcessPoolExecutor`` has no public way to stop a running task; its ``_processes``
+    (pid → Process) is the one handle on the workers.
+    """
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.terminate()
+    pool.shutdown(wait=True, cancel_futures=True)
+
+
+#: Seconds between two looks of a worker at whether its parent still lives.
+PARENT_POLL_INTERVAL = 0.5
+
+_PR_SET_PDEATHSIG = 1  # from <linux/prctl.h>
+
+
+def _worker_started(owner: int) -> None:
+    """Initializer of the sweep's worker processes.
+
+    Ctrl-C goes to the whole process group of a terminal: the workers ignore it and the
+    sweep's process stops them. A worker must also not outlive that process when it is
+    killed (SIGKILL leaves it no chance to stop them): on Linux the kernel sends the worker
+    SIGKILL when its parent dies (prctl PR_SET_PDEATHSIG), which works even while the
+    compiled loop holds the GIL; everywhere, a daemon thread exits the worker when its
+    parent changes (checked between the loop's runs, since that thread needs the GIL).
+    ``owner`` is the pid of the sweep's process, for the case where it died before this
+    ran.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    parent = os.getppid()
+    if sys.platform.startswith("linux"):
+        _ask_kernel_for_death_signal()
+    if parent != owner and not _alive(owner):
+        os._exit(1)
+    threading.Thread(target=_exit_with_parent, args=(parent,), daemon=True,
+                     name="shroudnet-parent-watch").start()
+
+
+def _ask_kernel_for_death_signal() -> None:
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+    except (OSError, AttributeError):  # no prctl here: the watching thread still works
+        pass
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)  # signal 0: only asks whether the process exists
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # it exists, under another user
+        pass
+    return True
+
+
+def _exit_with_parent(parent: int) -> None:
+    """Exit this process as soon as its parent is no longer ``parent``."""
+    while os.getppid() == parent:
+        time.sleep(PARENT_POLL_INTERVAL)
+    os._exit(1)
 
 
 @contextmanager
@@ -274,5 +502,10 @@ def _pickled(scene_at) -> bytes:
 
 
 def _warm_kernel(scene, method):
-    """Compile (or load) the kernel here once, so the workers find it in the disk cache."""
-    simulate(scene, 1, method=method, samples_per_period=1)
+    """Compile (or load) the kernel here once, so the workers find it in the disk cache.
+
+    A ``SimulationError`` in this one period is left to the point itself to report."""
+    try:
+        simulate(scene, 1, method=method, samples_per_period=1)
+    except SimulationError:
+        pass
