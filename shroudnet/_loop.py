@@ -37,10 +37,18 @@ from shroudnet.kernel_types import Events, Output, Topology, Work
 
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = 0, 1, 2, 3
 CLOSING, SEPARATION, STICKING, REVERSAL, BREAKAWAY = 0, 1, 2, 3, 4
-FINISHED, ZENO, INCONSISTENT, NOT_FINITE, STEP_TOO_SMALL = 0, 1, 2, 3, 4
+FINISHED, ZENO, INCONSISTENT, NOT_FINITE, STEP_TOO_SMALL, NO_PROGRESS = 0, 1, 2, 3, 4, 5
 
-#: Relative slack on |f| ≤ μ_s N when a mode set is settled.
+#: Relative slack on |f| ≤ μ_s N for an interface whose slip velocity has just reached zero,
+#: so that rounding in its static friction does not release it at once. An interface
+#: already stuck is released as soon as |f| > μ_s N, where its breakaway guard fires.
 FRICTION_SLACK = 1e-9
+
+#: Located switches in a row that change no mode before a run is stopped (NO_PROGRESS).
+#: A guard that crosses while the mode rule keeps every mode is legitimate once (a slip
+#: velocity that touches zero and goes on the same way); a long series means the guards
+#: and the mode rule disagree, and the run would creep on by one event tolerance a switch.
+MAX_IDLE_SWITCHES = 1000
 #: Work columns of the state: excitation, damping, friction, contact; then projection loss.
 N_POWERS = 4
 N_WORK = 5
@@ -72,8 +80,9 @@ DP_P = np.array([
     [0.0, -282668133 / 205662961, 2019193451 / 616988883, -1453857185 / 822651844],
     [0.0, 40617522 / 29380423, -110615467 / 29380423, 69997945 / 29380423],
 ])
-#: Points inside an adaptive step where the kinematic guards are checked, so that a contact
-#: that closes and opens again within one step is not missed.
+#: Points inside an adaptive step where the kinematic guards, and the breakaway margins of
+#: stuck interfaces, are checked, so that a contact that closes and opens again within one
+#: step, or a static friction that passes μ_s N and falls back, is not missed.
 DIP_POINTS = np.array([0.25, 0.5, 0.75])
 
 
@@ -88,14 +97,15 @@ def new_work(n_blades, n_interfaces):
                 np.empty(m), np.empty(m),
                 np.empty(m), np.empty(m),
                 np.zeros((7, b)), np.zeros((7, b)), np.zeros((7, N_POWERS)), np.zeros(7),
-                np.zeros(N_WORK), np.zeros(N_WORK))
+                np.zeros(N_WORK), np.zeros(N_WORK), np.zeros((len(DIP_POINTS) + 2, m)))
 
 
 @njit(cache=True)
 def new_events(capacity, zeno_events):
     return Events(np.empty(capacity), np.empty(capacity, dtype=np.int64),
                   np.empty(capacity, dtype=np.int8), np.zeros(5, dtype=np.int64),
-                  np.full(max(zeno_events, 1), -np.inf), np.zeros(1, dtype=np.int64))
+                  np.full(max(zeno_events, 1), -np.inf), np.zeros(1, dtype=np.int64),
+                  np.zeros(1, dtype=np.int64))
 
 
 @njit(cache=True)
@@ -204,11 +214,17 @@ def crossed(before, after):
 
 
 @njit_inlined
-def any_crossed(contact_before, motion_before, w):
+def first_crossed(contact_before, motion_before, w):
+    """The first interface whose guard in w crossed since the reference, or −1."""
     for e in range(len(contact_before)):
         if crossed(contact_before[e], w.contact[e]) or crossed(motion_before[e], w.motion[e]):
-            return True
-    return False
+            return e
+    return -1
+
+
+@njit_inlined
+def any_crossed(contact_before, motion_before, w):
+    return first_crossed(contact_before, motion_before, w) >= 0
 
 
 # ---- fixed step: classical Runge–Kutta --------------------------------------------------
@@ -339,6 +355,117 @@ def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
 
 
 @njit_inlined
+def stuck_margins(time, xt, vt, modes, topology, motion_before, s, w, row):
+    """Breakaway margins of the stuck interfaces at the state (xt, vt) inside a step, into
+    w.motion_trial and, for row ≥ 0, w.margins[row]; True if one has crossed.
+
+    The margin needs the static friction, so the forces are evaluated (into w's scratch;
+    the step's end guards in w.contact / w.motion are kept).
+    """
+    derivative(time, xt, vt, modes, topology, s, w, w.a_sample)
+    static_friction(topology.operator, topology.stuck_interfaces, s.mass, w.resultant,
+                    w.a_sample, w.normal, s.sin_angle, s.left, s.right, w.imbalance, w.friction)
+    event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu, s.opens,
+                 s.can_stick, w.contact_trial, w.motion_trial)
+    found = False
+    for e in topology.stuck_interfaces:
+        if row >= 0:
+            w.margins[row, e] = w.motion_trial[e]
+        found = found or crossed(motion_before[e], w.motion_trial[e])
+    return found
+
+
+@njit_inlined
+def parabola_low(a, b, c):
+    """(s, p(s)) at the lowest point for s in [−1, 1] of the parabola p through (−1, a),
+    (0, b) and (1, c)."""
+    curvature = a - 2.0 * b + c
+    if curvature > 0.0:
+        offset = min(1.0, max(-1.0, 0.5 * (a - c) / curvature))
+    else:
+        offset = 1.0 if c < a else -1.0
+    return offset, b + 0.5 * (c - a) * offset + 0.5 * curvature * offset * offset
+
+
+@njit_inlined
+def predicted_dip(topology, w, n_points):
+    """The earliest fraction of the step where a stuck interface's margin, sampled at
+    n_points equally spaced fractions (0 … 1) in w.margins, is predicted below 0, else 2.
+
+    The prediction is the parabola through the lowest sample and its two neighbours: a
+    static friction that passes μ_s N and falls back between two samples shows there.
+    """
+    first = 2.0
+    last = n_points - 1
+    for e in topology.stuck_interfaces:
+        lowest = 0
+        for k in range(1, n_points):
+            if w.margins[k, e] < w.margins[lowest, e]:
+                lowest = k
+        centre = min(max(lowest, 1), last - 1)
+        offset, value = parabola_low(w.margins[centre - 1, e], w.margins[centre, e],
+                                     w.margins[centre + 1, e])
+        theta = (centre + offset) / last
+        if value < 0.0 and 0.0 < theta < 1.0:
+            first = min(first, theta)
+    return first
+
+
+@njit_inlined
+def breakaway_dense(t, h, x, v, energy, modes, topology, motion_before, s, w):
+    """The first fraction of the adaptive step from t where a stuck interface's breakaway
+    margin has crossed, else 2.
+
+    A stuck phase has no integration error to shorten the steps, so one step can span a
+    whole excursion of the static friction beyond μ_s N. The margins are sampled at
+    ``DIP_POINTS`` on the dense output, then checked where the samples and the step's
+    ends predict them lowest.
+    """
+    n_points = len(DIP_POINTS) + 2
+    for e in topology.stuck_interfaces:
+        w.margins[0, e] = motion_before[e]
+        w.margins[n_points - 1, e] = w.motion[e]
+    for k in range(len(DIP_POINTS)):
+        theta = DIP_POINTS[k]
+        dense_state(theta, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
+        if stuck_margins(t + theta * h, w.xt, w.vt, modes, topology, motion_before, s, w,
+                         k + 1):
+            return theta
+    theta = predicted_dip(topology, w, n_points)
+    if theta < 1.0:
+        dense_state(theta, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
+        if stuck_margins(t + theta * h, w.xt, w.vt, modes, topology, motion_before, s, w,
+                         -1):
+            return theta
+    return 2.0
+
+
+@njit_inlined
+def breakaway_fixed(t, h, x, v, energy, modes, topology, motion_before, s, w):
+    """``breakaway_dense`` for the fixed-step RK4 step of size h from t: the margins are
+    sampled at its middle and checked where predicted lowest, each state integrated anew
+    from the step's start. Returns θ ≤ 1, or 2 with the step's end state and guards
+    restored in w."""
+    for e in topology.stuck_interfaces:
+        w.margins[0, e] = motion_before[e]
+        w.margins[2, e] = w.motion[e]
+    rk4_step(t, x, v, energy, 0.5 * h, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
+    if stuck_margins(t + 0.5 * h, w.x_new, w.v_new, modes, topology, motion_before, s, w, 1):
+        return 0.5
+    theta = predicted_dip(topology, w, 3)
+    if theta < 1.0:
+        rk4_step(t, x, v, energy, theta * h, modes, topology, s, w, w.x_new, w.v_new,
+                 w.e_new)
+        if stuck_margins(t + theta * h, w.x_new, w.v_new, modes, topology, motion_before, s,
+                         w, -1):
+            return theta
+    rk4_step(t, x, v, energy, h, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
+    set_powers(w.stage_p[6], evaluate_guards(t + h, w.x_new, w.v_new, modes, topology, s, w,
+                                             w.a_end))
+    return 2.0
+
+
+@njit_inlined
 def contact_guard(e, x, v, modes, s):
     """Interface e's contact guard g (−δ while open, δ while closed) [m] and ġ [m/s]."""
     u, du = relative_motion(x, v, s.left, s.right, e)
@@ -464,50 +591,67 @@ def settle(t, x, v, modes, candidates, s, w):
     computes the static friction, and releases the stuck interface that exceeds μ_s N by the
     largest ratio, to slip in the direction its friction pushed (|f| > μ_s N with f > 0 means
     the relative motion starts positive). A released candidate whose slip would reverse at
-    once (its relative acceleration opposes the chosen direction) is held again and marked
-    so that it is not released twice. At most 2 n_interfaces + 1 rounds: beyond that no
-    consistent set exists and INCONSISTENT is returned.
+    once (its relative acceleration opposes its direction) is held again, and that
+    direction is marked as tried for it. Releasing other interfaces can turn the friction
+    it needs round, so it may later be released the other way; but when it needs more than
+    μ_s N towards a direction already tried, neither stick nor slip is consistent for it
+    (its friction law's μ(0⁺) exceeds μ_s, or the coupled limits conflict) and
+    INCONSISTENT is returned with that interface. A held interface is released at most
+    once, and a candidate at most once each way, so the rule ends within
+    4 n_interfaces + 1 rounds. A held interface is released as soon as |f| > μ_s N, as its
+    breakaway guard says; a candidate only beyond μ_s N (1 + ``FRICTION_SLACK``).
 
-    Returns (status, kinetic energy lost to the projection, topology); v is projected.
+    Returns (status, kinetic energy lost to the projection, topology, the interface that
+    made the set inconsistent or −1); v is projected.
     """
     n = len(modes)
-    tried = np.zeros(n, dtype=np.bool_)
+    tried = np.zeros(n, dtype=np.int64)  # per interface: bit 1 slip +, bit 2 slip − tried
     v_trial = v.copy()
-    for _ in range(2 * n + 2):
+    for _ in range(4 * n + 2):
         topology = regroup(s, modes)
         v_trial[:] = v
         lost = project_velocities(s, topology, v_trial)
         evaluate_guards(t, x, v_trial, modes, topology, s, w, w.a_end)
         worst = -1
-        worst_ratio = 1.0 + FRICTION_SLACK
+        worst_ratio = 0.0
         for e in topology.stuck_interfaces:
             limit = s.static_mu[e] * w.normal[e]
             need = abs(w.friction[e])
-            ratio = need / limit if limit > 0.0 else (np.inf if need > 0.0 else 0.0)
-            if ratio > worst_ratio and not (tried[e] and candidates[e]):
-                worst = e
-                worst_ratio = ratio
+            if need > (limit * (1.0 + FRICTION_SLACK) if candidates[e] else limit):
+                ratio = need / limit if limit > 0.0 else np.inf
+                if ratio >= worst_ratio:
+                    worst = e
+                    worst_ratio = ratio
         if worst >= 0:
-            modes[worst] = SLIP_POSITIVE if w.friction[worst] > 0.0 else SLIP_NEGATIVE
+            direction = SLIP_POSITIVE if w.friction[worst] > 0.0 else SLIP_NEGATIVE
+            if tried[worst] & direction_bit(direction):
+                return INCONSISTENT, 0.0, topology, worst
+            modes[worst] = direction
             continue
         restick = -1
         for e in range(n):
-            if candidates[e] and modes[e] != STICK and not tried[e]:
-                direction = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
-                if direction * relative_acceleration(s, e, w.a_end) < 0.0:
+            if candidates[e] and modes[e] != STICK:
+                sign = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
+                if sign * relative_acceleration(s, e, w.a_end) < 0.0:
                     restick = e
                     break
         if restick < 0:
             v[:] = v_trial
-            return FINISHED, lost, topology
-        tried[restick] = True
+            return FINISHED, lost, topology, -1
+        tried[restick] |= direction_bit(modes[restick])
         modes[restick] = STICK
-    return INCONSISTENT, 0.0, regroup(s, modes)
+    return INCONSISTENT, 0.0, regroup(s, modes), -1
+
+
+@njit_inlined
+def direction_bit(mode):
+    """1 for SLIP_POSITIVE, 2 for SLIP_NEGATIVE: the flags of ``settle``'s tried directions."""
+    return 1 if mode == SLIP_POSITIVE else 2
 
 
 @njit(cache=True)
 def resolve(t, x, v, modes, contact_before, motion_before, s, w):
-    """The new modes after the guards in w crossed; returns (status, lost energy, topology)."""
+    """The new modes after the guards in w crossed; returns what ``settle`` returns."""
     candidates = np.zeros(len(modes), dtype=np.bool_)
     for e in range(len(modes)):
         if crossed(contact_before[e], w.contact[e]):
@@ -578,15 +722,22 @@ def switch(t, x, v, energy, modes, contact_before, motion_before, s, w, events, 
 
     On return the guards at the restart are in contact_before / motion_before and its
     acceleration and powers in w.a_start / w.stage_p[0]. Returns (status, the interface
-    that stopped the run or −1, topology).
+    that stopped the run or −1, topology). A switch that changes no mode is counted in
+    ``events.idle``; ``MAX_IDLE_SWITCHES`` of them in a row stop the run (NO_PROGRESS).
     """
     old = modes.copy()
-    status, lost, topology = resolve(t, x, v, modes, contact_before, motion_before, s, w)
+    crossing = first_crossed(contact_before, motion_before, w)
+    status, lost, topology, culprit = resolve(t, x, v, modes, contact_before,
+                                              motion_before, s, w)
     energy[N_POWERS] += lost
     last = log_switches(t, old, modes, events)
+    events.idle[0] = events.idle[0] + 1 if last < 0 else 0
     stop_interface = -1
     if status != FINISHED:
-        stop_interface = last
+        stop_interface = culprit if culprit >= 0 else last
+    elif events.idle[0] >= MAX_IDLE_SWITCHES:
+        status = NO_PROGRESS
+        stop_interface = crossing
     elif zeno_events > 0 and t - events.recent[(events.n_events[0] + 1)
                                                % len(events.recent)] < zeno_window:
         status = ZENO
@@ -638,7 +789,7 @@ def begin(s, x0, v0, t0, n_samples, event_capacity, zeno_events):
     v = v0.copy()
     energy = np.zeros(N_WORK)
     modes, candidates = initial_modes(x, v, s, w)
-    status, lost, topology = settle(t0, x, v, modes, candidates, s, w)
+    status, lost, topology, _ = settle(t0, x, v, modes, candidates, s, w)
     energy[N_POWERS] += lost
     contact_before = np.empty(n_interfaces)
     motion_before = np.empty(n_interfaces)
@@ -703,10 +854,14 @@ def advance_fixed(k, t, t0, step, n_steps, steps_per_sample, tolerance, x, v, en
                                                  s, w, w.a_end))
         if (HAS_CONTACT_EVENTS or HAS_STICK) and any_crossed(contact_before, motion_before, w):
             return k, t, sample, FINISHED, 1.0
+        theta = 2.0
         if HAS_CONTACT_EVENTS:
             theta = graze_fixed(t, t_end - t, tolerance, x, v, energy, modes, topology, s, w)
-            if theta <= 1.0:
-                return k, t, sample, FINISHED, theta
+        if HAS_STICK and len(topology.stuck_interfaces) > 0:
+            theta = min(theta, breakaway_fixed(t, t_end - t, x, v, energy, modes, topology,
+                                               motion_before, s, w))
+        if theta <= 1.0:
+            return k, t, sample, FINISHED, theta
         keep_guards(w, contact_before, motion_before)
         take_step(x, v, energy, w)
         if not is_finite(x, v):
@@ -790,14 +945,18 @@ def advance_adaptive(t, h, t_final, sample_step, t0, n_samples, rtol, atol_x, at
 
     Returns (t, h, sample, steps, status, theta): theta ≤ 1 locates the first crossing
     found inside the step of size h from t (the state still at its start); theta = 2 when
-    the run reached its last sample or stopped with the status.
+    the run reached its last sample or stopped with the status. A step that shrinks below
+    h_min stops the run: NOT_FINITE if the last trial's error was inf or NaN (a law gave a
+    non-finite force ahead), else STEP_TOO_SMALL.
     """
+    error = 0.0
     while sample < n_samples:
         last = h >= t_final - t
         if last:
             h = t_final - t
         elif h < h_min:
-            return t, h, sample, steps, STEP_TOO_SMALL, 2.0
+            status = STEP_TOO_SMALL if math.isfinite(error) else NOT_FINITE
+            return t, h, sample, steps, status, 2.0
         error = dp5_step(t, x, v, energy, h, modes, topology, s, w, rtol, atol_x, atol_v)
         if not error <= 1.0:
             h *= max(0.2, 0.9 * error ** -0.2) if math.isfinite(error) else 0.2
@@ -807,6 +966,9 @@ def advance_adaptive(t, h, t_final, sample_step, t0, n_samples, rtol, atol_x, at
             theta = 1.0 if any_crossed(contact_before, motion_before, w) else 2.0
             theta = min(theta, kinematic_dip(h, x, v, energy, modes, contact_before,
                                              motion_before, s, w))
+            if HAS_STICK and len(topology.stuck_interfaces) > 0:
+                theta = min(theta, breakaway_dense(t, h, x, v, energy, modes, topology,
+                                                   motion_before, s, w))
             if HAS_CONTACT_EVENTS:
                 theta = min(theta, graze_dense(h, tolerance, x, v, energy, modes, s, w))
             if theta <= 1.0:

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import os
 from dataclasses import asdict, dataclass
+from pathlib import Path
 
 import numpy as np
 
-from contact_laws import check_real
+from contact_laws import check_int, check_real
 
 from .dynamics import interface_kinematics
 from .kernel import kernel_scene, load_kernel
@@ -30,10 +32,9 @@ class FixedStep:
     steps_per_period: int = 1000
 
     def __post_init__(self):
-        if isinstance(self.steps_per_period, bool) or not isinstance(self.steps_per_period, int) \
-                or self.steps_per_period < 8:
-            raise ValueError(f"FixedStep.steps_per_period must be an int >= 8, "
-                             f"got {self.steps_per_period!r}")
+        object.__setattr__(self, "steps_per_period",
+                           check_int("FixedStep", "steps_per_period", self.steps_per_period,
+                                     low=8))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -94,8 +95,7 @@ class Accuracy:
 
     def settings(self, scene: Scene, event_tolerance: float) -> tuple[Adaptive, float]:
         """The integrator and event tolerance [periods] that deliver ``target`` on ``scene``."""
-        a = scene.arrays
-        deflection = np.abs(a.amplitudes).sum() / a.stiffness.min()
+        deflection = scene.arrays.static_deflection
         rtol = self.target / ACCURACY_MARGIN
         method = Adaptive(rtol=rtol, atol=rtol * (deflection if deflection > 0.0 else 1e-6))
         return method, min(event_tolerance, rtol)
@@ -132,8 +132,7 @@ class ZenoGuard:
     window: float | None = None
 
     def __post_init__(self):
-        if isinstance(self.events, bool) or not isinstance(self.events, int) or self.events < 2:
-            raise ValueError(f"ZenoGuard.events must be an int >= 2, got {self.events!r}")
+        object.__setattr__(self, "events", check_int("ZenoGuard", "events", self.events, low=2))
         if self.window is not None:
             check_real("ZenoGuard", "window", self.window, low=0.0, low_open=True,
                        unit="periods")
@@ -182,18 +181,21 @@ def simulate(scene: Scene, periods: int, *,
     initial : (x0, v0), optional
         Initial displacements [m] and velocities [m/s] by blade position; default at rest.
     event_capacity : int
-        Most events kept in the log (counts stay exact beyond it).
+        Most events kept in the log, ≥ 0 (counts stay exact beyond it).
 
     Raises
     ------
+    ValueError
+        Before any work, on a bad argument, or when the record of the run (``output_bytes``)
+        would need more than ``MEMORY_FRACTION`` (half) of the memory available as the run
+        starts (``available_memory``; 8 GiB where it cannot be read).
     SimulationError
         On Zeno or chattering behaviour, a mode set with no consistent choice, a step size
         that collapses, or a non-finite state; the message names the time and the interface.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate needs a shroudnet.Scene, got {scene!r}")
-    if isinstance(periods, bool) or not isinstance(periods, int) or periods < 1:
-        raise ValueError(f"periods must be an int >= 1, got {periods!r}")
+    periods = check_int("simulate", "periods", periods, low=1)
     if not isinstance(method, FixedStep | Adaptive | Accuracy):
         raise TypeError("method must be FixedStep(...), Adaptive(...) or Accuracy(...), "
                         f"got {method!r}")
@@ -201,15 +203,15 @@ def simulate(scene: Scene, periods: int, *,
                high=1e-3, unit="periods")
     if isinstance(method, Accuracy):
         method, event_tolerance = method.settings(scene, event_tolerance)
-    if isinstance(samples_per_period, bool) or not isinstance(samples_per_period, int) \
-            or samples_per_period < 1:
-        raise ValueError(f"samples_per_period must be an int >= 1, got {samples_per_period!r}")
+    samples_per_period = check_int("simulate", "samples_per_period", samples_per_period, low=1)
+    event_capacity = check_int("simulate", "event_capacity", event_capacity, low=0)
     if isinstance(method, FixedStep) and method.steps_per_period % samples_per_period:
         raise ValueError(f"samples_per_period must divide FixedStep.steps_per_period = "
                          f"{method.steps_per_period}, got {samples_per_period}")
     n = len(scene.blades)
     x0, v0 = (np.zeros(n), np.zeros(n)) if initial is None else (
         _initial(initial[0], n, "x0"), _initial(initial[1], n, "v0"))
+    _check_memory(scene, periods, samples_per_period, event_capacity)
 
     period = scene.excitation_period
     kernel = load_kernel(scene)
@@ -246,6 +248,68 @@ def simulate(scene: Scene, periods: int, *,
 #: An adaptive step below this many excitation periods stops the run.
 _SMALLEST_STEP = 1e-14
 
+#: A run may claim at most this fraction of the memory available when it starts.
+MEMORY_FRACTION = 0.5
+#: The bound [bytes] where the available memory cannot be read: 8 GiB.
+MEMORY_FALLBACK = 8 * 2**30
+#: Columns of ``Simulation.work``: excitation, damping, friction, contact, lock.
+_WORK_COLUMNS = 5
+
+
+def available_memory() -> int | None:
+    """Bytes the machine can still give this process, or None where that cannot be read.
+
+    ``MemAvailable`` of ``/proc/meminfo`` (Linux), else the free physical pages
+    (``os.sysconf``), lowered to the room left under a cgroup v2 memory limit.
+    """
+    found = []
+    try:
+        for line in Path("/proc/meminfo").read_text().splitlines():
+            if line.startswith("MemAvailable:"):
+                found.append(int(line.split()[1]) * 1024)
+    except (OSError, ValueError, IndexError):
+        pass
+    if not found:
+        try:
+            found.append(os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+        except (AttributeError, OSError, ValueError):
+            pass
+    try:
+        cgroup = Path("/sys/fs/cgroup")
+        limit = (cgroup / "memory.max").read_text().strip()
+        if limit != "max":
+            found.append(int(limit) - int((cgroup / "memory.current").read_text()))
+    except (OSError, ValueError):
+        pass
+    return max(min(found), 0) if found else None
+
+
+def output_bytes(scene: Scene, periods: int, samples_per_period: int,
+                 event_capacity: int) -> int:
+    """Bytes a run allocates for its record: per sample t, x, v (float64 per blade), normal
+    and friction forces (float64) and modes (int8) per interface and the work columns;
+    and the event log (time, interface, kind) at its capacity."""
+    n_samples = periods * samples_per_period + 1
+    blades, interfaces = len(scene.blades), len(scene.group.interfaces)
+    per_sample = 8 * (1 + 2 * blades + 2 * interfaces + _WORK_COLUMNS) + interfaces
+    return n_samples * per_sample + event_capacity * (8 + 8 + 1)
+
+
+def _check_memory(scene, periods, samples_per_period, event_capacity):
+    """Refuse, before any work, a run whose record would not fit in memory."""
+    needed = output_bytes(scene, periods, samples_per_period, event_capacity)
+    available = available_memory()
+    bound = MEMORY_FALLBACK if available is None else int(MEMORY_FRACTION * available)
+    if needed > bound:
+        what = (f"half the {available / 2**30:.3g} GiB available" if available is not None
+                else f"the {MEMORY_FALLBACK / 2**30:g} GiB allowed where the available memory "
+                     "cannot be read")
+        raise ValueError(f"periods = {periods} with samples_per_period = {samples_per_period} "
+                         f"would record {periods * samples_per_period + 1:,} samples and need "
+                         f"{needed / 2**30:.3g} GiB, more than {what}. Run fewer periods, "
+                         "take fewer samples per period, or run in pieces, each starting from "
+                         "the last state of the one before (initial=).")
+
 
 def _initial(values, n, name):
     array = np.asarray(values, dtype=float)
@@ -267,12 +331,22 @@ def _stop_message(kernel, scene, status, t, interface, period, zeno_events, zeno
                 "contact force continuous at closing, soften or damp the contact, use a "
                 "Regularised friction law, or widen ZenoGuard if this is expected.")
     if status == kernel.INCONSISTENT:
-        return (f"no consistent set of stick and slip modes {when}{where}: the friction "
-                "limits of coupled stuck interfaces conflict.")
+        return (f"no consistent set of stick and slip modes {when}{where}: the interface "
+                "needs more static friction than μ_s N to stick, yet slipping either way "
+                "would reverse at once. Its friction law's kinetic coefficient near zero "
+                "slip, μ(0⁺), must not exceed μ_s.")
+    if status == kernel.NO_PROGRESS:
+        return (f"no progress {when}{where}: {kernel.MAX_IDLE_SWITCHES} switches in a row "
+                "changed no mode, so the event guards and the stick and slip rule disagree "
+                "there. A friction law whose stick limit differs from the μ_s it reports "
+                "does this.")
     if status == kernel.STEP_TOO_SMALL:
         return (f"the adaptive step fell below {_SMALLEST_STEP:g} periods {when}{where}: "
-                "the tolerances cannot be met there; loosen rtol/atol or stiffen less.")
-    return f"the state became non-finite {when}{where}; reduce the step or the stiffness."
+                "the forces change too abruptly there for the tolerances (a jump in a "
+                "contact law, or a very stiff contact); smooth the law, or loosen rtol/atol.")
+    return (f"the state or the forces became non-finite {when}{where}: a contact or "
+            "friction law returned inf or NaN there, or the fixed step is too large for the "
+            "stiffest contact (use Adaptive, or more steps per period).")
 
 
 def _contact_energy(law, penetration):

@@ -1,0 +1,154 @@
+"""Every way a run can stop, reached on purpose: each ``SimulationError`` names the time,
+the interface and what to do, and a run that makes no progress stops instead of hanging.
+
+(The Zeno stop is reached in ``test_hard_cases``.)
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+import contact_laws as cl
+import shroudnet.scene
+import shroudnet.kernel as kernel
+from shroudnet import Adaptive, FixedStep, SimulationError, simulate
+from shroudnet.scenes import three_blade_paper
+
+
+def sticking_scene(**laws):
+    """The paper's group with μ_s above tan α, so that its interfaces stick and break away."""
+    friction = laws.pop("friction", cl.ExponentialFriction(mu_static=0.8, mu_kinetic=0.3,
+                                                           beta=5.0))
+    return three_blade_paper(alpha=0.4, friction=friction, **laws)
+
+
+@pytest.fixture
+def unchecked_laws(monkeypatch):
+    """Scenes built without the sampled check of user laws, to reach the loop's own guards."""
+    monkeypatch.setattr(shroudnet.scene, "check_user_laws", lambda scene: None)
+
+
+@dataclass(frozen=True, kw_only=True)
+class GrippingOnceSliding(cl.FrictionLaw):
+    """A law whose coefficient jumps up as soon as it slips: μ(0) = μ_s < μ(0⁺) = μ_slip."""
+
+    mu_static: float
+    mu_slip: float
+
+    @staticmethod
+    def coefficient(slip_speed, mu_static, mu_slip):
+        return mu_slip if slip_speed > 0.0 else mu_static
+
+
+@dataclass(frozen=True, kw_only=True)
+class TabulatedSpring(cl.NormalLaw):
+    """N = k δ up to the end of its table at δ = ``reach``; NaN beyond, as an interpolation
+    table outside its range gives."""
+
+    stiffness: float
+    reach: float
+
+    @staticmethod
+    def normal_force(penetration, rate, stiffness, reach):
+        return stiffness * penetration if penetration <= reach else math.nan
+
+
+@dataclass(frozen=True, kw_only=True)
+class SteppedSpring(cl.NormalLaw):
+    """N = k δ, plus a force that jumps by ``jump`` where δ passes ``step``."""
+
+    stiffness: float
+    step: float
+    jump: float
+
+    @staticmethod
+    def normal_force(penetration, rate, stiffness, step, jump):
+        return stiffness * penetration + (jump if penetration > step else 0.0)
+
+
+@pytest.fixture
+def planted_friction_slack(monkeypatch, tmp_path):
+    """Kernels whose stick rule keeps |f| up to 1.05 μ_s N, while their breakaway guard
+    fires at μ_s N: guards and mode rule disagree."""
+    loop, compiled_in = kernel._loop_sources()
+    planted = loop.replace("if candidates[e] else limit):",
+                           "if candidates[e] else 1.05 * limit):")
+    assert planted != loop, "the stick rule's threshold moved: plant it where it is now"
+    monkeypatch.setattr(kernel, "_loop_sources", lambda: (planted, compiled_in))
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
+    kernel._kernel.cache_clear()
+    yield
+    kernel._kernel.cache_clear()
+
+
+@pytest.mark.slow  # compiles a kernel with the planted rule
+def test_guards_and_stick_rule_that_disagree_stop_the_run_instead_of_hanging(
+        planted_friction_slack):
+    """Each located breakaway leaves the interface stuck, its guard falls further, and the
+    next switch is one event tolerance later: without a guard the run would creep on for
+    hours. It stops after MAX_IDLE_SWITCHES switches that change no mode."""
+    with pytest.raises(SimulationError,
+                       match=r"no progress at t = .* on interface [01] \('blade\d', 'blade\d'\): "
+                             r"1000 switches in a row changed no mode"):
+        simulate(sticking_scene(), 20)
+
+
+def test_the_same_scene_with_a_consistent_rule_sticks_and_breaks_away():
+    """The scene above, with the real kernel, runs through its stick phases."""
+    sim = simulate(sticking_scene(), 20)
+    assert sim.events.counts["sticking"] > 0
+    assert sim.events.counts["breakaway"] > 0
+
+
+def test_friction_that_grips_harder_once_sliding_has_no_consistent_mode(unchecked_laws):
+    """μ(0⁺) > μ_s: past μ_s N the interface cannot stick, and slipping either way is
+    opposed by more friction than the force that drives it (the Painlevé situation).
+    The mode rule reports it, naming the interface, instead of holding a stick beyond its
+    limit."""
+    scene = sticking_scene(friction=GrippingOnceSliding(mu_static=0.3, mu_slip=0.8))
+    with pytest.raises(SimulationError, match=r"no consistent set of stick and slip modes at "
+                                              r"t = .* on interface [01] .*μ\(0⁺\)"):
+        simulate(scene, 20)
+
+
+def test_a_law_that_gives_nan_stops_the_adaptive_run_as_not_finite(unchecked_laws):
+    """A table law read past its end gives NaN: the adaptive step shrinks in front of it
+    until it collapses, and the run says a law gave a non-finite force, not that the
+    tolerances are too tight."""
+    scene = three_blade_paper(normal=TabulatedSpring(stiffness=3e5, reach=1e-6))
+    with pytest.raises(SimulationError, match=r"non-finite at t = .*law returned inf or NaN"):
+        simulate(scene, 5, method=Adaptive())
+
+
+def test_a_law_that_gives_nan_stops_the_fixed_step_run_as_not_finite(unchecked_laws):
+    scene = three_blade_paper(normal=TabulatedSpring(stiffness=3e5, reach=1e-6))
+    with pytest.raises(SimulationError, match=r"non-finite at t = .*law returned inf or NaN"):
+        simulate(scene, 5, method=FixedStep(steps_per_period=200))
+
+
+def test_a_force_jump_the_tolerances_cannot_follow_collapses_the_step():
+    """A jump J in the normal force at δ = δ1: a step of h across it errs by about
+    h J / m in velocity, against atol·lΩ ≈ 2.5e-9 m/s. With J = 1e9 N that is still 250
+    times too much at the smallest step (1e-14 periods = 5e-17 s), so the step collapses
+    as it closes in on δ1."""
+    scene = three_blade_paper(normal=SteppedSpring(stiffness=3e5, step=1e-6, jump=1e9))
+    with pytest.raises(SimulationError, match=r"adaptive step fell below 1e-14 periods at "
+                                              r"t = .*jump in a contact law"):
+        simulate(scene, 5, method=Adaptive())
+
+
+def test_a_full_event_log_keeps_the_first_switches_and_exact_counts():
+    """A log of capacity 10 holds the first ten switches of the full log, says it is
+    truncated, and still counts every switch."""
+    scene = sticking_scene()
+    full = simulate(scene, 10)
+    short = simulate(scene, 10, event_capacity=10)
+    assert len(full.events) == sum(full.events.counts.values()) > 10
+    assert not full.events.truncated
+    assert len(short.events) == 10 and short.events.truncated
+    assert short.events.counts == full.events.counts
+    np.testing.assert_array_equal(short.events.time, full.events.time[:10])
+    np.testing.assert_array_equal(short.events.kind, full.events.kind[:10])
+    np.testing.assert_array_equal(short.x, full.x)
