@@ -1,6 +1,5 @@
 """Law factories shared by the tests: every built-in law, and one written by a user."""
 
-import math
 from dataclasses import dataclass
 
 from hypothesis import strategies as st
@@ -97,4 +96,13 @@ EVERY_FRICTION_LAW = [
     cl.Regularised(law=cl.Coulomb(mu=0.3), velocity=1e-3),
     RationalWeakening(mu_static=0.5, mu_kinetic=0.25, speed=0.05),
 ]
-assert math.isfinite(EVERY_NORMAL_LAW[0](1e-5))
+
+
+def static_limit(law):
+    """μ_s of a friction law as the test gave it (``mu`` or ``mu_static``).
+
+    Read from the law's own parameters, never from ``static_coefficient`` or the scene's
+    arrays, so that a friction-limit test computes μ_s N without asking the code under test.
+    """
+    exact = law.law if isinstance(law, cl.Regularised) else law
+    return float(exact.mu if isinstance(exact, cl.Coulomb) else exact.mu_static)

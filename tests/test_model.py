@@ -2,6 +2,7 @@
 
 import math
 
+import networkx as nx
 import numpy as np
 import pytest
 
@@ -42,7 +43,7 @@ EXCITATION = Excitation(engine_order=2, amplitudes=(0.0, 10.0), phases=AntiPhase
      r"needs two nodes"),
     (lambda: BladeGroup().add_fixed("d").add_fixed("c").connect("d", "c", SHROUD), ValueError,
      r"both nodes are fixed"),
-    (lambda: BladeGroup.chain(2, BLADE, SHROUD).connect("blade1", "blade0", SHROUD), ValueError,
+    (lambda: BladeGroup.chain(2, BLADE, SHROUD).connect("blade2", "blade1", SHROUD), ValueError,
      r"already connected"),
     (lambda: BladeGroup.ring(2, BLADE, SHROUD), ValueError, r"ring needs n >= 3"),
     (lambda: BladeGroup.chain(3, [BLADE, BLADE], SHROUD), ValueError, r"2 blades for n = 3"),
@@ -88,9 +89,9 @@ def test_frequency_models_and_stiffness():
 
 def test_presets_chain_ring_and_fixed_nodes():
     ring = BladeGroup.ring(5, BLADE, SHROUD)
-    assert ring.interfaces[-1][:2] == ("blade4", "blade0")
+    assert ring.interfaces[-1][:2] == ("blade5", "blade1")
     assert [(a, b) for a, b, _ in BladeGroup.chain(3, BLADE, SHROUD).interfaces] == [
-        ("blade0", "blade1"), ("blade1", "blade2")]
+        ("blade1", "blade2"), ("blade2", "blade3")]
     group = BladeGroup().add_blade("b", BLADE).add_fixed("casing").connect("casing", "b", SHROUD)
     scene = Scene(group=group, excitation=Excitation(engine_order=1, amplitudes=(0, 1),
                                                      phases=[0.0]), speed_rpm=10.0)
@@ -102,9 +103,13 @@ def test_scene_freezes_a_copy_of_its_group():
     group = BladeGroup.chain(3, BLADE, SHROUD)
     scene = Scene(group=group, excitation=EXCITATION, speed_rpm=3000.0)
     group.add_blade("late", BLADE)
-    assert scene.blades == ["blade0", "blade1", "blade2"]
-    with pytest.raises(Exception):
+    assert scene.blades == ["blade1", "blade2", "blade3"]
+    first, _, last = scene.blades
+    with pytest.raises(nx.NetworkXError, match="Frozen graph can't be modified"):
         scene.group.add_blade("later", BLADE)
+    with pytest.raises(nx.NetworkXError, match="Frozen graph can't be modified"):
+        scene.group.connect(last, first, SHROUD)
+    assert scene.blades == ["blade1", "blade2", "blade3"] and len(scene.group.interfaces) == 2
 
 
 def test_phase_patterns():

@@ -4,6 +4,8 @@ The paper's dimensionless equations are transcribed here independently of the li
 the paper's notation: X = x/Δ1, τ = ω t, X' = dX/dτ, Q̄ = Q/(m Δ1 ω²), N̄ = γ1 X_r sin α,
 X_r1 = X1 − X2 − 1, X_r2 = X2 − X3 − K. Eq. (22) is used as corrected in DESIGN §5 (the
 printed signs of its Q and C terms are inverted); μ(v_r) takes the physical slip velocity.
+The scene is given the paper's friction law with μ_s = 0.5 here, so that the stick limit
+μ_s N̄ is the paper's number, not one read back from the scene.
 """
 
 import math
@@ -13,10 +15,13 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from contact_laws import ExponentialFriction
 from shroudnet import Mode, assemble
 from shroudnet.scenes import three_blade_paper
 
 MU_S, MU_M, BETA = 0.5, 0.3, 5.0
+#: The paper's eq. (4) law with its §3 numbers, given to the scene by the test.
+PAPER_FRICTION = ExponentialFriction(mu_static=MU_S, mu_kinetic=MU_M, beta=BETA)
 
 # The paper's cases: (contact 1, contact 2) with "open", "slip" or "stick" on each side.
 CASES = {
@@ -107,7 +112,7 @@ def _mode(side, relative_velocity):
 @given(paper_states())
 def test_assembled_dynamics_match_the_papers_case_equations(sample):
     case, params, delta1, K, X, dX, phase = sample
-    scene = three_blade_paper(gap=(delta1, K * delta1), **params)
+    scene = three_blade_paper(gap=(delta1, K * delta1), friction=PAPER_FRICTION, **params)
     arrays = scene.arrays
     m, c, k = arrays.mass[0], arrays.damping[0], arrays.stiffness[0]
     omega = math.sqrt(k / m)
@@ -132,6 +137,10 @@ def test_assembled_dynamics_match_the_papers_case_equations(sample):
         if expected is not None:
             assert result.friction_force[e] / force_unit == pytest.approx(
                 expected, rel=1e-9, abs=1e-9 * scale)
+            # A stuck contact holds while |f̄τ| ≤ μ_s N̄ (eq. 6 with μ(0) = μ_s = 0.5): the
+            # breakaway margin is measured against that limit.
+            assert result.motion_guard[e] / force_unit == pytest.approx(
+                MU_S * N[e] - abs(expected), rel=1e-9, abs=1e-9 * scale)
 
 
 def test_printed_eq22_violates_eq7_and_the_corrected_one_does_not():

@@ -8,7 +8,7 @@ import pytest
 
 from contact_laws import Coulomb, Regularised
 from shroudnet import Accuracy, Adaptive, FixedStep, simulate, sweep
-from shroudnet.precision import (REFERENCE, Measurement, Regime, Setting, Study, errors, outcome,
+from shroudnet.precision import (REFERENCE, Measurement, Setting, Study, errors, outcome,
                                  paper_regimes, regularised, run, sampling_floor, summary)
 from shroudnet.scenes import three_blade_paper
 from tests.test_simulate import linear_response
@@ -108,4 +108,17 @@ def test_bad_accuracy_and_method_fail_before_any_work():
         Accuracy(target=1.0)
     with pytest.raises(TypeError, match=r"sweep\.method must be FixedStep"):
         sweep(lambda g: three_blade_paper(gamma1=g), [1.0], method="rk4", workers=1)
-    assert Regime  # the study's regimes are plain data, built by paper_regimes
+
+
+def test_paper_regimes_are_the_papers_group_at_three_stiffness_ratios():
+    """§3.2: γ1 = k_c/k = 1 (p1), 3.5 (p3) and 8.8 (chaotic), at 6000 rpm with q1 = 50 N,
+    each with the periods to skip and to record that were asked for."""
+    regimes = paper_regimes(transient=7, record=9, chaotic_record=11)
+    assert [(r.transient, r.record, r.chaotic) for r in regimes] == [
+        (7, 9, False), (7, 9, False), (7, 11, True)]
+    for regime, gamma1 in zip(regimes, (1.0, 3.5, 8.8)):
+        scene = regime.scene
+        k = scene.group.blade(scene.blades[0]).stiffness_at(6000.0)
+        assert scene.speed_rpm == 6000.0 and scene.excitation.amplitudes == (0.0, 50.0)
+        for _, _, interface in scene.group.interfaces:
+            assert interface.normal.stiffness == pytest.approx(gamma1 * k, rel=1e-15)

@@ -95,18 +95,71 @@ def test_stuck_interfaces_respect_the_friction_limit_and_slip_follows_its_mode()
                    samples_per_period=1000)
     counts = sim.events.counts
     assert counts["sticking"] > 0 and counts["breakaway"] > 0
-    a = sim.scene.arrays
+    # By hand from _sticky_scene's numbers: u = x_i − x_(i+1), δ = (u + 5 µm) sin 0.3,
+    # N = 3e5 δ while closed, and the limit μ_s N with the μ_s = 0.8 it gave Coulomb.
+    u = sim.x[:, :-1] - sim.x[:, 1:]
+    closed = sim.modes != Mode.OPEN
+    normal = np.where(closed, 3e5 * (u + 5e-6) * math.sin(0.3), 0.0)
+    np.testing.assert_allclose(sim.normal_force, normal, rtol=1e-9, atol=1e-15)
     stuck = sim.modes == Mode.STICK
-    limit = a.static_mu * sim.normal_force
+    sliding = closed & ~stuck
+    assert stuck.any() and sliding.any()
+    limit = 0.8 * normal
     assert np.all(np.abs(sim.friction_force[stuck]) <= limit[stuck] * (1 + 1e-6) + 1e-12)
-    du = (np.where(a.left >= 0, sim.v[:, a.left], 0.0)
-          - np.where(a.right >= 0, sim.v[:, a.right], 0.0))
-    slip = du * a.cos_angle
+    np.testing.assert_allclose(np.abs(sim.friction_force[sliding]), limit[sliding], rtol=1e-9)
+    slip = (sim.v[:, :-1] - sim.v[:, 1:]) * math.cos(0.3)
     vscale = np.abs(slip).max()
     assert np.all(slip[sim.modes == Mode.SLIP_POSITIVE] >= -1e-6 * vscale)
     assert np.all(slip[sim.modes == Mode.SLIP_NEGATIVE] <= 1e-6 * vscale)
     assert np.all(np.abs(slip[stuck]) <= 1e-12 * vscale)
     assert abs(sim.energy.residual) < 1e-6 * sim.energy.friction_loss
+
+
+@pytest.mark.parametrize("reach, method", [
+    (0.2, Adaptive()), (0.2, FixedStep(steps_per_period=1000)),
+    # The excitation's peak passes the limit by 1 %: |f| > μ_s N for 4.5 % of a period.
+    (0.99, Adaptive()), (0.99, FixedStep(steps_per_period=1000)),
+    # |f| crosses μ_s N at the excitation's peak, rising through it very slowly.
+    (0.999999, FixedStep(steps_per_period=1000)),
+], ids=lambda value: type(value).__name__ if not isinstance(value, float) else f"{value:g}")
+def test_a_held_blade_breaks_away_when_its_static_friction_reaches_mu_s_n(reach, method):
+    """One blade pressed against the disc and started at rest at x = 0, where it sticks.
+
+    By hand, with k_c = 3e5 N/m, gap −5 µm, α = 0.3 rad, μ_s = 0.8 and
+    Q = q1 sin(ω t): N = 3e5 · 5e-6 · sin 0.3. Held (ẍ = 0 at x = 0) the blade's equation
+    m ẍ = Q − k x + F gives F = N sin α + f cos α = −Q, so f = −(Q + N sin α)/cos α. It
+    reaches −μ_s N, and the blade breaks away slipping negatively, first when
+    sin(ω t*) = N (μ_s cos α − sin α)/q1 = ``reach`` (q1 is chosen for that): a μ_s misread
+    by a part in a million would move t* by more than the event tolerance.
+    """
+    alpha, mu = 0.3, 0.8
+    normal = 3e5 * 5e-6 * math.sin(alpha)
+    q1 = normal * (mu * math.cos(alpha) - math.sin(alpha)) / reach
+    blade = Blade(mass=0.082, damping=4.0, stiffness=1.5e5)
+    shroud = Interface(gap=-5e-6, angle=alpha, normal=LinearSpring(stiffness=3e5),
+                       friction=Coulomb(mu=mu))
+    group = BladeGroup().add_fixed("disc").add_blade("held", blade)
+    group.connect("disc", "held", shroud)
+    scene = Scene(group=group, excitation=Excitation(engine_order=2, amplitudes=(0.0, q1),
+                                                     phases=[0.0]), speed_rpm=6000.0)
+    omega = 2 * 6000.0 * 2 * math.pi / 60.0
+    t_star = math.asin(reach) / omega
+    sim = simulate(scene, 1, method=method, samples_per_period=1000, event_tolerance=1e-10)
+    assert sim.events.counts["breakaway"] >= 1
+    assert sim.events.kind[0] == EventKind.BREAKAWAY and sim.events.interface[0] == 0
+    # Located within the event tolerance after the time |f| passes μ_s N by the mode
+    # rule's relative slack of 1e-9, which |f| rising at q1 ω cos(ω t*)/cos α takes to do.
+    rate = q1 * omega * math.cos(omega * t_star) / math.cos(alpha)
+    late = 1e-10 * scene.excitation_period + 1e-9 * mu * normal / rate
+    assert 0.0 <= sim.events.time[0] - t_star <= 1.01 * late
+    held = sim.t < t_star
+    assert np.all(sim.modes[held, 0] == Mode.STICK) and np.all(sim.x[held] == 0.0)
+    expected = -(q1 * np.sin(omega * sim.t[held]) + normal * math.sin(alpha)) / math.cos(alpha)
+    np.testing.assert_allclose(sim.friction_force[held, 0], expected, rtol=1e-9)
+    if reach < 0.5:  # well past the limit: still slipping at the next sample
+        after = np.flatnonzero(~held)[0]
+        assert sim.modes[after, 0] == Mode.SLIP_NEGATIVE
+        assert sim.friction_force[after, 0] == pytest.approx(-mu * sim.normal_force[after, 0])
 
 
 def _nonsmooth_errors(scene, methods, reference):
@@ -204,7 +257,6 @@ def test_zeno_guard_stops_with_the_time_and_the_interface():
     (dict(periods=2, method=FixedStep(), samples_per_period=7),
      r"samples_per_period must divide FixedStep"),
     (dict(periods=2, samples_per_period=0), r"samples_per_period must be an int >= 1"),
-    (dict(periods=2, method=Adaptive(), samples_per_period=1.5), r"samples_per_period must be"),
     (dict(periods=2, event_tolerance=0.0), r"simulate\.event_tolerance must be in \(0"),
     (dict(periods=2, initial=([0.0], [0.0])), r"initial x0 must hold 3 finite numbers"),
 ])
@@ -213,9 +265,13 @@ def test_bad_arguments_fail_before_any_work(kwargs, message):
         simulate(three_blade_paper(), **kwargs)
 
 
+def test_a_count_that_is_not_whole_is_refused_by_type():
+    with pytest.raises(TypeError, match=r"samples_per_period must be an int, got float 1\.5"):
+        simulate(three_blade_paper(), 2, method=Adaptive(), samples_per_period=1.5)
+
+
 def test_method_knobs_are_checked():
     with pytest.raises(ValueError, match=r"FixedStep\.steps_per_period must be an int >= 8"):
         FixedStep(steps_per_period=4)
     with pytest.raises(ValueError, match=r"ZenoGuard\.events must be an int >= 2"):
         ZenoGuard(events=1)
-    assert EventKind.BREAKAWAY.name == "BREAKAWAY"
