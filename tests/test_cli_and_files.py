@@ -103,7 +103,8 @@ def broken_files(folder: Path):
                                        "= 0.76 }", "", 1),
                          r"blades\[0\]: give a blade either frequency \[Hz\] or stiffness"),
         "bad phases": (paper.replace('phases = "anti-phase"', 'phases = "wave"'),
-                       r'excitation\.phases: must be "anti-phase", \{travelling_wave = nd\}'),
+                       r'excitation\.phases: must be "anti-phase", "engine-order", '
+                       r'\{travelling_wave = nd\}'),
         "bad method": (paper.replace('method = "adaptive"', 'method = "rk45"'),
                        r"run\.method: must be one of 'adaptive', 'fixed', 'accuracy'"),
         "knob of another method": (paper.replace("rtol = 1e-8", "steps_per_period = 500"),
