@@ -10,6 +10,9 @@ mutation is a bug the test suite cannot see::
     python tests/mutations.py --list
     python tests/mutations.py --source DIR    # plant into another checkout's tree
 
+Each run first runs the tests on an unchanged copy (skip it with ``--no-control``): a
+test that fails there would kill every mutation and prove nothing.
+
 The copies keep their compiled kernels in one cache folder of their own
 (``$SHROUDNET_MUTATION_CACHE``, else ``~/.cache/shroudnet-mutations``), so a second run
 compiles only what changed. A mutation of the compiled loop compiles its kernels anew:
@@ -116,8 +119,14 @@ def _copy_tree(source: Path, target: Path) -> None:
             shutil.copy2(origin, target / name)
 
 
+#: No change at all: the tests must pass on the copy, or no verdict below means anything.
+CONTROL = Mutation("control", "", "", "", "the unchanged source")
+
+
 def plant(mutation: Mutation, tree: Path) -> bool:
     """Apply ``mutation`` to ``tree``; False when its line is not there (the code moved)."""
+    if mutation is CONTROL:
+        return True
     path = tree / mutation.path
     text = path.read_text() if path.exists() else ""
     if text.count(mutation.old) != 1:
@@ -157,6 +166,8 @@ def main(argv=None) -> int:
                         help="the tree to plant into (default: this checkout)")
     parser.add_argument("--limit", type=float, default=900.0,
                         help="seconds the tests of one mutation may take (default 900)")
+    parser.add_argument("--no-control", action="store_true",
+                        help="skip the first run on the unchanged source")
     args = parser.parse_args(argv)
     chosen = [m for m in MUTATIONS if not args.words or any(w in m.name for w in args.words)]
     if args.list:
@@ -165,6 +176,12 @@ def main(argv=None) -> int:
         return 0
     cache = Path(os.environ.get("SHROUDNET_MUTATION_CACHE")
                  or Path.home() / ".cache" / "shroudnet-mutations")
+    if not args.no_control:
+        verdict, note = run(CONTROL, args.source.resolve(), PHYSICS_TESTS, args.limit, cache)
+        if verdict != "survived":
+            print(f"the tests fail on the unchanged source ({verdict}: {note}); fix that first")
+            return 2
+        print("control: the unchanged source passes", flush=True)
     survivors = 0
     for m in chosen:
         began = time.perf_counter()
