@@ -30,9 +30,10 @@ from numba import njit
 
 from shroudnet.clusters import cluster_labels
 from shroudnet.compiled import njit_inlined, njit_without_refcounts
-from shroudnet.dynamics import (cluster_accelerations, cluster_mass, event_guards,
-                                excitation_forces, interface_kinematics, relative_motion,
-                                resultant_forces, static_friction, static_friction_operator)
+from shroudnet.dynamics import (breakaway_margin, cluster_accelerations, cluster_mass,
+                                event_guards, excitation_forces, interface_kinematics,
+                                relative_motion, resultant_forces, static_friction,
+                                static_friction_operator)
 from shroudnet.kernel_types import Events, Output, Topology, Work
 
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = 0, 1, 2, 3
@@ -97,7 +98,7 @@ def new_work(n_blades, n_interfaces):
                 np.empty(m), np.empty(m),
                 np.empty(m), np.empty(m),
                 np.zeros((7, b)), np.zeros((7, b)), np.zeros((7, N_POWERS)), np.zeros(7),
-                np.zeros(N_WORK), np.zeros(N_WORK), np.zeros((len(DIP_POINTS) + 2, m)))
+                np.zeros(N_WORK), np.zeros(N_WORK))
 
 
 @njit(cache=True)
@@ -355,24 +356,12 @@ def kinematic_dip(h, x, v, energy, modes, contact_before, motion_before, s, w):
 
 
 @njit_inlined
-def stuck_margins(time, xt, vt, modes, topology, motion_before, s, w, row):
-    """Breakaway margins of the stuck interfaces at the state (xt, vt) inside a step, into
-    w.motion_trial and, for row ≥ 0, w.margins[row]; True if one has crossed.
-
-    The margin needs the static friction, so the forces are evaluated (into w's scratch;
-    the step's end guards in w.contact / w.motion are kept).
-    """
+def stuck_forces(time, xt, vt, modes, topology, s, w):
+    """The forces, static friction included, at the state (xt, vt) inside a step, into w's
+    scratch (the step's end guards in w.contact / w.motion are kept)."""
     derivative(time, xt, vt, modes, topology, s, w, w.a_sample)
     static_friction(topology.operator, topology.stuck_interfaces, s.mass, w.resultant,
                     w.a_sample, w.normal, s.sin_angle, s.left, s.right, w.imbalance, w.friction)
-    event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu, s.opens,
-                 s.can_stick, w.contact_trial, w.motion_trial)
-    found = False
-    for e in topology.stuck_interfaces:
-        if row >= 0:
-            w.margins[row, e] = w.motion_trial[e]
-        found = found or crossed(motion_before[e], w.motion_trial[e])
-    return found
 
 
 @njit_inlined
@@ -388,27 +377,27 @@ def parabola_low(a, b, c):
 
 
 @njit_inlined
-def predicted_dip(topology, w, n_points):
-    """The earliest fraction of the step where a stuck interface's margin, sampled at
-    n_points equally spaced fractions (0 … 1) in w.margins, is predicted below 0, else 2.
+def predicted_low(samples):
+    """(θ, value) at the lowest point of the parabola through the lowest of ``samples``
+    (values at equally spaced fractions 0 … 1 of a step) and its two neighbours."""
+    last = len(samples) - 1
+    lowest = 0
+    for k in range(1, last + 1):
+        if samples[k] < samples[lowest]:
+            lowest = k
+    centre = min(max(lowest, 1), last - 1)
+    offset, value = parabola_low(samples[centre - 1], samples[centre], samples[centre + 1])
+    return (centre + offset) / last, value
 
-    The prediction is the parabola through the lowest sample and its two neighbours: a
-    static friction that passes μ_s N and falls back between two samples shows there.
-    """
-    first = 2.0
-    last = n_points - 1
+
+@njit_inlined
+def stuck_crossed(topology, motion_before, s, w):
+    """Whether a stuck interface's breakaway margin, from the forces in w, has crossed."""
     for e in topology.stuck_interfaces:
-        lowest = 0
-        for k in range(1, n_points):
-            if w.margins[k, e] < w.margins[lowest, e]:
-                lowest = k
-        centre = min(max(lowest, 1), last - 1)
-        offset, value = parabola_low(w.margins[centre - 1, e], w.margins[centre, e],
-                                     w.margins[centre + 1, e])
-        theta = (centre + offset) / last
-        if value < 0.0 and 0.0 < theta < 1.0:
-            first = min(first, theta)
-    return first
+        if crossed(motion_before[e], breakaway_margin(s.static_mu[e], w.normal[e],
+                                                      w.friction[e])):
+            return True
+    return False
 
 
 @njit_inlined
@@ -418,47 +407,59 @@ def breakaway_dense(t, h, x, v, energy, modes, topology, motion_before, s, w):
 
     A stuck phase has no integration error to shorten the steps, so one step can span a
     whole excursion of the static friction beyond μ_s N. The margins are sampled at
-    ``DIP_POINTS`` on the dense output, then checked where the samples and the step's
-    ends predict them lowest.
+    ``DIP_POINTS`` on the dense output (the first two kept in w.contact_trial and
+    w.motion_trial), then checked where a parabola through the samples and the step's ends
+    puts them lowest.
     """
-    n_points = len(DIP_POINTS) + 2
-    for e in topology.stuck_interfaces:
-        w.margins[0, e] = motion_before[e]
-        w.margins[n_points - 1, e] = w.motion[e]
+    kept = (w.contact_trial, w.motion_trial)
     for k in range(len(DIP_POINTS)):
         theta = DIP_POINTS[k]
         dense_state(theta, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
-        if stuck_margins(t + theta * h, w.xt, w.vt, modes, topology, motion_before, s, w,
-                         k + 1):
-            return theta
-    theta = predicted_dip(topology, w, n_points)
-    if theta < 1.0:
-        dense_state(theta, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
-        if stuck_margins(t + theta * h, w.xt, w.vt, modes, topology, motion_before, s, w,
-                         -1):
-            return theta
+        stuck_forces(t + theta * h, w.xt, w.vt, modes, topology, s, w)
+        for e in topology.stuck_interfaces:
+            margin = breakaway_margin(s.static_mu[e], w.normal[e], w.friction[e])
+            if crossed(motion_before[e], margin):
+                return theta
+            if k < len(kept):
+                kept[k][e] = margin
+    first = 2.0
+    for e in topology.stuck_interfaces:
+        theta, value = predicted_low((motion_before[e], w.contact_trial[e], w.motion_trial[e],
+                                      breakaway_margin(s.static_mu[e], w.normal[e],
+                                                       w.friction[e]), w.motion[e]))
+        if value < 0.0 and 0.0 < theta < first:
+            first = theta
+    if first < 1.0:
+        dense_state(first, h, x, v, energy, w, w.xt, w.vt, w.e_sample)
+        stuck_forces(t + first * h, w.xt, w.vt, modes, topology, s, w)
+        if stuck_crossed(topology, motion_before, s, w):
+            return first
     return 2.0
 
 
 @njit_inlined
 def breakaway_fixed(t, h, x, v, energy, modes, topology, motion_before, s, w):
     """``breakaway_dense`` for the fixed-step RK4 step of size h from t: the margins are
-    sampled at its middle and checked where predicted lowest, each state integrated anew
-    from the step's start. Returns θ ≤ 1, or 2 with the step's end state and guards
-    restored in w."""
-    for e in topology.stuck_interfaces:
-        w.margins[0, e] = motion_before[e]
-        w.margins[2, e] = w.motion[e]
+    sampled at its middle and checked where a parabola through them and the step's ends
+    puts them lowest, each state integrated anew from the step's start. Returns θ ≤ 1, or
+    2 with the step's end state and guards restored in w."""
     rk4_step(t, x, v, energy, 0.5 * h, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
-    if stuck_margins(t + 0.5 * h, w.x_new, w.v_new, modes, topology, motion_before, s, w, 1):
+    stuck_forces(t + 0.5 * h, w.x_new, w.v_new, modes, topology, s, w)
+    if stuck_crossed(topology, motion_before, s, w):
         return 0.5
-    theta = predicted_dip(topology, w, 3)
-    if theta < 1.0:
-        rk4_step(t, x, v, energy, theta * h, modes, topology, s, w, w.x_new, w.v_new,
+    first = 2.0
+    for e in topology.stuck_interfaces:
+        theta, value = predicted_low((motion_before[e],
+                                      breakaway_margin(s.static_mu[e], w.normal[e],
+                                                       w.friction[e]), w.motion[e]))
+        if value < 0.0 and 0.0 < theta < first:
+            first = theta
+    if first < 1.0:
+        rk4_step(t, x, v, energy, first * h, modes, topology, s, w, w.x_new, w.v_new,
                  w.e_new)
-        if stuck_margins(t + theta * h, w.x_new, w.v_new, modes, topology, motion_before, s,
-                         w, -1):
-            return theta
+        stuck_forces(t + first * h, w.x_new, w.v_new, modes, topology, s, w)
+        if stuck_crossed(topology, motion_before, s, w):
+            return first
     rk4_step(t, x, v, energy, h, modes, topology, s, w, w.x_new, w.v_new, w.e_new)
     set_powers(w.stage_p[6], evaluate_guards(t + h, w.x_new, w.v_new, modes, topology, s, w,
                                              w.a_end))

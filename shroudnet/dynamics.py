@@ -180,6 +180,12 @@ def static_friction(operator, stuck_interfaces, mass, resultant, acceleration, n
 
 
 @njit_inlined
+def breakaway_margin(static_mu, normal_force, friction_force):
+    """μ_s N − |f| [N]: how much more friction a stuck interface can hold."""
+    return static_mu * normal_force - abs(friction_force)
+
+
+@njit_inlined
 def event_guards(modes, penetration, slip_velocity, normal_force, friction_force, static_mu,
                  opens, can_stick, contact, motion):
     """Guards: per interface, values that stay ≥ 0 while its mode holds and cross 0 at a switch.
@@ -196,7 +202,7 @@ def event_guards(modes, penetration, slip_velocity, normal_force, friction_force
         if opens[e]:
             contact[e] = -penetration[e] if mode == OPEN else penetration[e]
         if mode == STICK:
-            motion[e] = static_mu[e] * normal_force[e] - abs(friction_force[e])
+            motion[e] = breakaway_margin(static_mu[e], normal_force[e], friction_force[e])
         elif can_stick[e] and mode == SLIP_POSITIVE:
             motion[e] = slip_velocity[e]
         elif can_stick[e] and mode == SLIP_NEGATIVE:

@@ -21,14 +21,13 @@ Topology = namedtuple("Topology", [
 #: Scratch arrays of one run, allocated once. Per blade: q … a_sample, x_new, v_new; per
 #: interface: penetration … motion_trial; Runge–Kutta stages (7 rows): stage_v, stage_a
 #: (per blade) and stage_p (the four powers), and the dense output's weight of each stage;
-#: the state's energy columns: e_new, e_sample; the breakaway margins of stuck interfaces at
-#: points across a step (5 rows: ``margins[k, e]``).
+#: the state's energy columns: e_new, e_sample.
 Work = namedtuple("Work", [
     "q", "resultant", "scratch", "imbalance", "a_start", "a_end", "a_sample", "xt", "vt",
     "x_new", "v_new",
     "penetration", "rate", "slip", "normal", "friction", "force", "contact", "motion",
     "contact_trial", "motion_trial",
-    "stage_v", "stage_a", "stage_p", "dense_weights", "e_new", "e_sample", "margins",
+    "stage_v", "stage_a", "stage_p", "dense_weights", "e_new", "e_sample",
 ])
 
 #: The event log of one run: located switches (time, interface, kind) up to its capacity,
