@@ -77,7 +77,8 @@ MUTATIONS = (
     Mutation("projection-loss-dropped", "shroudnet/_loop.py",
              "    energy[N_POWERS] += lost\n    last = log_switches",
              "    last = log_switches",
-             "the kinetic energy lost as blades lock together is not booked"),
+             "the kinetic energy lost as blades lock together is not booked (expected to "
+             "survive: at stick onset it is about m (a τ)², some 1e-20 J)"),
     Mutation("breakaway-logged-as-reversal", "shroudnet/_loop.py",
              "    if before == STICK:\n        return BREAKAWAY",
              "    if before == STICK:\n        return REVERSAL",
