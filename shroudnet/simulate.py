@@ -338,8 +338,8 @@ def _stop_message(kernel, scene, status, t, interface, period, zeno_events, zeno
     if status == kernel.NO_PROGRESS:
         return (f"no progress {when}{where}: {kernel.MAX_IDLE_SWITCHES} switches in a row "
                 "changed no mode, so the event guards and the stick and slip rule disagree "
-                "there. A friction law whose stick limit differs from the μ_s it reports "
-                "does this.")
+                "there. The laws cannot cause this (both read the same μ_s N): it is a "
+                "defect of the mode rule; please report it with the scene file.")
     if status == kernel.STEP_TOO_SMALL:
         return (f"the adaptive step fell below {_SMALLEST_STEP:g} periods {when}{where}: "
                 "the forces change too abruptly there for the tolerances (a jump in a "
