@@ -25,7 +25,9 @@ Units are SI throughout, except rotating speeds, given in rev/min where a name e
 shrouded group blades with rubbing and impact*.
 """
 
+from . import progress as _progress
 from . import scenes as scenes
+from . import sweep as _sweeps  # the module; below, ``sweep`` names its function
 from .analysis import Campbell as Campbell
 from .analysis import Classification as Classification
 from .analysis import Spectrum as Spectrum
@@ -40,9 +42,9 @@ from .blade import Blade as Blade
 from .blade import ConstantFrequency as ConstantFrequency
 from .blade import FrequencyTable as FrequencyTable
 from .blade import Southwell as Southwell
-from .clusters import stick_clusters as stick_clusters
-from .dynamics import Assembly as Assembly
-from .dynamics import assemble as assemble
+from .engine.clusters import stick_clusters as stick_clusters
+from .engine.assembly import Assembly as Assembly
+from .engine.assembly import assemble as assemble
 from .excitation import AntiPhase as AntiPhase
 from .excitation import EngineOrderWave as EngineOrderWave
 from .excitation import Excitation as Excitation
@@ -50,20 +52,34 @@ from .excitation import ExplicitPhases as ExplicitPhases
 from .excitation import TravellingWave as TravellingWave
 from .group import BladeGroup as BladeGroup
 from .interface import Interface as Interface
-from .modes import Mode as Mode
+from .methods import Accuracy as Accuracy
+from .methods import Adaptive as Adaptive
+from .methods import FixedStep as FixedStep
+from .methods import ZenoGuard as ZenoGuard
+from .engine.codes import Mode as Mode
 from .scene import Scene as Scene
 from .scene import SceneArrays as SceneArrays
-from .simulate import Accuracy as Accuracy
-from .simulate import Adaptive as Adaptive
-from .simulate import FixedStep as FixedStep
-from .simulate import ZenoGuard as ZenoGuard
 from .simulate import simulate as simulate
 from .simulation import EnergyLedger as EnergyLedger
-from .simulation import EventKind as EventKind
+from .engine.codes import EventKind as EventKind
 from .simulation import EventLog as EventLog
 from .simulation import Simulation as Simulation
 from .simulation import SimulationError as SimulationError
-from .sweep import Sweep as Sweep
-from .sweep import SweepFailure as SweepFailure
-from .sweep import SweepPoint as SweepPoint
+from .simulation import Sweep as Sweep
+from .simulation import SweepFailure as SweepFailure
+from .simulation import SweepPoint as SweepPoint
 from .sweep import sweep as sweep
+
+
+def _open_sweep_store(folder):
+    """``results.open_sweep_store(folder)``, imported when a sweep first saves: importing
+    shroudnet, or the computation, loads no file code."""
+    from .results import open_sweep_store
+
+    return open_sweep_store(folder)
+
+
+# What sweep(save_to=FOLDER) and sweep(progress="auto" or True) stand for: the computation
+# (shroudnet.sweep) imports no file code and draws no terminal display of its own.
+_sweeps.folder_store = _open_sweep_store
+_sweeps.terminal_progress = _progress.progress_callback

@@ -20,7 +20,7 @@ from scipy.integrate import solve_ivp
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from .modes import Mode
+from .engine.codes import Mode
 from .scene import Scene
 
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)

@@ -1,5 +1,7 @@
 """Benchmark: ``python -m shroudnet.bench`` prints what the paper's scene costs to simulate.
 
+0. Compiling: the first run of the paper's scene on an empty cache, and then the first run
+   of a new combination of law classes, each in a fresh process.
 1. Steps per second of each integrator on one core.
 2. Scene specialisation: the same blades with no contact, frictionless and frictional
    contact, each running the kernel compiled for its effects.
@@ -18,23 +20,55 @@ from __future__ import annotations
 import argparse
 import functools
 import json
+import os
 import resource
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 import numpy as np
 
 from .baseline import solve_ivp_baseline
 from .group import BladeGroup
+from .methods import Adaptive, FixedStep
+from .progress import progress_callback
 from .scene import Scene
 from .scenes import three_blade_paper
-from .simulate import Adaptive, FixedStep, simulate
+from .simulate import simulate
 from .sweep import default_workers, sweep
 
 #: The benchmark's operating point: p3 motion with stick, slip and impacts on both shrouds.
 POINT = {"gamma1": 2.2, "speed_rpm": 6000.0, "q1": 50.0}
+
+
+_FIRST_RUN = (
+    "import sys, time\n"
+    "began = time.perf_counter()\n"
+    "from contact_laws import Coulomb, Hertz\n"
+    "from shroudnet import simulate\n"
+    "from shroudnet.scenes import three_blade_paper\n"
+    "laws = {} if sys.argv[1] == 'paper' else "
+    "{'normal': Hertz(stiffness=3e7), 'friction': Coulomb(mu=0.3)}\n"
+    "sim = simulate(three_blade_paper(**laws), 1)\n"
+    "print(time.perf_counter() - began, sim.compile_seconds)\n")
+
+
+def first_runs() -> dict[str, tuple[float, float]]:
+    """(wall seconds of a fresh process's first run, of them compiling) on an empty cache:
+    the paper's scene, then a scene with other law classes (the engine's own code now
+    cached, the kernel new)."""
+    with tempfile.TemporaryDirectory() as folder:
+        env = {**os.environ, "SHROUDNET_CACHE": f"{folder}/kernels",
+               "NUMBA_CACHE_DIR": f"{folder}/numba"}
+        runs = {}
+        for which in ("paper", "other laws"):
+            done = subprocess.run([sys.executable, "-c", _FIRST_RUN, which.split()[0]],
+                                  env=env, capture_output=True, text=True, check=True)
+            wall, compiling = map(float, done.stdout.split())
+            runs[which] = (wall, compiling)
+        return runs
 
 
 def median_time(function, repeats: int) -> tuple[float, object]:
@@ -132,7 +166,8 @@ def diagram_in_fresh_process(points, transient, record, workers) -> dict:
 
 def _diagram_only(points, transient, record, workers) -> None:
     seconds, result = diagram(np.linspace(0.5, 10.0, points), workers=workers,
-                              transient=transient, record=record, progress="auto")
+                              transient=transient, record=record,
+                              progress=progress_callback("auto"))
     kept = sum(p.poincare.nbytes + sum(s.nbytes for s in p.final_state)
                for p in result.points)
     print(json.dumps({
@@ -173,7 +208,13 @@ def main(argv=None) -> None:
     periods = 20 if args.quick else 200
     start = time.perf_counter()
 
-    print(f"1. Integration speed, one core: paper scene γ1 = {POINT['gamma1']}, "
+    runs = first_runs()
+    print("0. First run in a fresh process on an empty cache (import, compile, 1 period)")
+    for which, (wall, compiling) in runs.items():
+        laws = "LinearSpring + ExponentialFriction" if which == "paper" else "Hertz + Coulomb"
+        print(f"   {which} ({laws}): {wall:.1f} s, of which {compiling:.1f} s compiling")
+
+    print(f"\n1. Integration speed, one core: paper scene γ1 = {POINT['gamma1']}, "
           f"{POINT['speed_rpm']:g} rpm, q1 = {POINT['q1']:g} N, {periods} periods")
     for label, method in [("fixed-step RK4, 1000 steps/period", FixedStep()),
                           ("adaptive DP5(4), default tolerances", Adaptive())]:

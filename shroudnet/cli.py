@@ -30,6 +30,7 @@ import numpy as np
 
 from . import results, scenefile
 from .analysis import classify
+from .engine.cache import cache_folder, cache_size, clear_cache
 from .progress import ProgressReporter, TerminalProgress
 from .simulate import simulate
 from .simulation import SimulationError
@@ -167,6 +168,14 @@ def _parser() -> argparse.ArgumentParser:
     _laws_option(plot)
     plot.set_defaults(command=_plot, name="plot")
 
+    cache = commands.add_parser(
+        "cache", help="show where compiled integrators are kept and their size; --clear",
+        description="Show the folder that keeps the compiled integrators (one per "
+        "combination of contact and friction law classes) and how much room they take. "
+        "With --clear, delete them: the next run compiles again, once.")
+    cache.add_argument("--clear", action="store_true", help="delete the compiled integrators")
+    cache.set_defaults(command=_cache, name="cache")
+
     bench = commands.add_parser(
         "bench", help="run the benchmark (speed, specialisation, baseline, sweeps)",
         description="Run the benchmark; the options after 'bench' go to it "
@@ -206,6 +215,21 @@ def _negative_numbers_are_values(parser: argparse.ArgumentParser) -> None:
     parser._negative_number_matcher = re.compile(r"^-\.?\d")
 
 
+#: A compile or a cache load shorter than this [s] is not worth a word in ``run``'s output.
+COMPILE_WORTH_SAYING = 0.5
+
+
+def _cache(args) -> int:
+    if args.clear:
+        freed = clear_cache()
+        print(f"cleared  {cache_folder()} ({freed / 2**20:.1f} MiB)")
+        return 0
+    size, files = cache_size()
+    print(f"cache    {cache_folder()}: {size / 2**20:.1f} MiB in {files} files "
+          "(clear with 'shroudnet cache --clear')")
+    return 0
+
+
 def _run(args) -> int:
     loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
     settings = loaded.run
@@ -234,7 +258,9 @@ def _run(args) -> int:
           f"f_e = {1.0 / scene.excitation_period:g} Hz")
     print(f"method   {settings.method}, {periods} periods, event tolerance "
           f"{settings.event_tolerance:g} periods")
-    print(f"took     {took:.2f} s ({sim.steps:,} steps)")
+    compiling = (f" + {sim.compile_seconds:.2f} s compiling the integrator, once"
+                 if sim.compile_seconds >= COMPILE_WORTH_SAYING else "")
+    print(f"took     {took - sim.compile_seconds:.2f} s ({sim.steps:,} steps){compiling}")
     print(f"motion   {kind}")
     print(f"E_rho    {sim.energy_density(blade, skip=skip):.6e} m^2 ({blade!r} after "
           f"{skip} periods)")
@@ -318,8 +344,8 @@ def _sweep(args) -> int:
     try:
         result = sweep(scene_at, values, parameter=args.param, blade=settings.blade,
                        transient=transient, record=args.record, method=settings.method,
-                       workers=args.workers, save_to=folder, progress=_sweep_progress(),
-                       retry_failed=args.retry_failed)
+                       workers=args.workers, store=results.open_sweep_store(folder),
+                       progress=_sweep_progress(), retry_failed=args.retry_failed)
     except KeyboardInterrupt:
         raise Interrupted(_kept(folder, len(values))) from None
     took = time.perf_counter() - start

@@ -27,9 +27,10 @@ import numpy as np
 from contact_laws import Regularised
 
 from .group import BladeGroup
+from .methods import Accuracy, Adaptive, FixedStep
 from .scene import Scene
 from .scenes import three_blade_paper
-from .simulate import Accuracy, Adaptive, FixedStep, simulate
+from .simulate import simulate
 from .simulation import Simulation
 
 #: The reference blade whose results are judged.

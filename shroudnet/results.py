@@ -9,9 +9,10 @@ document, so that a run whose laws are not importable here still loads.
 A sweep is a folder: ``sweep.json`` (parameter, values, settings, and what the scenes
 came from) and ``points/00012.npz``, one file per finished point, written as it finishes;
 a failed point's file holds the message of what stopped it. ``SweepStore`` reopens the
-folder of an interrupted sweep, so that it runs only the points still missing;
-``load_sweep`` reads a finished one. Each point file carries the fingerprint of the sweep
-it belongs to (a hash of ``sweep.json``'s content).
+folder of an interrupted sweep, so that it runs only the points still missing
+(``sweep(store=open_sweep_store(folder))``, or ``save_to=folder``); ``load_sweep`` reads a
+finished one. Each point file carries the fingerprint of the sweep it belongs to (a hash
+of ``sweep.json``'s content).
 
 Every file is written to a temporary name in its folder and renamed into place, so a run
 killed at any moment leaves either the whole file or none. A file damaged anyway (cut
@@ -25,6 +26,7 @@ otherwise refused with ``ResultsError`` saying what to do.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import json
 import math
@@ -39,8 +41,9 @@ import numpy as np
 
 from . import scenefile
 from .analysis import Classification
-from .simulation import EnergyLedger, EventKind, EventLog, Simulation
-from .sweep import Sweep, SweepPoint, SweepWarning
+from .engine.codes import EventKind
+from .progress import SweepWarning
+from .simulation import EnergyLedger, EventLog, Simulation, Sweep, SweepPoint
 
 #: Version of the file layout, stored in every file.
 FORMAT = 1
@@ -602,6 +605,15 @@ class SweepStore:
     def save(self, index: int, point: SweepPoint) -> None:
         """Write the point (or failed point) of index ``index``."""
         _save_point(_point_path(self.folder, index), point, self.fingerprint)
+
+
+def open_sweep_store(folder: str | Path) -> Callable[..., SweepStore]:
+    """The ``store`` of ``sweep`` that keeps each point in the sweep folder ``folder``.
+
+    The sweep calls it with its manifest (and ``notice``) as it starts, which makes the
+    folder or reopens it (``SweepStore``); ``sweep(save_to=folder)`` is short for it.
+    """
+    return functools.partial(SweepStore, folder)
 
 
 def _point_path(folder: Path, index: int) -> Path:

@@ -72,8 +72,8 @@ from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
 from .excitation import AntiPhase, EngineOrderWave, Excitation, ExplicitPhases, TravellingWave
 from .group import BladeGroup
 from .interface import Interface
+from .methods import Accuracy, Adaptive, FixedStep
 from .scene import Scene
-from .simulate import Accuracy, Adaptive, FixedStep
 
 
 class SceneFileError(ValueError):

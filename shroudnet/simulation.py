@@ -1,10 +1,12 @@
-"""What a simulation returns: trajectories, interface forces and modes, events, energy."""
+"""What runs return: a simulation's trajectories, interface forces and modes, events and
+energy; a sweep's points, failed ones included."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Hashable
 from dataclasses import dataclass
-from enum import IntEnum
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,15 +14,8 @@ from contact_laws import check_int
 
 from .scene import Scene
 
-
-class EventKind(IntEnum):
-    """What switched at an event."""
-
-    CLOSING = 0      # contact closed (δ rose through 0)
-    SEPARATION = 1   # contact opened (δ fell through 0)
-    STICKING = 2     # slip velocity reached 0 and the static friction holds
-    REVERSAL = 3     # slip velocity reached 0 and the interface slips the other way
-    BREAKAWAY = 4    # a stuck interface's friction reached μ_s N
+if TYPE_CHECKING:
+    from .analysis import Classification
 
 
 class SimulationError(RuntimeError):
@@ -86,6 +81,7 @@ class Simulation:
     work: np.ndarray         # cumulative (excitation, damping, friction, contact, lock) [J]
     samples_per_period: int
     steps: int               # Runge–Kutta steps taken (accepted ones, for Adaptive)
+    compile_seconds: float = 0.0  # spent compiling the integrator, or loading it, first
 
     def _steady(self, skip: int, owner: str) -> slice:
         """The rows from t = skip T_e on; ``skip`` is a whole number of periods (an int, a
@@ -125,3 +121,96 @@ class Simulation:
         if len(t) < 2:
             raise ValueError("energy_density needs at least two samples after skip")
         return float(np.trapezoid(x * x, t) / (t[-1] - t[0]))
+
+
+#: The label of a failed point's classification.
+FAILED = "failed"
+
+
+@dataclass(frozen=True)
+class SweepPoint:
+    """The steady response at one value of the swept parameter.
+
+    A *failed* point (``error`` set: the message of the ``SimulationError`` that stopped
+    its simulation) has no Poincaré points (shape (0, 2)), NaN for E_ρ and the friction
+    loss, the classification label "failed" and an empty final state.
+    """
+
+    value: float
+    poincare: np.ndarray                 # (record × 2): (x [m], ẋ [m/s]) at t = k T_e
+    energy_density: float                # E_ρ [m²] over the recorded periods
+    friction_loss_per_cycle: float       # [J]
+    classification: Classification
+    final_state: tuple[np.ndarray, np.ndarray]  # (x, ẋ) at the end, to continue from
+    error: str | None = None             # why the point failed; None for a computed point
+
+    @property
+    def failed(self) -> bool:
+        """Whether the simulation of this point stopped with a ``SimulationError``."""
+        return self.error is not None
+
+    @classmethod
+    def failure(cls, value: float, message: str, tolerance: float = math.nan) -> SweepPoint:
+        """The failed point at ``value``, with the message of what stopped it."""
+        from .analysis import Classification  # analysis reads Simulation from this module
+
+        nothing = np.empty(0)
+        return cls(value=float(value), poincare=np.empty((0, 2)), energy_density=math.nan,
+                   friction_loss_per_cycle=math.nan,
+                   classification=Classification(label=FAILED, period=None, n_points=0,
+                                                 tolerance=tolerance, mismatch=math.nan,
+                                                 zero_one=math.nan, broadband=math.nan),
+                   final_state=(nothing, nothing.copy()), error=str(message))
+
+
+@dataclass(frozen=True)
+class SweepFailure:
+    """A point of a sweep whose simulation stopped: where, and why."""
+
+    parameter: str
+    index: int          # position of the value in the sweep's values (0-based)
+    value: float
+    message: str        # the ``SimulationError``'s message (time and interface)
+
+    def __str__(self) -> str:
+        return f"{self.parameter} = {self.value:g} (point {self.index}) failed: {self.message}"
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A bifurcation diagram's data: the points of a sweep, in the order of its values.
+
+    Failed points keep their place (``values`` lists every value); ``diagram`` leaves them
+    out, and ``failures`` lists them.
+    """
+
+    parameter: str
+    blade: Hashable | int
+    points: tuple[SweepPoint, ...]
+    settings: dict
+
+    @property
+    def values(self) -> np.ndarray:
+        return np.array([p.value for p in self.points])
+
+    @property
+    def labels(self) -> list[str]:
+        """Each point's classification label ("failed" for a failed point)."""
+        return [p.classification.label for p in self.points]
+
+    @property
+    def failures(self) -> tuple[SweepFailure, ...]:
+        """The failed points, in order, each with its index, value and message."""
+        return tuple(SweepFailure(parameter=self.parameter, index=index, value=point.value,
+                                  message=point.error)
+                     for index, point in enumerate(self.points) if point.failed)
+
+    def diagram(self, coordinate: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """(parameter values, Poincaré coordinates) flattened for a scatter plot.
+
+        ``coordinate`` 0 is the displacement, 1 the velocity. Failed points have no
+        Poincaré points, so they leave a gap.
+        """
+        values = np.concatenate([np.full(len(p.poincare), p.value) for p in self.points])
+        section = np.concatenate([p.poincare[:, coordinate] for p in self.points])
+        return values, section

@@ -8,12 +8,18 @@ A point whose simulation stops with a ``SimulationError`` (the Zeno guard, a col
 step, a non-finite state) does not stop the sweep: it is kept as a *failed point*, a gap in
 the diagram, with its message (``Sweep.failures``). Every other exception is a bug or bad
 input and stops the sweep.
+
+The computation imports no file or terminal code. Where the points are kept, to resume an
+interrupted sweep, comes from the caller as a ``store`` (``StoreOpener``; the folders of
+``shroudnet.results`` are one), and so does the progress display (``ProgressCallback``;
+those of ``shroudnet.progress`` draw on a terminal). What ``save_to=FOLDER`` and
+``progress="auto"`` stand for is supplied by the package: ``folder_store`` and
+``terminal_progress``.
 """
 
 from __future__ import annotations
 
 import ctypes
-import math
 import os
 import pickle
 import signal
@@ -21,109 +27,59 @@ import sys
 import threading
 import time
 import warnings
-from collections.abc import Callable, Hashable, Sequence
+from collections.abc import Callable, Hashable, Mapping, Sequence
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
-from dataclasses import dataclass
+from typing import Protocol
 
 import cloudpickle
 import numpy as np
 
-from .analysis import Classification, classify, friction_loss_per_cycle
-from .progress import ProgressReporter, SweepWarning, progress_callback
+from .analysis import classify, friction_loss_per_cycle
+from .methods import Accuracy, Adaptive, FixedStep
+from .progress import ProgressReporter, SweepWarning
 from .scene import Scene
-from .simulate import Accuracy, Adaptive, FixedStep, simulate
-from .simulation import SimulationError
-
-#: The label of a failed point's classification.
-FAILED = "failed"
+from .simulate import simulate
+from .simulation import SimulationError, Sweep, SweepFailure, SweepPoint
 
 
-@dataclass(frozen=True)
-class SweepPoint:
-    """The steady response at one value of the swept parameter.
+class PointStore(Protocol):
+    """Where a sweep keeps its points as they finish (``results.SweepStore`` is one)."""
 
-    A *failed* point (``error`` set: the message of the ``SimulationError`` that stopped
-    its simulation) has no Poincaré points (shape (0, 2)), NaN for E_ρ and the friction
-    loss, the classification label "failed" and an empty final state.
-    """
+    def finished(self) -> Mapping[int, SweepPoint]:
+        """The points already kept (failed ones included), by index in the values."""
 
-    value: float
-    poincare: np.ndarray                 # (record × 2): (x [m], ẋ [m/s]) at t = k T_e
-    energy_density: float                # E_ρ [m²] over the recorded periods
-    friction_loss_per_cycle: float       # [J]
-    classification: Classification
-    final_state: tuple[np.ndarray, np.ndarray]  # (x, ẋ) at the end, to continue from
-    error: str | None = None             # why the point failed; None for a computed point
-
-    @property
-    def failed(self) -> bool:
-        """Whether the simulation of this point stopped with a ``SimulationError``."""
-        return self.error is not None
-
-    @classmethod
-    def failure(cls, value: float, message: str, tolerance: float = math.nan) -> SweepPoint:
-        """The failed point at ``value``, with the message of what stopped it."""
-        nothing = np.empty(0)
-        return cls(value=float(value), poincare=np.empty((0, 2)), energy_density=math.nan,
-                   friction_loss_per_cycle=math.nan,
-                   classification=Classification(label=FAILED, period=None, n_points=0,
-                                                 tolerance=tolerance, mismatch=math.nan,
-                                                 zero_one=math.nan, broadband=math.nan),
-                   final_state=(nothing, nothing.copy()), error=str(message))
+    def save(self, index: int, point: SweepPoint) -> None:
+        """Keep the point (or failed point) of index ``index``."""
 
 
-@dataclass(frozen=True)
-class SweepFailure:
-    """A point of a sweep whose simulation stopped: where, and why."""
+class StoreOpener(Protocol):
+    """What ``sweep(store=...)`` takes: makes, or reopens, the store of the sweep that
+    ``manifest`` describes (a dict of its ``parameter``, ``blade``, ``values`` and
+    ``settings``, all plain JSON). ``notice(message)`` hears what the store repaired or will
+    have computed again. ``shroudnet.results.open_sweep_store(folder)`` gives one."""
 
-    parameter: str
-    index: int          # position of the value in the sweep's values (0-based)
-    value: float
-    message: str        # the ``SimulationError``'s message (time and interface)
-
-    def __str__(self) -> str:
-        return f"{self.parameter} = {self.value:g} (point {self.index}) failed: {self.message}"
+    def __call__(self, manifest: dict, *, notice: Callable[[str], None]) -> PointStore: ...
 
 
-@dataclass(frozen=True)
-class Sweep:
-    """A bifurcation diagram's data: the points of a sweep, in the order of its values.
+class ProgressCallback(Protocol):
+    """What ``sweep(progress=...)`` takes: called with the points done so far out of
+    ``total``, once before the first point and after each. A
+    ``shroudnet.progress.ProgressReporter`` also hears the notices (``notice(message)``)."""
 
-    Failed points keep their place (``values`` lists every value); ``diagram`` leaves them
-    out, and ``failures`` lists them.
-    """
+    def __call__(self, done: int, total: int) -> None: ...
 
-    parameter: str
-    blade: Hashable | int
-    points: tuple[SweepPoint, ...]
-    settings: dict
 
-    @property
-    def values(self) -> np.ndarray:
-        return np.array([p.value for p in self.points])
+#: What ``save_to=FOLDER`` stands for: ``store=folder_store(FOLDER)``. The package sets it
+#: (``shroudnet/__init__.py``) to ``shroudnet.results.open_sweep_store``, imported only when
+#: a sweep saves, so that the computation imports no file code.
+folder_store: Callable[[str | os.PathLike], StoreOpener] | None = None
 
-    @property
-    def labels(self) -> list[str]:
-        """Each point's classification label ("failed" for a failed point)."""
-        return [p.classification.label for p in self.points]
-
-    @property
-    def failures(self) -> tuple[SweepFailure, ...]:
-        """The failed points, in order, each with its index, value and message."""
-        return tuple(SweepFailure(parameter=self.parameter, index=index, value=point.value,
-                                  message=point.error)
-                     for index, point in enumerate(self.points) if point.failed)
-
-    def diagram(self, coordinate: int = 0) -> tuple[np.ndarray, np.ndarray]:
-        """(parameter values, Poincaré coordinates) flattened for a scatter plot.
-
-        ``coordinate`` 0 is the displacement, 1 the velocity. Failed points have no
-        Poincaré points, so they leave a gap.
-        """
-        values = np.concatenate([np.full(len(p.poincare), p.value) for p in self.points])
-        section = np.concatenate([p.poincare[:, coordinate] for p in self.points])
-        return values, section
+#: What ``progress="auto"`` and ``progress=True`` stand for: the display
+#: ``terminal_progress(progress)`` (None: none). The package sets it
+#: (``shroudnet/__init__.py``) to ``shroudnet.progress.progress_callback``, so that the
+#: computation never decides to write to the terminal itself.
+terminal_progress: Callable[[str | bool], ProgressCallback | None] | None = None
 
 
 def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient: int,
@@ -148,7 +104,8 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
           record: int = 100, method=Adaptive(), samples_per_period: int = 50,
           continuation: bool = False, initial=None, tolerance: float = 1e-5,
           workers: int | None = None, executor=None, progress="auto",
-          save_to: str | os.PathLike | None = None, retry_failed: bool = False) -> Sweep:
+          save_to: str | os.PathLike | None = None, store: StoreOpener | None = None,
+          retry_failed: bool = False) -> Sweep:
     """The steady response of ``scene_at(value)`` for each value, in the order given.
 
     Each point runs ``transient`` periods, then records ``record`` periods of which it keeps
@@ -185,7 +142,8 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         allowed with ``workers`` > 1 or an ``executor``.
     progress : "auto", bool, None or callable
         ``progress(done, total)`` after each point (failed points count as done); "auto"
-        shows points done, rate and time left on standard error when it is a terminal;
+        shows points done, rate and time left on standard error when it is a terminal
+        (True: always; the display is ``terminal_progress``'s, supplied by the package);
         False or None is silent. Notices (a failed point, a saved file that is damaged and
         computed again) go to ``progress.notice(message)`` when ``progress`` is a
         ``shroudnet.progress.ProgressReporter`` (as the terminal display is), else they are
@@ -195,11 +153,15 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         this same sweep, interrupted, only its missing points run: none is lost or
         repeated, and the result is the same as an uninterrupted sweep's. A saved point
         file that cannot be read is reported and computed again. Failed points are saved
-        too, and kept on resuming.
+        too, and kept on resuming. Short for ``store=results.open_sweep_store(save_to)``.
+    store : StoreOpener, optional
+        Keep each point in the store that ``store(manifest, notice=...)`` makes or reopens
+        (a ``PointStore``), and resume from the points it already holds, as ``save_to``
+        does with a folder. Give ``save_to`` or ``store``, not both.
     retry_failed : bool
-        On resuming from ``save_to``, run the failed points again instead of keeping them
-        (worth it after changing what made them fail, e.g. the code or the machine; the
-        simulation is deterministic, so the same code fails the same way).
+        On resuming from ``save_to`` or ``store``, run the failed points again instead of
+        keeping them (worth it after changing what made them fail, e.g. the code or the
+        machine; the simulation is deterministic, so the same code fails the same way).
 
     Raises
     ------
@@ -207,17 +169,17 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         Bad arguments, named.
     shroudnet.results.ResultsError
         ``save_to`` holds another sweep, is a file, or its ``sweep.json`` is damaged and
-        its points cannot be matched to this sweep.
+        its points cannot be matched to this sweep. A ``store`` raises its own errors.
     """
     values = [float(v) for v in values]
     _check_arguments(values, transient, record, method, workers, executor, continuation,
-                     scene_at, retry_failed)
+                     scene_at, retry_failed, save_to, store)
     executor = None if executor is None else _as_executor(executor)
     if executor is None and not continuation:
         workers = min(default_workers() if workers is None else workers, len(values))
     serial = continuation or (executor is None and workers == 1)
     pickled = None if serial else _pickled(scene_at)
-    report = progress_callback(progress)
+    report = _reporter(progress)
     notice = _notifier(report)
     options = {"blade": blade, "transient": transient, "record": record, "method": method,
                "samples_per_period": samples_per_period, "tolerance": tolerance}
@@ -226,16 +188,19 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
                 "tolerance": tolerance, "initial": _listed(initial),
                 "scenes": _source(scene_at)}
     points: list[SweepPoint | None] = [None] * len(values)
-    store = None
     if save_to is not None:
-        store = _open_store(save_to, parameter, blade, values, settings, notice)
-        _resume(points, store.finished(), parameter, retry_failed, notice)
+        store = _folder_store(save_to)
+    kept = None
+    if store is not None:
+        kept = store({"parameter": parameter, "blade": blade, "values": values,
+                      "settings": settings}, notice=notice)
+        _resume(points, kept.finished(), parameter, retry_failed, notice)
     todo = [index for index, point in enumerate(points) if point is None]
 
     def finished(index, point):
         points[index] = point
-        if store is not None:
-            store.save(index, point)
+        if kept is not None:
+            kept.save(index, point)
         if point.failed:
             notice(str(SweepFailure(parameter, index, point.value, point.error)))
         if report is not None:
@@ -257,7 +222,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
 
 
 def _check_arguments(values, transient, record, method, workers, executor, continuation,
-                     scene_at, retry_failed) -> None:
+                     scene_at, retry_failed, save_to, store) -> None:
     """Raise ``ValueError``/``TypeError`` naming the first bad argument of ``sweep``."""
     if not values:
         raise ValueError("sweep needs at least one value")
@@ -282,6 +247,34 @@ def _check_arguments(values, transient, record, method, workers, executor, conti
         raise TypeError(f"sweep.scene_at must be a callable value -> Scene, got {scene_at!r}")
     if not isinstance(retry_failed, bool):
         raise TypeError(f"sweep.retry_failed must be True or False, got {retry_failed!r}")
+    if save_to is not None and store is not None:
+        raise ValueError("sweep: give save_to (a folder) or store (where to keep the "
+                         "points), not both")
+    if store is not None and not callable(store):
+        raise TypeError(f"sweep.store must be a callable store(manifest, notice=...) that "
+                        f"opens a store, such as results.open_sweep_store(folder); got "
+                        f"{store!r}")
+
+
+def _reporter(progress) -> ProgressCallback | None:
+    """The callback ``progress`` asks for: ``terminal_progress``'s display for "auto" or
+    True, none for False or None, else ``progress`` itself."""
+    if (isinstance(progress, str) and progress == "auto") or progress is True:
+        return None if terminal_progress is None else terminal_progress(progress)
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    raise ValueError(f"progress must be 'auto', True, False, None or a callable "
+                     f"progress(done, total), got {progress!r}")
+
+
+def _folder_store(save_to) -> StoreOpener:
+    """The store that ``save_to=`` names: ``folder_store(save_to)``."""
+    if folder_store is None:
+        raise TypeError("sweep: save_to needs a folder store, and none is supplied here; "
+                        "pass store=results.open_sweep_store(folder) instead")
+    return folder_store(save_to)
 
 
 def _notifier(report) -> Callable[[str], None]:
@@ -293,13 +286,6 @@ def _notifier(report) -> Callable[[str], None]:
 
 def _warn(message: str) -> None:
     warnings.warn(message, SweepWarning, stacklevel=3)
-
-
-def _open_store(save_to, parameter, blade, values, settings, notice):
-    """The sweep's folder (``results.SweepStore``), made or reopened."""
-    from .results import SweepStore  # results reads Sweep and SweepPoint from here
-    return SweepStore(save_to, {"parameter": parameter, "blade": blade, "values": values,
-                                "settings": settings}, notice=notice)
 
 
 def _resume(points: list, saved: dict, parameter: str, retry_failed: bool, notice) -> None:

@@ -6,7 +6,7 @@ import numpy as np
 from hypothesis import strategies as st
 
 from shroudnet import Blade, BladeGroup, Excitation, Interface, Mode, Scene
-from shroudnet.clusters import cluster_labels
+from shroudnet.engine.clusters import cluster_labels
 from tests.laws import friction_laws, normal_laws
 
 GAP = 1e-5

@@ -42,7 +42,7 @@ def test_a_second_process_loads_the_compiled_kernel_instead_of_compiling():
     simulate(three_blade_paper(), 1)  # compiled, or loaded, into the cache folder
     probe = (
         "from shroudnet import simulate\n"
-        "from shroudnet.kernel import load_kernel\n"
+        "from shroudnet.engine.generate import load_kernel\n"
         "from shroudnet.scenes import three_blade_paper\n"
         "scene = three_blade_paper()\n"
         "simulate(scene, 1)\n"

@@ -20,8 +20,7 @@ import pytest
 import contact_laws as cl
 from shroudnet import cli, results, scenefile
 from shroudnet.analysis import Classification
-from shroudnet.simulation import SimulationError
-from shroudnet.sweep import SweepPoint
+from shroudnet.simulation import SimulationError, SweepPoint
 
 sweep_module = importlib.import_module("shroudnet.sweep")
 ROOT = Path(__file__).resolve().parents[1]

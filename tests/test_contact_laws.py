@@ -111,7 +111,7 @@ def _name(row):
                          ids=list(map(_name, NORMAL_VALUES)))
 def test_normal_laws_give_their_closed_form_by_hand(law, penetration, rate, expected):
     """The law object, and its ``normal_force`` as numba compiles it into the integrator's
-    loop (shroudnet.kernel), both give the hand-computed N."""
+    loop (shroudnet.engine.generate), both give the hand-computed N."""
     compiled = numba.njit(type(law).normal_force)
     for force in (law(penetration, rate), compiled(penetration, rate, *law.parameters())):
         assert force == pytest.approx(expected, rel=1e-14, abs=0.0)

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from contact_laws import Coulomb, LinearSpring, Regularised
 from shroudnet import (Blade, BladeGroup, Excitation, ExplicitPhases, FixedStep, Interface, Mode,
                        Scene, assemble, simulate, stick_clusters)
-from shroudnet.clusters import cluster_labels
+from shroudnet.engine.clusters import cluster_labels
 from tests.groups import GAP, blades, external_forces, incidence, scenes, states
 from tests.laws import friction_laws, normal_laws, static_limit
 

@@ -15,7 +15,8 @@ from hypothesis import strategies as st
 
 import contact_laws as cl
 from shroudnet import Blade, BladeGroup, Excitation, Interface, Mode, Scene
-from shroudnet.kernel import kernel_scene, load_kernel
+from shroudnet.engine.generate import kernel_scene, load_kernel
+from shroudnet.engine.records import new_work
 from tests.laws import CubicSpring, RationalWeakening
 
 #: One interface for each law, each normal law paired with a different friction law, with
@@ -85,14 +86,14 @@ def test_kernel_forces_follow_each_laws_formula(penetration, rate, slip, stuck):
     nothing."""
     kernel = load_kernel(SCENE)
     s = kernel_scene(SCENE)
-    work = kernel.new_work(6, 6)
+    work = new_work.py_func(6, 6)
     work.penetration[:] = penetration
     work.rate[:] = rate
     work.slip[:] = slip
     modes = np.array([Mode.STICK if hold and f is not None else
                       Mode.SLIP_POSITIVE if v > 0 else Mode.SLIP_NEGATIVE
                       for hold, v, (f, _) in zip(stuck, slip, FRICTION)], dtype=np.int64)
-    kernel.law_forces(s, modes, work)
+    kernel.forces_at(s, modes, work)
     for e in range(6):
         normal = NORMAL[e][1](penetration[e], rate[e])
         assert work.normal[e] == pytest.approx(normal, rel=1e-12, abs=1e-300)
@@ -109,10 +110,10 @@ def test_kernel_forces_follow_each_laws_formula(penetration, rate, slip, stuck):
 @pytest.mark.slow  # compiles a kernel with every law
 def test_open_interfaces_carry_no_force():
     kernel = load_kernel(SCENE)
-    work = kernel.new_work(6, 6)
+    work = new_work.py_func(6, 6)
     work.penetration[:] = 1e-6
     work.rate[:] = 0.1
     work.slip[:] = 0.3
     modes = np.full(6, Mode.OPEN, dtype=np.int64)
-    kernel.law_forces(kernel_scene(SCENE), modes, work)
+    kernel.forces_at(kernel_scene(SCENE), modes, work)
     assert not work.normal.any() and not work.friction.any()

@@ -12,7 +12,7 @@ import pytest
 
 import contact_laws as cl
 import shroudnet.scene
-import shroudnet.kernel as kernel
+import shroudnet.engine.generate as generate
 from shroudnet import Adaptive, FixedStep, SimulationError, simulate
 from shroudnet.scenes import three_blade_paper
 
@@ -72,15 +72,15 @@ class SteppedSpring(cl.NormalLaw):
 def planted_friction_slack(monkeypatch, tmp_path):
     """Kernels whose stick rule keeps |f| up to 1.05 μ_s N, while their breakaway guard
     fires at μ_s N: guards and mode rule disagree."""
-    loop, compiled_in = kernel._loop_sources()
-    planted = loop.replace("if candidates[e] else limit):",
-                           "if candidates[e] else 1.05 * limit):")
-    assert planted != loop, "the stick rule's threshold moved: plant it where it is now"
-    monkeypatch.setattr(kernel, "_loop_sources", lambda: (planted, compiled_in))
+    template, engine = generate.template_sources()
+    planted = template.replace("if candidates[e] else limit):",
+                               "if candidates[e] else 1.05 * limit):")
+    assert planted != template, "the stick rule's threshold moved: plant it where it is now"
+    monkeypatch.setattr(generate, "template_sources", lambda: (planted, engine))
     monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
-    kernel._kernel.cache_clear()
+    generate._kernel.cache_clear()
     yield
-    kernel._kernel.cache_clear()
+    generate._kernel.cache_clear()
 
 
 @pytest.mark.slow  # compiles a kernel with the planted rule

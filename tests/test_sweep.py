@@ -1,6 +1,7 @@
 """Sweeps: serial, on a process pool and on a dask cluster, with the same points bit for bit;
 against direct runs and closed forms; failed points; the workers when the sweep stops."""
 
+import ast
 import io
 import math
 import os
@@ -18,8 +19,8 @@ import pytest
 
 from shroudnet import Sweep, results, simulate, sweep
 from shroudnet.progress import NoticeLines, ProgressReporter, SweepWarning, TerminalProgress
-from shroudnet.sweep import SweepFailure
 from shroudnet.scenes import three_blade_paper
+from shroudnet.simulation import SweepFailure
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -178,10 +179,55 @@ def test_progress_counts_every_point_and_can_be_silenced(serial, capsys):
     ({"workers": 2, "continuation": True}, "continuation chains"),
     ({"executor": object()}, "sweep.executor must be"),
     ({"progress": "loud"}, "progress must be"),
+    ({"save_to": "unused", "store": lambda manifest, notice: None},
+     r"give save_to \(a folder\) or store"),
+    ({"store": object()}, "sweep.store must be a callable"),
 ])
 def test_bad_sweep_arguments_are_named(arguments, message):
     with pytest.raises((ValueError, TypeError), match=message):
         sweep(paper_scene_at, [1.0, 2.0], **SETTINGS, **arguments)
+
+
+class MemoryStore:
+    """A store of one's own (``sweep.StoreOpener`` and ``sweep.PointStore`` at once): the
+    points in a dict, kept from one sweep to the next."""
+
+    def __init__(self):
+        self.manifests, self.points = [], {}
+
+    def __call__(self, manifest, *, notice):
+        self.manifests.append(manifest)
+        return self
+
+    def finished(self):
+        return dict(self.points)
+
+    def save(self, index, point):
+        self.points[index] = point
+
+
+def test_a_store_of_ones_own_keeps_the_points_and_a_sweep_resumes_from_it(serial):
+    store = MemoryStore()
+    first = sweep(paper_scene_at, GAMMAS[:2], parameter="gamma1", workers=1, store=store,
+                  progress=False, **SETTINGS)
+    assert_same_points(first, Sweep("gamma1", 1, serial.points[:2], {}))
+    assert sorted(store.points) == [0, 1]
+    manifest, = store.manifests
+    assert (manifest["parameter"], manifest["blade"], manifest["values"]) == ("gamma1", 1,
+                                                                              GAMMAS[:2])
+    assert manifest["settings"] == first.settings
+
+    counts = []
+    again = sweep(paper_scene_at, GAMMAS[:2], parameter="gamma1", workers=1, store=store,
+                  progress=lambda done, total: counts.append((done, total)), **SETTINGS)
+    assert counts == [(2, 2)]  # nothing run: every point was kept
+    assert_same_points(again, first)
+
+
+def test_progress_true_draws_the_terminal_display_the_package_supplies(capsys):
+    sweep(paper_scene_at, [1.0], workers=1, progress=True, **SETTINGS)
+    err = capsys.readouterr().err
+    assert "  sweep 0/1 points" in err and "  sweep 1/1 points" in err and err.endswith("\n")
 
 
 def test_a_lambda_runs_on_worker_processes(serial):
@@ -468,3 +514,57 @@ def test_notice_lines_write_only_the_notices():
     lines(1, 3)
     lines.notice("second")
     assert stream.getvalue() == "  first\n  second\n"
+
+
+# ---- module boundaries --------------------------------------------------------------------
+
+def imported_modules(path: Path) -> set[str]:
+    """The shroudnet modules the source at ``path`` imports anywhere (functions included),
+    by their name in the package ("results", "engine.codes", ...)."""
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom) and node.level == 1:
+            found.update([node.module] if node.module else
+                         [alias.name for alias in node.names])
+        elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("shroudnet."):
+            found.add(node.module.removeprefix("shroudnet."))
+        elif isinstance(node, ast.Import):
+            found.update(alias.name.removeprefix("shroudnet.") for alias in node.names
+                         if alias.name.startswith("shroudnet."))
+    return found
+
+
+def test_the_sweep_computation_imports_no_file_terminal_or_figure_code():
+    """Importing the sweep loads neither results nor the command line nor the figures (in a
+    fresh process), and sweep.py names none of them, even inside a function; the records
+    that runs return live beside ``Simulation``, so results does not import the sweep."""
+    code = ("import shroudnet.sweep, sys; print([m for m in sys.modules if m in "
+            "('shroudnet.results', 'shroudnet.cli', 'shroudnet.figures')])")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
+                          text=True, check=True)
+    assert done.stdout.strip() == "[]"
+    package = ROOT / "shroudnet"
+    assert not imported_modules(package / "sweep.py") & {"results", "cli", "figures"}
+    assert "sweep" not in imported_modules(package / "results.py")
+    progress_names = {alias.name for node in ast.walk(ast.parse((package / "sweep.py")
+                                                                .read_text()))
+                      if isinstance(node, ast.ImportFrom) and node.module == "progress"
+                      for alias in node.names}
+    assert progress_names <= {"ProgressReporter", "SweepWarning"}  # no display of its own
+    from shroudnet import SweepFailure, SweepPoint
+    assert {Sweep.__module__, SweepPoint.__module__, SweepFailure.__module__} == {
+        "shroudnet.simulation"}
+
+
+def test_the_method_settings_have_a_module_the_scene_files_read_them_from():
+    import shroudnet
+    from shroudnet import methods
+
+    for name in ("FixedStep", "Adaptive", "Accuracy", "ZenoGuard"):
+        settings = getattr(methods, name)
+        assert settings.__module__ == "shroudnet.methods"
+        assert getattr(shroudnet, name) is settings
+    assert (methods.ACCURACY_MARGIN, methods.ZENO_WINDOW_TOLERANCES,
+            methods.ZENO_WINDOW_LIMIT) == (100.0, 1e6, 1e-3)
+    scenefile = imported_modules(ROOT / "shroudnet" / "scenefile.py")
+    assert "methods" in scenefile and "simulate" not in scenefile

@@ -1,0 +1,113 @@
+"""Advance: the parts of a Runge–Kutta step that do not evaluate forces.
+
+Stage sums, the Dormand–Prince dense output, the step-size controller, and moving the
+state to the end of a step. The steps themselves (``rk4_step``, ``dp5_step``) evaluate the
+scene's laws and live in the kernel template.
+"""
+
+import math
+
+from .codes import N_POWERS, N_WORK
+from .compiled import njit_inlined
+from .tableau import DP_P, DP_STAGES, ERROR_EXPONENT, GROW_LIMIT, SAFETY, SHRINK_LIMIT
+
+
+@njit_inlined
+def stage_sum(weights, stages, n_stages, column):
+    """Σ_k weights[k] · stages[k, column] over the first ``n_stages`` Runge–Kutta stages."""
+    total = 0.0
+    for k in range(n_stages):
+        total += weights[k] * stages[k, column]
+    return total
+
+
+@njit_inlined
+def set_powers(row, powers):
+    for k in range(N_POWERS):
+        row[k] = powers[k]
+
+
+@njit_inlined
+def dense_state(theta, h, state, w, x_out, v_out, energy_out):
+    """The state at t + θh from the dense output of the last ``dp5_step`` of size h."""
+    b0 = theta
+    b1 = theta * theta
+    b2 = b1 * theta
+    b3 = b2 * theta
+    weights = w.dense_weights
+    for k in range(DP_STAGES):
+        weights[k] = DP_P[k, 0] * b0 + DP_P[k, 1] * b1 + DP_P[k, 2] * b2 + DP_P[k, 3] * b3
+    for i in range(len(state.x)):
+        x_out[i] = state.x[i] + h * stage_sum(weights, w.stage_v, DP_STAGES, i)
+        v_out[i] = state.v[i] + h * stage_sum(weights, w.stage_a, DP_STAGES, i)
+    for c in range(N_POWERS):
+        energy_out[c] = state.energy[c] + h * stage_sum(weights, w.stage_p, DP_STAGES, c)
+    for c in range(N_POWERS, N_WORK):
+        energy_out[c] = state.energy[c]
+
+
+@njit_inlined
+def next_step(h, error, h_max):
+    """The step after an accepted one of size h with scaled error ``error`` ≤ 1."""
+    factor = min(GROW_LIMIT, SAFETY * error ** ERROR_EXPONENT) if error > 0.0 else GROW_LIMIT
+    return min(h * factor, h_max)
+
+
+@njit_inlined
+def retry_step(h, error):
+    """The step to try after one of size h was rejected with scaled error ``error`` > 1
+    (inf or NaN: a law gave a non-finite force ahead)."""
+    if not math.isfinite(error):
+        return h * SHRINK_LIMIT
+    return h * max(SHRINK_LIMIT, SAFETY * error ** ERROR_EXPONENT)
+
+
+@njit_inlined
+def keep_guards(state, w):
+    """The guards in w become the reference for detecting the next switch."""
+    for e in range(len(state.contact_before)):
+        state.contact_before[e] = w.contact[e]
+        state.motion_before[e] = w.motion[e]
+
+
+@njit_inlined
+def move_state(state, w):
+    """The state becomes w.x_new, w.v_new, w.e_new."""
+    for i in range(len(state.x)):
+        state.x[i] = w.x_new[i]
+        state.v[i] = w.v_new[i]
+    for c in range(N_WORK):
+        state.energy[c] = w.e_new[c]
+
+
+@njit_inlined
+def take_step(state, w):
+    """Move to the end of the step just taken: its state, and its last stage as the first."""
+    move_state(state, w)
+    for i in range(len(state.x)):
+        w.a_start[i] = w.a_end[i]
+    for c in range(N_POWERS):
+        w.stage_p[0, c] = w.stage_p[DP_STAGES - 1, c]
+
+
+@njit_inlined
+def is_finite(state):
+    for i in range(len(state.x)):
+        if not (math.isfinite(state.x[i]) and math.isfinite(state.v[i])):
+            return False
+    return True
+
+
+@njit_inlined
+def record(out, k, t, x, v, modes, energy, w):
+    """Sample k of the output: the state and the forces last evaluated into w."""
+    out.t[k] = t
+    for i in range(len(x)):
+        out.x[k, i] = x[i]
+        out.v[k, i] = v[i]
+    for e in range(len(modes)):
+        out.normal[k, e] = w.normal[e]
+        out.friction[k, e] = w.friction[e]
+        out.modes[k, e] = modes[e]
+    for c in range(N_WORK):
+        out.energy[k, c] = energy[c]

@@ -1,0 +1,111 @@
+"""The dynamics of a scene in one state and set of modes, assembled in plain Python.
+
+``assemble`` evaluates, for a ``Scene``, what the compiled loop evaluates at every stage
+of a step (``dynamics``, ``regroup``, ``detect``), calling the scene's law objects
+themselves: it is how users and tests look at forces, accelerations and guards.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from ..scene import Scene, SceneArrays
+from .clusters import cluster_labels
+from .codes import OPEN, SLIP_POSITIVE, STICK, Mode
+from .detect import event_guards
+from .dynamics import (cluster_accelerations, excitation_forces, interface_kinematics,
+                       resultant_forces, static_friction)
+from .regroup import cluster_mass, static_friction_operator
+
+
+def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
+    """Normal force N_e and sliding friction f_e [N] from each interface's laws.
+
+    Open interfaces carry nothing; stuck ones carry N and no sliding friction (their static
+    friction comes from ``static_friction``). Exact laws slip with f = ±μ(|v|) N by the sign
+    of the mode (paper eqs. 5–6); regularised ones with f = μ(|v|) N tanh(v/v_ε).
+    This is the plain-Python evaluation of the laws; it calls each law object.
+    """
+    normal = np.zeros(arrays.n_interfaces)
+    friction = np.zeros(arrays.n_interfaces)
+    for e, law in enumerate(arrays.normal_laws):
+        if modes[e] == OPEN:
+            continue
+        normal[e] = law(penetration[e], rate[e])
+        friction_law = arrays.friction_laws[e]
+        if friction_law is None or modes[e] == STICK:
+            continue
+        sliding = friction_law(slip_velocity[e]) * normal[e]
+        if arrays.regularisation[e] > 0.0:
+            friction[e] = sliding * math.tanh(slip_velocity[e] / arrays.regularisation[e])
+        else:
+            friction[e] = sliding if modes[e] == SLIP_POSITIVE else -sliding
+    return normal, friction
+
+
+class Assembly(NamedTuple):
+    """The forces and accelerations of a scene in a given state and set of modes."""
+
+    acceleration: np.ndarray     # ẍ_i [m/s²], by blade position
+    normal_force: np.ndarray     # N_e [N], by interface
+    friction_force: np.ndarray   # f_e [N]: sliding, or static on stuck interfaces
+    interface_force: np.ndarray  # F_e = N_e sin α_e + f_e cos α_e [N], −F_e on i, +F_e on j
+    cluster: np.ndarray          # stick-cluster label of each blade
+    grounded: np.ndarray         # per cluster: joined to a fixed node
+    contact_guard: np.ndarray    # see event_guards
+    motion_guard: np.ndarray     # see event_guards
+
+
+def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
+    """Assemble the dynamics of ``scene`` at time ``t`` [s] in state (x [m], ẋ [m/s]).
+
+    ``modes`` gives each interface's ``Mode``. A stuck interface must have zero slip
+    velocity (its blades move together); the result's ``motion_guard`` tells whether each
+    static friction force is admissible (|f| ≤ μ_s N).
+    """
+    a = scene.arrays
+    x, v = _state(x, a.n_blades, "x"), _state(v, a.n_blades, "v")
+    modes = np.asarray(modes, dtype=np.int64)
+    if modes.shape != (a.n_interfaces,) or not np.isin(modes, list(Mode)).all():
+        raise ValueError(f"modes must hold {a.n_interfaces} values of shroudnet.Mode, "
+                         f"got {modes}")
+    stuck = modes == STICK
+    if np.any(stuck & ~a.can_stick):
+        raise ValueError("modes: STICK on an interface that cannot stick (no exact friction "
+                         f"law, or α = π/2): {np.flatnonzero(stuck & ~a.can_stick)}")
+    n, m = a.n_blades, a.n_interfaces
+    penetration, rate, slip_velocity = np.empty(m), np.empty(m), np.empty(m)
+    interface_kinematics(x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle,
+                         penetration, rate, slip_velocity)
+    normal, friction = law_forces(a, penetration, rate, slip_velocity, modes)
+    interface_force = normal * a.sin_angle + friction * a.cos_angle
+    q = np.empty(n)
+    excitation_forces(float(t), a.harmonic_amplitudes, np.cos(a.harmonic_phases),
+                      np.sin(a.harmonic_phases), a.excitation_frequency, q)
+    labels, grounded = cluster_labels(n, a.left, a.right, stuck)
+    resultant = np.empty(n)
+    resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right, interface_force, stuck,
+                     resultant)
+    acceleration = np.empty(n)
+    cluster_accelerations(resultant, labels, grounded,
+                          cluster_mass(a.mass, labels, len(grounded)), np.empty(n), acceleration)
+    operator, stuck_interfaces = static_friction_operator(a.n_blades, a.left, a.right,
+                                                          a.cos_angle, stuck, labels, grounded)
+    static_friction(operator, stuck_interfaces, a.mass, resultant, acceleration, normal,
+                    a.sin_angle, a.left, a.right, np.empty(n), friction)
+    interface_force = normal * a.sin_angle + friction * a.cos_angle
+    contact, motion = np.empty(m), np.empty(m)
+    event_guards(modes, penetration, slip_velocity, normal, friction, a.static_mu, a.opens,
+                 a.can_stick, contact, motion)
+    return Assembly(acceleration, normal, friction, interface_force, labels, grounded,
+                    contact, motion)
+
+
+def _state(values, n, name):
+    array = np.asarray(values, dtype=float)
+    if array.shape != (n,) or not np.isfinite(array).all():
+        raise ValueError(f"{name} must hold {n} finite numbers (one per blade), got {values}")
+    return np.ascontiguousarray(array)

@@ -1,0 +1,51 @@
+"""How the engine is compiled: flavours of ``numba.njit``, all cached on disk.
+
+Compile time is spent per function, and for a function that takes the loop's records a
+large share goes into the wrapper that lets Python call it. So only the drivers, the
+array functions that ``assembly`` calls from Python and the scalar helpers that tests
+call keep that wrapper; everything else is called from compiled code only (calling it
+from Python crashes the interpreter).
+
+Step-path flavours compile without numba's reference counting. Such a function cannot
+create arrays (numba refuses to compile one that tries); in exchange, passing arrays to
+it and reading them out of tuples costs nothing. With counting, each step of the
+integrator spent most of its time incrementing and decrementing the counts of the few
+dozen arrays it touches: summing the forces on three blades took 125 ns instead of
+14 ns, and the paper scene ran at 170,000 instead of 1,150,000 steps per second.
+
+Inlined flavours are for the small helpers called many times per step with the loop's
+records, whose passing would otherwise cost more than their work. They are inlined by
+LLVM (``forceinline``): inlining by numba itself (``inline="always"``) gives the same
+speed but added 40 % to the compile time.
+
+numpy's error model makes a division by zero give inf or NaN instead of raising inside
+compiled code; the loop then stops with a non-finite state, which it reports.
+"""
+
+from numba import njit
+
+_STEP = {"cache": True, "_nrt": False, "error_model": "numpy", "no_cfunc_wrapper": True}
+_NOT_FROM_PYTHON = {"no_cpython_wrapper": True}
+
+#: Allocating code callable from Python: the drivers, and arrays-only helpers.
+njit_entry = njit(cache=True, no_cfunc_wrapper=True)
+#: Allocating code called from compiled code only: resolving a switch, regrouping.
+njit_internal = njit(cache=True, no_cfunc_wrapper=True, **_NOT_FROM_PYTHON)
+#: Step-path code called from compiled code only.
+njit_step = njit(**_STEP, **_NOT_FROM_PYTHON)
+#: Step-path array functions that Python calls too.
+njit_step_callable = njit(**_STEP)
+#: Small step-path helpers, inlined into their callers.
+njit_inlined = njit(**_STEP, forceinline=True, **_NOT_FROM_PYTHON)
+#: Small step-path helpers, inlined, that Python calls too.
+njit_inlined_callable = njit(**_STEP, forceinline=True)
+
+# Merged flavours: parts of a larger function, called from one or two places, whose code
+# numba merges into each caller (``inline="always"``) instead of compiling it on its own.
+# A function compiled on its own is linked, with everything it calls, into every caller,
+# and compiled again there; merging the loop's middle layers cut the compile time by
+# a third.
+#: Allocating code merged into its caller.
+njit_merged = njit(cache=True, no_cfunc_wrapper=True, inline="always", **_NOT_FROM_PYTHON)
+#: Step-path code merged into its caller.
+njit_step_merged = njit(**_STEP, inline="always", **_NOT_FROM_PYTHON)

@@ -1,0 +1,190 @@
+"""Detect: the event guards, and whether one of them crossed zero.
+
+Every interface has two guards, values that stay ≥ 0 while its mode holds and cross 0 at
+a switch (``event_guards``). A step is checked against the guards where the last one
+ended (the state's ``contact_before`` / ``motion_before``). Between the step's ends, a
+contact can close and open again, and a stuck interface's friction can pass μ_s N and
+fall back; ``kinematic_dip``, ``graze_dense``, ``may_graze`` and ``predicted_low`` look
+for those. None of this depends on the contact or friction laws.
+"""
+
+import numpy as np
+
+from .advance import dense_state
+from .codes import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
+from .compiled import njit_inlined, njit_inlined_callable
+from .dynamics import interface_kinematics, relative_motion
+from .tableau import DIP_POINTS
+
+
+@njit_inlined_callable
+def breakaway_margin(static_mu, normal_force, friction_force):
+    """μ_s N − |f| [N]: how much more friction a stuck interface can hold."""
+    return static_mu * normal_force - abs(friction_force)
+
+
+@njit_inlined_callable
+def event_guards(modes, penetration, slip_velocity, normal_force, friction_force, static_mu,
+                 opens, can_stick, contact, motion):
+    """Guards: per interface, values that stay ≥ 0 while its mode holds and cross 0 at a switch.
+
+    contact: −δ while open (crosses 0 as the contact closes), δ while closed (as it opens);
+    +inf for a contact that never opens. motion: ±v while slipping with exact friction
+    (crosses 0 as the slip velocity reaches zero); μ_s N − |f| while stuck (the breakaway
+    margin); +inf otherwise. Written into ``contact`` and ``motion``.
+    """
+    for e in range(len(modes)):
+        mode = modes[e]
+        contact[e] = np.inf
+        motion[e] = np.inf
+        if opens[e]:
+            contact[e] = -penetration[e] if mode == OPEN else penetration[e]
+        if mode == STICK:
+            motion[e] = breakaway_margin(static_mu[e], normal_force[e], friction_force[e])
+        elif can_stick[e] and mode == SLIP_POSITIVE:
+            motion[e] = slip_velocity[e]
+        elif can_stick[e] and mode == SLIP_NEGATIVE:
+            motion[e] = -slip_velocity[e]
+
+
+@njit_inlined_callable
+def crossed(before, after):
+    """A guard changed sign: it is negative now and was not, or it fell further below zero."""
+    return after < 0.0 and (before >= 0.0 or after < before)
+
+
+@njit_inlined_callable
+def depth(before, after):
+    """How far a guard is past its crossing: < 0 exactly when ``crossed(before, after)``.
+
+    The guard itself where it started ≥ 0; where it started below 0 (a restart just past a
+    switch), its fall below that start. Continuous in ``after``: the function the
+    switch is located on.
+    """
+    return after if before >= 0.0 else after - before
+
+
+@njit_inlined
+def first_crossed(state, w):
+    """The first interface whose guard in w crossed since the state's reference, or −1."""
+    for e in range(len(state.contact_before)):
+        if crossed(state.contact_before[e], w.contact[e]) or crossed(state.motion_before[e],
+                                                                     w.motion[e]):
+            return e
+    return -1
+
+
+@njit_inlined
+def any_crossed(state, w):
+    return first_crossed(state, w) >= 0
+
+
+@njit_inlined
+def stuck_crossed(topology, state, s, w):
+    """Whether a stuck interface's breakaway margin, from the forces in w, has crossed."""
+    for e in topology.stuck_interfaces:
+        if crossed(state.motion_before[e], breakaway_margin(s.static_mu[e], w.normal[e],
+                                                            w.friction[e])):
+            return True
+    return False
+
+
+@njit_inlined
+def contact_guard(e, x, v, modes, s):
+    """Interface e's contact guard g (−δ while open, δ while closed) [m] and ġ [m/s]."""
+    u, du = relative_motion(x, v, s.left, s.right, e)
+    side = -s.sin_angle[e] if modes[e] == OPEN else s.sin_angle[e]
+    return side * (u - s.gap[e]), side * du
+
+
+@njit_inlined
+def may_graze(e, h, x, v, x_end, v_end, modes, s):
+    """Interface e's contact guard, positive at both ends of the step of size h from (x, v)
+    to (x_end, v_end), may still dip below 0 inside it: a grazing contact.
+
+    That needs a minimum inside the step (ġ < 0 at its start, > 0 at its end) and the
+    tangents at both ends, which bound a convex guard from below, meeting below 0. Far
+    from grazing the bound stays positive and nothing more is evaluated.
+    """
+    if not s.opens[e]:
+        return False
+    g0, rate0 = contact_guard(e, x, v, modes, s)
+    g1, rate1 = contact_guard(e, x_end, v_end, modes, s)
+    if not (g0 > 0.0 and g1 > 0.0 and rate0 < 0.0 and rate1 > 0.0):
+        return False
+    meet = (g1 - g0 - rate1 * h) / (rate0 - rate1)
+    return g0 + rate0 * meet <= 0.0
+
+
+@njit_inlined_callable
+def parabola_low(a, b, c):
+    """(s, p(s)) at the lowest point for s in [−1, 1] of the parabola p through (−1, a),
+    (0, b) and (1, c)."""
+    curvature = a - 2.0 * b + c
+    if curvature > 0.0:
+        offset = min(1.0, max(-1.0, 0.5 * (a - c) / curvature))
+    else:
+        offset = 1.0 if c < a else -1.0
+    return offset, b + 0.5 * (c - a) * offset + 0.5 * curvature * offset * offset
+
+
+@njit_inlined_callable
+def predicted_low(samples):
+    """(θ, value) at the lowest point of the parabola through the lowest of ``samples``
+    (values at equally spaced fractions 0 … 1 of a step) and its two neighbours."""
+    last = len(samples) - 1
+    lowest = 0
+    for k in range(1, last + 1):
+        if samples[k] < samples[lowest]:
+            lowest = k
+    centre = min(max(lowest, 1), last - 1)
+    offset, value = parabola_low(samples[centre - 1], samples[centre], samples[centre + 1])
+    return (centre + offset) / last, value
+
+
+@njit_inlined
+def kinematic_dip(h, state, s, w):
+    """The first of ``DIP_POINTS`` inside the adaptive step of size h at which a contact or
+    slip guard has crossed, else 2.
+
+    Contact closing and opening, and the slip velocity of a sliding interface, are
+    functions of the state alone, so they are checked on the dense output without
+    evaluating forces: the guards go into w.contact_trial / w.motion_trial, and the
+    breakaway margins of stuck interfaces, which would need the forces, are not read.
+    """
+    modes = state.modes
+    for theta in DIP_POINTS:
+        dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
+        interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
+                             w.penetration, w.rate, w.slip)
+        event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu,
+                     s.opens, s.can_stick, w.contact_trial, w.motion_trial)
+        for e in range(len(modes)):
+            if crossed(state.contact_before[e], w.contact_trial[e]) or (
+                    modes[e] != STICK and crossed(state.motion_before[e], w.motion_trial[e])):
+                return theta
+    return 2.0
+
+
+@njit_inlined
+def graze_dense(h, tolerance, state, s, w):
+    """θ just past the minimum of a contact guard that dips below 0 inside the adaptive step
+    of size h, else 2. The minimum is bisected on the sign of ġ along the dense output to
+    within ``tolerance`` seconds; a switch then lies in (0, θ], where the guard falls."""
+    modes = state.modes
+    first = 2.0
+    for e in range(len(modes)):
+        if not may_graze(e, h, state.x, state.v, w.x_new, w.v_new, modes, s):
+            continue
+        lo, hi = 0.0, 1.0
+        while (hi - lo) * h > tolerance:
+            mid = 0.5 * (lo + hi)
+            dense_state(mid, h, state, w, w.xt, w.vt, w.e_sample)
+            if contact_guard(e, w.xt, w.vt, modes, s)[1] < 0.0:
+                lo = mid
+            else:
+                hi = mid
+        dense_state(hi, h, state, w, w.xt, w.vt, w.e_sample)
+        if contact_guard(e, w.xt, w.vt, modes, s)[0] < 0.0:
+            first = min(first, hi)
+    return first

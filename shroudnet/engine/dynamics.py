@@ -1,0 +1,132 @@
+"""Dynamics assembly for a fixed set of interface modes (DESIGN §2, paper eqs. 1–7).
+
+With blade displacements x, the incidence matrix B (row e: +1 at the left blade i, −1 at the
+right blade j) and the interface forces F_e = N_e sin α_e + f_e cos α_e,
+
+    M ẍ + C ẋ + K x = Q(t) − Bᵀ F.                                   (paper eq. 7)
+
+Open interfaces carry no force. A slipping interface carries its normal law's N and
+f = μ(|v|) N sgn(v) (eqs. 2–6). Stuck interfaces join their blades into stick clusters that
+move as one body: a cluster's acceleration is the sum of the forces on its blades (stuck
+interfaces cancel inside) over its total mass, and the static friction forces follow from
+each blade's equilibrium. For the paper's chain these are eqs. (10)–(22). A cluster holding a
+cycle (an all-stuck ring) is statically indeterminate: we take the friction forces of
+minimum Euclidean norm, which leave no force circulating round the cycle.
+
+The array functions here are compiled with numba and take no Python objects, so the
+integrator's loop calls them directly; ``assembly.assemble`` wraps them for a ``Scene``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .compiled import njit_inlined, njit_inlined_callable, njit_step_callable
+
+
+@njit_step_callable
+def excitation_forces(t, amplitudes, cos_phase, sin_phase, excitation_frequency, out):
+    """Q_i(t) = s_i [q0 + Σ_n q_n sin(n (l Ω t + φ_i))] [N] (paper §2), written into ``out``.
+
+    The tables have one row per harmonic n = 0 … n_harmonics and one column per blade
+    (``SceneArrays.harmonic_amplitudes`` and ``harmonic_phases``): ``amplitudes[n, i]`` is
+    s_i q_n, ``cos_phase[n, i]`` and ``sin_phase[n, i]`` are cos n φ_i and sin n φ_i. By
+    sin(a + φ) = sin a cos φ + cos a sin φ, a harmonic costs one sine and one cosine
+    whatever the number of blades.
+    """
+    for i in range(len(out)):
+        out[i] = amplitudes[0, i]
+    for n in range(1, amplitudes.shape[0]):
+        angle = n * excitation_frequency * t
+        sine = math.sin(angle)
+        cosine = math.cos(angle)
+        for i in range(len(out)):
+            out[i] += amplitudes[n, i] * (sine * cos_phase[n, i] + cosine * sin_phase[n, i])
+
+
+@njit_inlined
+def relative_motion(x, v, left, right, e):
+    """(u, u̇) of interface e: u = x_i − x_j of its left and right blades [m], and its rate
+    [m/s]; a fixed node has x = 0."""
+    u = 0.0
+    du = 0.0
+    if left[e] >= 0:
+        u += x[left[e]]
+        du += v[left[e]]
+    if right[e] >= 0:
+        u -= x[right[e]]
+        du -= v[right[e]]
+    return u, du
+
+
+@njit_inlined_callable
+def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle,
+                         penetration, rate, slip_velocity):
+    """Penetration δ = (u − Δ) sin α [m], its rate δ̇ [m/s] and slip velocity u̇ cos α [m/s].
+
+    u = x_i − x_j is the relative displacement of the left and right blades
+    (``relative_motion``). Written into the last three arrays.
+    """
+    for e in range(len(left)):
+        u, du = relative_motion(x, v, left, right, e)
+        penetration[e] = (u - gap[e]) * sin_angle[e]
+        rate[e] = du * sin_angle[e]
+        slip_velocity[e] = du * cos_angle[e]
+
+
+@njit_step_callable
+def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, stuck,
+                     resultant):
+    """R_i = Q_i − c_i ẋ_i − k_i x_i − (Bᵀ F)_i over the interfaces that are not stuck [N].
+
+    Written into ``resultant``.
+    """
+    for i in range(len(x)):
+        resultant[i] = q[i] - damping[i] * v[i] - stiffness[i] * x[i]
+    for e in range(len(left)):
+        if stuck[e]:
+            continue
+        if left[e] >= 0:
+            resultant[left[e]] -= interface_force[e]
+        if right[e] >= 0:
+            resultant[right[e]] += interface_force[e]
+
+
+@njit_step_callable
+def cluster_accelerations(resultant, labels, grounded, masses, cluster_force, acceleration):
+    """ẍ_i = Σ_cluster R / Σ_cluster m for every blade of a cluster; 0 in a grounded one.
+
+    ``masses`` are the clusters' masses (``cluster_mass``); ``cluster_force`` is scratch
+    space of at least n_clusters; the result is written into ``acceleration``.
+    """
+    n_clusters = len(grounded)
+    cluster_force[:n_clusters] = 0.0
+    for i in range(len(resultant)):
+        cluster_force[labels[i]] += resultant[i]
+    for i in range(len(resultant)):
+        c = labels[i]
+        acceleration[i] = 0.0 if grounded[c] else cluster_force[c] / masses[c]
+
+
+@njit_step_callable
+def static_friction(operator, stuck_interfaces, mass, resultant, acceleration, normal_force,
+                    sin_angle, left, right, imbalance, friction):
+    """Static friction f_e [N] on each stuck interface, written into ``friction[e]``.
+
+    f = P b with b_i = R_i − m_i ẍ_i − Σ_e B_ei N_e sin α_e over the stuck interfaces
+    (see ``static_friction_operator``). Other entries of ``friction`` are left as they are;
+    ``imbalance`` is scratch space of n_blades.
+    """
+    for i in range(len(mass)):
+        imbalance[i] = resultant[i] - mass[i] * acceleration[i]
+    for e in stuck_interfaces:
+        push = normal_force[e] * sin_angle[e]
+        if left[e] >= 0:
+            imbalance[left[e]] -= push
+        if right[e] >= 0:
+            imbalance[right[e]] += push
+    for k in range(len(stuck_interfaces)):
+        value = 0.0
+        for i in range(len(mass)):
+            value += operator[k, i] * imbalance[i]
+        friction[stuck_interfaces[k]] = value

@@ -1,0 +1,134 @@
+"""The named records the compiled loop passes around, and their allocation.
+
+Records are ``namedtuple`` classes defined at module level, so numba can cache code that
+takes them. Arrays inside a record are mutable; the records themselves are not, so
+scalars that change during a run (the time, the step size) travel as plain values.
+"""
+
+from collections import namedtuple
+
+import numpy as np
+
+from .codes import N_EVENT_KINDS, N_POWERS, N_WORK
+from .compiled import njit_inlined, njit_internal
+from .tableau import DP_STAGES
+
+#: A scene as the compiled loop sees it: the ``SceneArrays`` fields that are numbers, plus
+#: each interface's law index (into the kernel's list of law classes, −1 for none) and its
+#: parameters, padded into one row per interface; the excitation as tables with one row per
+#: harmonic n and one column per blade: amplitudes s_i q_n, and cos n φ_i and sin n φ_i.
+KernelScene = namedtuple("KernelScene", [
+    "mass", "damping", "stiffness", "left", "right", "gap", "sin_angle", "cos_angle",
+    "opens", "can_stick", "static_mu", "regularisation", "normal_kind", "normal_params",
+    "friction_kind", "friction_params", "amplitudes", "cos_phase", "sin_phase",
+    "excitation_frequency",
+])
+
+#: What a run is asked for, in seconds: the first sample time, the sample spacing and the
+#: number of samples (the last at ``last_sample``); the fixed step (``run_fixed_step``) or
+#: the first trial step (``run_adaptive``) and the number of fixed steps per sample; the
+#: adaptive tolerances (rtol, atol on x [m] and on ẋ [m/s]) and step limits; the event
+#: tolerance; the Zeno guard (switches within a window [s]); and how many events the log
+#: keeps.
+Controls = namedtuple("Controls", [
+    "t0", "sample_step", "n_samples", "step", "steps_per_sample",
+    "rtol", "atol_x", "atol_v", "h_max", "h_min",
+    "event_tolerance", "zeno_events", "zeno_window", "event_capacity",
+])
+
+#: The integrator's state between steps: displacements x [m] and velocities ẋ [m/s] by
+#: blade, the cumulative work columns [J] (``codes.WorkColumn``), each interface's mode,
+#: and its contact and motion guards where the last step ended (``detect.event_guards``),
+#: the reference a switch is detected against.
+State = namedtuple("State", ["x", "v", "energy", "modes", "contact_before", "motion_before"])
+
+#: Stick clusters of a set of modes (``regroup``): which interfaces are stuck, each blade's
+#: cluster, whether each cluster is grounded, its mass, and the static friction operator
+#: with the stuck interfaces it gives the friction of.
+Topology = namedtuple("Topology", [
+    "stuck", "labels", "grounded", "masses", "operator", "stuck_interfaces",
+])
+
+#: Scratch arrays of one run, allocated once. Per blade: q … a_sample, x_new, v_new; per
+#: interface: penetration … motion_trial; Runge–Kutta stages (7 rows): stage_v, stage_a
+#: (per blade) and stage_p (the four powers), and the dense output's weight of each stage;
+#: the state's energy columns: e_new, e_sample.
+Work = namedtuple("Work", [
+    "q", "resultant", "scratch", "imbalance", "a_start", "a_end", "a_sample", "xt", "vt",
+    "x_new", "v_new",
+    "penetration", "rate", "slip", "normal", "friction", "force", "contact", "motion",
+    "contact_trial", "motion_trial",
+    "stage_v", "stage_a", "stage_p", "dense_weights", "e_new", "e_sample",
+])
+
+#: The event log of one run: located switches (time, interface, kind) up to its capacity,
+#: exact counts by kind, the times of the latest switches (for the Zeno guard), and
+#: ``n_events[0]``, the number of switches so far, and ``idle[0]``, the located switches in
+#: a row that changed no mode.
+Events = namedtuple("Events", ["time", "interface", "kind", "counts", "recent", "n_events",
+                               "idle"])
+
+#: Sampled output of one run: one row per sample time.
+Output = namedtuple("Output", ["t", "x", "v", "normal", "friction", "modes", "energy"])
+
+#: What a driver returns: its ``codes.Status``, the time it stopped at [s], the interface
+#: that stopped it (−1 for none), the Runge–Kutta steps taken (accepted ones, for the
+#: adaptive driver), the samples taken, and the events logged.
+Run = namedtuple("Run", ["status", "time", "interface", "steps", "output", "events"])
+
+
+@njit_inlined
+def last_sample(controls):
+    """The time of the last sample [s], computed as every sample time is, so that a run
+    ends exactly on it."""
+    return controls.t0 + (controls.n_samples - 1) * controls.sample_step
+
+
+@njit_internal
+def new_work(n_blades, n_interfaces):
+    b, m = n_blades, n_interfaces
+    return Work(np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b),
+                np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b),
+                np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m), np.empty(m),
+                np.empty(m), np.empty(m), np.empty(m), np.empty(m),
+                np.zeros((DP_STAGES, b)), np.zeros((DP_STAGES, b)),
+                np.zeros((DP_STAGES, N_POWERS)), np.zeros(DP_STAGES),
+                np.zeros(N_WORK), np.zeros(N_WORK))
+
+
+@njit_internal
+def new_events(capacity, zeno_events):
+    return Events(np.empty(capacity), np.empty(capacity, dtype=np.int64),
+                  np.empty(capacity, dtype=np.int8), np.zeros(N_EVENT_KINDS, dtype=np.int64),
+                  np.full(max(zeno_events, 1), -np.inf), np.zeros(1, dtype=np.int64),
+                  np.zeros(1, dtype=np.int64))
+
+
+@njit_internal
+def new_output(n_samples, n_blades, n_interfaces):
+    return Output(np.empty(n_samples), np.empty((n_samples, n_blades)),
+                  np.empty((n_samples, n_blades)), np.empty((n_samples, n_interfaces)),
+                  np.empty((n_samples, n_interfaces)),
+                  np.empty((n_samples, n_interfaces), dtype=np.int8),
+                  np.empty((n_samples, N_WORK)))
+
+
+@njit_internal
+def new_state(x0, v0, n_interfaces):
+    x, v = np.empty(len(x0)), np.empty(len(v0))
+    for i in range(len(x0)):
+        x[i], v[i] = x0[i], v0[i]
+    return State(x, v, np.zeros(N_WORK), np.zeros(n_interfaces, np.int64),
+                 np.empty(n_interfaces), np.empty(n_interfaces))
+
+
+@njit_internal
+def finish(status, time, interface, steps, out, n_samples, events):
+    """The driver's ``Run``: the samples taken and the events logged, trimmed."""
+    n = min(events.n_events[0], len(events.time))
+    output = Output(out.t[:n_samples], out.x[:n_samples], out.v[:n_samples],
+                    out.normal[:n_samples], out.friction[:n_samples], out.modes[:n_samples],
+                    out.energy[:n_samples])
+    logged = Events(events.time[:n], events.interface[:n], events.kind[:n], events.counts,
+                    events.recent, events.n_events, events.idle)
+    return Run(status, time, interface, steps, output, logged)

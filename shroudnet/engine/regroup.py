@@ -1,0 +1,143 @@
+"""Regroup: the stick clusters of a set of modes and what follows from them.
+
+Stuck interfaces join their blades into stick clusters that move as one body
+(``clusters.cluster_labels``). A mode change regroups once: cluster masses, the linear
+operator that turns force imbalances into static friction, and the projection of the
+velocities onto the clusters. Everything here allocates, and none of it depends on the
+contact or friction laws.
+"""
+
+import numpy as np
+
+from .clusters import cluster_labels
+from .codes import STICK
+from .compiled import njit_entry, njit_internal
+from .records import Topology
+
+
+@njit_entry
+def cluster_mass(mass, labels, n_clusters):
+    """Σ m [kg] of each stick cluster."""
+    total = np.zeros(n_clusters)
+    for i in range(len(mass)):
+        total[labels[i]] += mass[i]
+    return total
+
+
+@njit_entry
+def static_friction_operator(n_blades, left, right, cos_angle, stuck, labels, grounded):
+    """The linear map P from blade force imbalances to static friction on stuck interfaces.
+
+    Every blade i of a cluster obeys Σ_e B_ei (N_e sin α_e + f_e cos α_e) = R_i − m_i ẍ_i
+    over its stuck interfaces e, i.e. G f = b with G_ie = B_ei cos α_e. For a tree cluster
+    the solution is unique; a cycle (an all-stuck ring) makes it indeterminate, and we take
+    the solution of minimum Euclidean norm, which leaves no force circulating round the
+    cycle. Both are f = Gᵀ y with G Gᵀ y = b. G Gᵀ is singular only along the rigid motion
+    of each free (ungrounded) cluster, y = const on the cluster, which b never excites (its
+    sum over a free cluster is 0: the cluster's acceleration balances its forces). Adding
+    J_c / n_c (all entries 1/n_c on the cluster's blades) for each free cluster c makes the
+    matrix positive definite without changing y on that b, so
+
+        P = Gᵀ (G Gᵀ + Σ_c J_c / n_c)⁻¹,
+
+    inverted by a Cholesky factorisation written out here (no LAPACK call, and the same
+    P as the pseudo-inverse of G). P is block-diagonal by cluster and depends only on the
+    set of stuck interfaces, so it is computed once per mode change.
+
+    Returns
+    -------
+    operator : float array (n_stuck, n_blades)
+    stuck_interfaces : int64 array (n_stuck,)
+    """
+    count = 0
+    for e in range(len(stuck)):
+        count += 1 if stuck[e] else 0
+    stuck_interfaces = np.empty(count, dtype=np.int64)
+    k = 0
+    for e in range(len(stuck)):
+        if stuck[e]:
+            stuck_interfaces[k] = e
+            k += 1
+    n_stuck = len(stuck_interfaces)
+    g = np.zeros((n_blades, n_stuck))
+    for k in range(n_stuck):
+        e = stuck_interfaces[k]
+        if left[e] >= 0:
+            g[left[e], k] += cos_angle[e]
+        if right[e] >= 0:
+            g[right[e], k] -= cos_angle[e]
+    size = np.zeros(len(grounded))
+    for i in range(n_blades):
+        size[labels[i]] += 1.0
+    matrix = np.zeros((n_blades, n_blades))
+    for i in range(n_blades):
+        for j in range(n_blades):
+            for k in range(n_stuck):
+                matrix[i, j] += g[i, k] * g[j, k]
+            if labels[i] == labels[j] and not grounded[labels[i]]:
+                matrix[i, j] += 1.0 / size[labels[i]]
+    inverse = _spd_inverse(matrix)
+    operator = np.zeros((n_stuck, n_blades))
+    for k in range(n_stuck):
+        for j in range(n_blades):
+            for i in range(n_blades):
+                operator[k, j] += g[i, k] * inverse[i, j]
+    return operator, stuck_interfaces
+
+
+@njit_entry
+def _spd_inverse(matrix):
+    """The inverse of a symmetric positive definite matrix, by Cholesky factorisation."""
+    n = len(matrix)
+    lower = np.zeros((n, n))
+    for j in range(n):
+        for i in range(j, n):
+            value = matrix[i, j]
+            for k in range(j):
+                value -= lower[i, k] * lower[j, k]
+            lower[i, j] = np.sqrt(value) if i == j else value / lower[j, j]
+    inverse = np.zeros((n, n))
+    for c in range(n):
+        for i in range(n):  # L z = e_c
+            value = 1.0 if i == c else 0.0
+            for k in range(i):
+                value -= lower[i, k] * inverse[k, c]
+            inverse[i, c] = value / lower[i, i]
+        for i in range(n - 1, -1, -1):  # Lᵀ y = z
+            value = inverse[i, c]
+            for k in range(i + 1, n):
+                value -= lower[k, i] * inverse[k, c]
+            inverse[i, c] = value / lower[i, i]
+    return inverse
+
+
+@njit_internal
+def regroup(s, modes):
+    """Stick clusters and the static friction operator of a set of modes."""
+    stuck = np.empty(len(modes), dtype=np.bool_)
+    for e in range(len(modes)):
+        stuck[e] = modes[e] == STICK
+    labels, grounded = cluster_labels(len(s.mass), s.left, s.right, stuck)
+    operator, stuck_interfaces = static_friction_operator(len(s.mass), s.left, s.right,
+                                                          s.cos_angle, stuck, labels, grounded)
+    return Topology(stuck, labels, grounded, cluster_mass(s.mass, labels, len(grounded)),
+                    operator, stuck_interfaces)
+
+
+@njit_internal
+def project_velocities(s, topology, v):
+    """One velocity per stick cluster, conserving its momentum; 0 in a grounded cluster.
+
+    Returns the kinetic energy removed [J] (of the order of the event tolerance).
+    """
+    n_clusters = len(topology.grounded)
+    momentum = np.zeros(n_clusters)
+    for i in range(len(v)):
+        momentum[topology.labels[i]] += s.mass[i] * v[i]
+    lost = 0.0
+    for i in range(len(v)):
+        c = topology.labels[i]
+        new = 0.0 if topology.grounded[c] else momentum[c] / topology.masses[c]
+        lost += 0.5 * s.mass[i] * (v[i] * v[i] - new * new)
+        v[i] = new
+    return lost

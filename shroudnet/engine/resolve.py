@@ -1,0 +1,88 @@
+"""Resolve: the parts of choosing the new modes at a switch that do not evaluate forces.
+
+The mode rule itself (``settle`` in the kernel template) computes static friction, which
+needs the laws; here are the initial modes, the kinds of events, the event log and the
+Zeno guard.
+"""
+
+import numpy as np
+
+from .codes import (BREAKAWAY, CLOSING, OPEN, REVERSAL, SEPARATION, SLIP_NEGATIVE,
+                    SLIP_POSITIVE, STICK, STICKING)
+from .compiled import njit_inlined, njit_internal
+from .dynamics import interface_kinematics
+
+
+@njit_internal
+def initial_modes(state, s, w):
+    """Modes at the start, into state.modes: closed where δ > 0 (or the law never opens),
+    stuck where possible. Returns which interfaces are candidates for stick."""
+    modes = state.modes
+    interface_kinematics(state.x, state.v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
+                         w.penetration, w.rate, w.slip)
+    candidates = np.zeros(len(modes), dtype=np.bool_)
+    for e in range(len(modes)):
+        if s.opens[e] and w.penetration[e] <= 0.0:
+            modes[e] = OPEN
+        elif s.can_stick[e] and w.slip[e] == 0.0:
+            modes[e] = STICK
+            candidates[e] = True
+        else:
+            modes[e] = SLIP_POSITIVE if w.slip[e] >= 0.0 else SLIP_NEGATIVE
+    return candidates
+
+
+@njit_inlined
+def relative_acceleration(s, e, acceleration):
+    """(ẍ_i − ẍ_j) cos α of interface e: the rate of change of its slip velocity."""
+    value = 0.0
+    if s.left[e] >= 0:
+        value += acceleration[s.left[e]]
+    if s.right[e] >= 0:
+        value -= acceleration[s.right[e]]
+    return value * s.cos_angle[e]
+
+
+@njit_inlined
+def direction_bit(mode):
+    """1 for SLIP_POSITIVE, 2 for SLIP_NEGATIVE: the flags of ``settle``'s tried directions."""
+    return 1 if mode == SLIP_POSITIVE else 2
+
+
+@njit_inlined
+def event_kind(before, after):
+    if before == OPEN:
+        return CLOSING
+    if after == OPEN:
+        return SEPARATION
+    if after == STICK:
+        return STICKING
+    if before == STICK:
+        return BREAKAWAY
+    return REVERSAL
+
+
+@njit_internal
+def log_switches(t, old, modes, events):
+    """Record every interface whose mode changed; returns the last one's index (or −1)."""
+    last = -1
+    for e in range(len(modes)):
+        if modes[e] != old[e]:
+            kind = event_kind(old[e], modes[e])
+            events.counts[kind] += 1
+            n = events.n_events[0]
+            if n < len(events.time):
+                events.time[n] = t
+                events.interface[n] = e
+                events.kind[n] = kind
+            events.n_events[0] = n + 1
+            events.recent[(n + 1) % len(events.recent)] = t
+            last = e
+    return last
+
+
+@njit_inlined
+def piling_up(t, events, controls):
+    """The Zeno guard: the last ``zeno_events`` switches all fell within ``zeno_window``."""
+    oldest = events.recent[(events.n_events[0] + 1) % len(events.recent)]
+    return controls.zeno_events > 0 and t - oldest < controls.zeno_window

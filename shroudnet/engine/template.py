@@ -1,0 +1,684 @@
+"""The event-driven integration loop: the functions that must see the scene's laws.
+
+This file is not imported as it stands. ``shroudnet.engine.generate`` writes a module
+made of a generated header followed by this source, so that numba can cache it on disk.
+The header defines, for the law classes of a scene:
+
+- ``normal_force(kind, params, penetration, rate)`` and
+  ``friction_coefficient(kind, params, slip_speed)``, which dispatch on the law's index;
+- the effect flags ``HAS_CONTACT_EVENTS``, ``HAS_STICK``, ``HAS_FRICTION`` and
+  ``HAS_REGULARISED``, compile-time constants that remove the code of effects the laws
+  rule out.
+
+A step reads as five phases, each with a module of its own for what does not need the
+laws: advance (one Runge–Kutta step with fixed modes; ``advance``), detect (a guard
+changed sign; ``detect``), locate (the switch inside the step, to within the event
+tolerance, by the Illinois method; ``locate``), resolve (the new consistent set of modes;
+``resolve``) and regroup (stick clusters, the static friction operator, and one velocity
+for each cluster; ``regroup``). Two drivers share everything but the advance and the
+state inside a step: ``run_fixed_step`` (classical RK4 on a grid; a state inside a step is
+integrated anew) and ``run_adaptive`` (Dormand–Prince 5(4) with error control; a switch is
+located on the step's dense output, and the state there integrated anew).
+
+The state carries, beside x and ẋ, the work done so far: excitation, damping, friction and
+contact work from the powers ``derivative`` returns (integrated by the same Runge–Kutta
+weights), and the kinetic energy removed when velocities are projected onto stick clusters.
+"""
+
+import math
+
+import numpy as np
+
+from shroudnet.engine.advance import (dense_state, is_finite, keep_guards, move_state,
+                                      next_step, record, retry_step, set_powers, stage_sum,
+                                      take_step)
+from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N_POWERS,
+                                    NO_PROGRESS, NOT_FINITE, OPEN, PROJECTION,
+                                    SLIP_NEGATIVE, SLIP_POSITIVE, STEP_TOO_SMALL, STICK, ZENO)
+from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_merged,
+                                       njit_step, njit_step_merged)
+from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard, crossed,
+                                     event_guards, first_crossed, graze_dense,
+                                     kinematic_dip, may_graze, predicted_low, stuck_crossed)
+from shroudnet.engine.dynamics import (cluster_accelerations, excitation_forces,
+                                       interface_kinematics, resultant_forces,
+                                       static_friction)
+from shroudnet.engine.locate import bracket_after, bracket_start, next_trial
+from shroudnet.engine.records import (finish, last_sample, new_events, new_output, new_state,
+                                      new_work)
+from shroudnet.engine.regroup import project_velocities, regroup
+from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches, piling_up,
+                                      relative_acceleration)
+from shroudnet.engine.tableau import DIP_POINTS, DP_A, DP_B, DP_C, DP_E, DP_STAGES
+
+#: Relative slack on |f| ≤ μ_s N for an interface whose slip velocity has just reached zero,
+#: so that rounding in its static friction does not release it at once. An interface
+#: already stuck is released as soon as |f| > μ_s N, where its breakaway guard fires.
+FRICTION_SLACK = 1e-9
+
+
+# ---- the right-hand side and the guards (every stage of every step) -------------------
+
+@njit_step
+def law_forces(s, modes, w):
+    """N and sliding f on every interface from its laws, into w.normal and w.friction."""
+    for e in range(len(modes)):
+        w.normal[e] = 0.0
+        w.friction[e] = 0.0
+        if modes[e] == OPEN:
+            continue
+        normal = normal_force(s.normal_kind[e], s.normal_params[e], w.penetration[e],
+                              w.rate[e])
+        w.normal[e] = normal
+        if not HAS_FRICTION or s.friction_kind[e] < 0 or modes[e] == STICK:
+            continue
+        sliding = normal * friction_coefficient(s.friction_kind[e], s.friction_params[e],
+                                                abs(w.slip[e]))
+        if HAS_REGULARISED and s.regularisation[e] > 0.0:
+            w.friction[e] = sliding * math.tanh(w.slip[e] / s.regularisation[e])
+        elif modes[e] == SLIP_POSITIVE:
+            w.friction[e] = sliding
+        else:
+            w.friction[e] = -sliding
+
+
+@njit_entry
+def forces_at(s, modes, w):
+    """``law_forces``, callable from Python: the kernel's law dispatch, for tests."""
+    law_forces(s, modes, w)
+
+
+@njit_inlined
+def derivative(t, x, v, modes, topology, s, w, acceleration):
+    """ẍ into ``acceleration``; returns the powers (excitation, damping, friction, contact) [W].
+
+    Contact power is Σ N δ̇, friction power Σ f v over sliding interfaces: with stuck
+    interfaces carrying no relative motion, d(kinetic + spring energy)/dt is
+    excitation − damping − friction − contact.
+    """
+    interface_kinematics(x, v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
+                         w.penetration, w.rate, w.slip)
+    law_forces(s, modes, w)
+    for e in range(len(modes)):
+        w.force[e] = w.normal[e] * s.sin_angle[e] + w.friction[e] * s.cos_angle[e]
+    excitation_forces(t, s.amplitudes, s.cos_phase, s.sin_phase, s.excitation_frequency,
+                      w.q)
+    resultant_forces(x, v, w.q, s.damping, s.stiffness, s.left, s.right, w.force,
+                     topology.stuck, w.resultant)
+    cluster_accelerations(w.resultant, topology.labels, topology.grounded, topology.masses,
+                          w.scratch, acceleration)
+    excitation = 0.0
+    damping = 0.0
+    for i in range(len(x)):
+        excitation += w.q[i] * v[i]
+        damping += s.damping[i] * v[i] * v[i]
+    friction = 0.0
+    contact = 0.0
+    for e in range(len(modes)):
+        friction += w.friction[e] * w.slip[e]
+        contact += w.normal[e] * w.rate[e]
+    return excitation, damping, friction, contact
+
+
+@njit_step
+def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
+    """``derivative``, then static friction and guards into w (w.friction includes static).
+
+    Returns the powers, as ``derivative``.
+    """
+    powers = derivative(t, x, v, modes, topology, s, w, acceleration)
+    if HAS_STICK and len(topology.stuck_interfaces) > 0:
+        static_friction(topology.operator, topology.stuck_interfaces, s.mass, w.resultant,
+                        acceleration, w.normal, s.sin_angle, s.left, s.right, w.imbalance,
+                        w.friction)
+    event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu, s.opens,
+                 s.can_stick, w.contact, w.motion)
+    return powers
+
+
+@njit_step_merged
+def stuck_forces(time, xt, vt, modes, topology, s, w):
+    """The forces, static friction included, at the state (xt, vt) inside a step, into w's
+    scratch (the step's end guards in w.contact / w.motion are kept)."""
+    derivative(time, xt, vt, modes, topology, s, w, w.a_sample)
+    static_friction(topology.operator, topology.stuck_interfaces, s.mass, w.resultant,
+                    w.a_sample, w.normal, s.sin_angle, s.left, s.right, w.imbalance, w.friction)
+
+
+# ---- advance: one step with fixed modes --------------------------------------------------
+
+@njit_step
+def rk4_step(t, h, state, topology, s, w):
+    """One classical Runge–Kutta step of size h with fixed modes, into w.x_new, w.v_new and
+    w.e_new.
+
+    The first stage is the acceleration and powers at the state, held in w.a_start and
+    w.stage_p[0], so a step costs three evaluations of ``derivative`` (plus the guards at
+    its end).
+    """
+    x, v, energy, modes = state.x, state.v, state.energy, state.modes
+    a1, a2, a3, a4 = w.a_start, w.stage_a[1], w.stage_a[2], w.stage_a[3]
+    xt, vt, p = w.xt, w.vt, w.stage_p
+    for i in range(len(x)):
+        xt[i] = x[i] + 0.5 * h * v[i]
+        vt[i] = v[i] + 0.5 * h * a1[i]
+    set_powers(p[1], derivative(t + 0.5 * h, xt, vt, modes, topology, s, w, a2))
+    for i in range(len(x)):
+        xt[i] = x[i] + 0.5 * h * (v[i] + 0.5 * h * a1[i])
+        vt[i] = v[i] + 0.5 * h * a2[i]
+    set_powers(p[2], derivative(t + 0.5 * h, xt, vt, modes, topology, s, w, a3))
+    for i in range(len(x)):
+        xt[i] = x[i] + h * (v[i] + 0.5 * h * a2[i])
+        vt[i] = v[i] + h * a3[i]
+    set_powers(p[3], derivative(t + h, xt, vt, modes, topology, s, w, a4))
+    for i in range(len(x)):
+        v2 = v[i] + 0.5 * h * a1[i]
+        v3 = v[i] + 0.5 * h * a2[i]
+        v4 = v[i] + h * a3[i]
+        w.x_new[i] = x[i] + h / 6.0 * (v[i] + 2.0 * v2 + 2.0 * v3 + v4)
+        w.v_new[i] = v[i] + h / 6.0 * (a1[i] + 2.0 * a2[i] + 2.0 * a3[i] + a4[i])
+    for k in range(N_POWERS):
+        w.e_new[k] = energy[k] + h / 6.0 * (p[0, k] + 2.0 * p[1, k] + 2.0 * p[2, k] + p[3, k])
+    w.e_new[PROJECTION] = energy[PROJECTION]
+
+
+@njit_step
+def rk4_guarded(t, h, state, topology, s, w):
+    """``rk4_step``, then the forces and guards at its end (w.a_end, w.stage_p[-1])."""
+    rk4_step(t, h, state, topology, s, w)
+    set_powers(w.stage_p[DP_STAGES - 1], evaluate_guards(t + h, w.x_new, w.v_new, state.modes,
+                                                         topology, s, w, w.a_end))
+
+
+@njit_step
+def dp5_step(t, h, state, topology, s, w, controls):
+    """One Dormand–Prince step of size h: the new state into w.x_new, w.v_new, w.e_new.
+
+    Stage 1 is w.a_start / w.stage_p[0] (first same as last); the last stage is evaluated
+    with the guards at the step's end, into w.a_end. Returns the RMS of the local error
+    over x and ẋ scaled by atol + rtol·|y| (≤ 1 accepts the step).
+    """
+    x, v, energy, modes = state.x, state.v, state.energy, state.modes
+    n = len(x)
+    last = DP_STAGES - 1
+    sv, sa, sp = w.stage_v, w.stage_a, w.stage_p
+    for i in range(n):
+        sv[0, i] = v[i]
+        sa[0, i] = w.a_start[i]
+    for j in range(1, last):
+        for i in range(n):
+            w.xt[i] = x[i] + h * stage_sum(DP_A[j], sv, j, i)
+            w.vt[i] = v[i] + h * stage_sum(DP_A[j], sa, j, i)
+            sv[j, i] = w.vt[i]
+        set_powers(sp[j], derivative(t + DP_C[j] * h, w.xt, w.vt, modes, topology, s, w,
+                                     sa[j]))
+    for i in range(n):
+        w.x_new[i] = x[i] + h * stage_sum(DP_B, sv, last, i)
+        w.v_new[i] = v[i] + h * stage_sum(DP_B, sa, last, i)
+        sv[last, i] = w.v_new[i]
+    for c in range(N_POWERS):
+        w.e_new[c] = energy[c] + h * stage_sum(DP_B, sp, last, c)
+    w.e_new[PROJECTION] = energy[PROJECTION]
+    set_powers(sp[last], evaluate_guards(t + h, w.x_new, w.v_new, modes, topology, s, w,
+                                         w.a_end))
+    for i in range(n):
+        sa[last, i] = w.a_end[i]
+    error = 0.0
+    for i in range(n):
+        scale_x = controls.atol_x + controls.rtol * max(abs(x[i]), abs(w.x_new[i]))
+        scale_v = controls.atol_v + controls.rtol * max(abs(v[i]), abs(w.v_new[i]))
+        error += (h * stage_sum(DP_E, sv, DP_STAGES, i) / scale_x) ** 2 \
+            + (h * stage_sum(DP_E, sa, DP_STAGES, i) / scale_v) ** 2
+    return math.sqrt(error / (2 * n))
+
+
+# ---- detect: switches hidden inside a step ------------------------------------------------
+
+@njit_step_merged
+def breakaway_dense(t, h, state, topology, s, w):
+    """The first fraction of the adaptive step from t where a stuck interface's breakaway
+    margin has crossed, else 2.
+
+    A stuck phase has no integration error to shorten the steps, so one step can span a
+    whole excursion of the static friction beyond μ_s N. The margins are sampled at
+    ``DIP_POINTS`` on the dense output (the first two kept in w.contact_trial and
+    w.motion_trial), then checked where a parabola through the samples and the step's ends
+    puts them lowest.
+    """
+    modes, before = state.modes, state.motion_before
+    kept = (w.contact_trial, w.motion_trial)
+    for k in range(len(DIP_POINTS)):
+        theta = DIP_POINTS[k]
+        dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
+        stuck_forces(t + theta * h, w.xt, w.vt, modes, topology, s, w)
+        for e in topology.stuck_interfaces:
+            margin = breakaway_margin(s.static_mu[e], w.normal[e], w.friction[e])
+            if crossed(before[e], margin):
+                return theta
+            if k < len(kept):
+                kept[k][e] = margin
+    first = 2.0
+    for e in topology.stuck_interfaces:
+        theta, value = predicted_low((before[e], w.contact_trial[e], w.motion_trial[e],
+                                      breakaway_margin(s.static_mu[e], w.normal[e],
+                                                       w.friction[e]), w.motion[e]))
+        if value < 0.0 and 0.0 < theta < first:
+            first = theta
+    if first < 1.0:
+        dense_state(first, h, state, w, w.xt, w.vt, w.e_sample)
+        stuck_forces(t + first * h, w.xt, w.vt, modes, topology, s, w)
+        if stuck_crossed(topology, state, s, w):
+            return first
+    return 2.0
+
+
+@njit_step
+def breakaway_fixed(t, h, state, topology, s, w):
+    """``breakaway_dense`` for the fixed-step RK4 step of size h from t: the margins are
+    sampled at its middle and checked where a parabola through them and the step's ends
+    puts them lowest, each state integrated anew from the step's start. Returns θ ≤ 1, or
+    2 with the step's end state and guards restored in w."""
+    modes = state.modes
+    rk4_step(t, 0.5 * h, state, topology, s, w)
+    stuck_forces(t + 0.5 * h, w.x_new, w.v_new, modes, topology, s, w)
+    if stuck_crossed(topology, state, s, w):
+        return 0.5
+    first = 2.0
+    for e in topology.stuck_interfaces:
+        theta, value = predicted_low((state.motion_before[e],
+                                      breakaway_margin(s.static_mu[e], w.normal[e],
+                                                       w.friction[e]), w.motion[e]))
+        if value < 0.0 and 0.0 < theta < first:
+            first = theta
+    if first < 1.0:
+        rk4_step(t, first * h, state, topology, s, w)
+        stuck_forces(t + first * h, w.x_new, w.v_new, modes, topology, s, w)
+        if stuck_crossed(topology, state, s, w):
+            return first
+    rk4_guarded(t, h, state, topology, s, w)
+    return 2.0
+
+
+@njit_step
+def graze_fixed(t, h, state, topology, s, w, tolerance):
+    """``detect.graze_dense`` for the fixed-step RK4 step of size h from t, each trial state
+    integrated anew from the step's start. Returns θ ≤ 1, or 2 with the step's end state
+    and guards restored in w when no contact guard dips below 0."""
+    modes = state.modes
+    candidates = w.contact_trial
+    searched = False
+    for e in range(len(modes)):
+        candidates[e] = 1.0 if may_graze(e, h, state.x, state.v, w.x_new, w.v_new, modes,
+                                         s) else 0.0
+        searched = searched or candidates[e] > 0.0
+    if not searched:
+        return 2.0
+    first = 2.0
+    for e in range(len(modes)):
+        if candidates[e] == 0.0:
+            continue
+        lo, hi = 0.0, 1.0
+        while (hi - lo) * h > tolerance:
+            mid = 0.5 * (lo + hi)
+            rk4_step(t, mid * h, state, topology, s, w)
+            if contact_guard(e, w.x_new, w.v_new, modes, s)[1] < 0.0:
+                lo = mid
+            else:
+                hi = mid
+        rk4_step(t, hi * h, state, topology, s, w)
+        if contact_guard(e, w.x_new, w.v_new, modes, s)[0] < 0.0:
+            first = min(first, hi)
+    if first > 1.0:
+        rk4_guarded(t, h, state, topology, s, w)
+    return first
+
+
+# ---- resolve and regroup: a switch (allocates: once per event) ----------------------------
+
+@njit_merged
+def settle(t, state, candidates, s, w):
+    """Release stuck interfaces until every one holds: a terminating mode-selection rule.
+
+    ``state.modes`` holds the tentative set, with every candidate for stick
+    (``candidates``) and every held interface in STICK. Each round projects the velocities
+    onto the clusters, computes the static friction, and releases the stuck interface that
+    exceeds μ_s N by the largest ratio, to slip in the direction its friction pushed
+    (|f| > μ_s N with f > 0 means the relative motion starts positive). A released
+    candidate whose slip would reverse at once (its relative acceleration opposes its
+    direction) is held again, and that direction is marked as tried for it. Releasing
+    other interfaces can turn the friction it needs round, so it may later be released the
+    other way; but when it needs more than μ_s N towards a direction already tried,
+    neither stick nor slip is consistent for it (its friction law's μ(0⁺) exceeds μ_s, or
+    the coupled limits conflict) and INCONSISTENT is returned with that interface. A held
+    interface is released at most once, and a candidate at most once each way, so the rule
+    ends within 4 n_interfaces + 1 rounds. A held interface is released as soon as
+    |f| > μ_s N, as its breakaway guard says; a candidate only beyond
+    μ_s N (1 + ``FRICTION_SLACK``).
+
+    Returns (status, kinetic energy lost to the projection, topology, the interface that
+    made the set inconsistent or −1); state.v is projected.
+    """
+    modes, x, v = state.modes, state.x, state.v
+    n = len(modes)
+    tried = np.zeros(n, dtype=np.int64)  # per interface: bit 1 slip +, bit 2 slip − tried
+    v_trial = np.empty(len(v))
+    for _ in range(4 * n + 2):
+        topology = regroup(s, modes)
+        for i in range(len(v)):
+            v_trial[i] = v[i]
+        lost = project_velocities(s, topology, v_trial)
+        evaluate_guards(t, x, v_trial, modes, topology, s, w, w.a_end)
+        worst = -1
+        worst_ratio = 0.0
+        for e in topology.stuck_interfaces:
+            limit = s.static_mu[e] * w.normal[e]
+            need = abs(w.friction[e])
+            if need > (limit * (1.0 + FRICTION_SLACK) if candidates[e] else limit):
+                ratio = need / limit if limit > 0.0 else np.inf
+                if ratio >= worst_ratio:
+                    worst = e
+                    worst_ratio = ratio
+        if worst >= 0:
+            direction = SLIP_POSITIVE if w.friction[worst] > 0.0 else SLIP_NEGATIVE
+            if tried[worst] & direction_bit(direction):
+                return INCONSISTENT, 0.0, topology, worst
+            modes[worst] = direction
+            continue
+        restick = -1
+        for e in range(n):
+            if candidates[e] and modes[e] != STICK:
+                sign = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
+                if sign * relative_acceleration(s, e, w.a_end) < 0.0:
+                    restick = e
+                    break
+        if restick < 0:
+            for i in range(len(v)):
+                v[i] = v_trial[i]
+            return FINISHED, lost, topology, -1
+        tried[restick] |= direction_bit(modes[restick])
+        modes[restick] = STICK
+    return INCONSISTENT, 0.0, regroup(s, modes), -1
+
+
+@njit_merged
+def resolve(t, state, s, w):
+    """The new modes after the guards in w crossed; returns what ``settle`` returns."""
+    modes = state.modes
+    candidates = np.zeros(len(modes), dtype=np.bool_)
+    for e in range(len(modes)):
+        if crossed(state.contact_before[e], w.contact[e]):
+            if modes[e] == OPEN:
+                modes[e] = SLIP_POSITIVE if w.slip[e] >= 0.0 else SLIP_NEGATIVE
+            else:
+                modes[e] = OPEN
+        elif crossed(state.motion_before[e], w.motion[e]) and modes[e] != STICK:
+            modes[e] = STICK  # slip velocity reached zero: try to stick
+            candidates[e] = True
+    return settle(t, state, candidates, s, w)
+
+
+@njit_merged
+def switch(t, state, s, w, events, controls):
+    """Resolve the switch located at t (the state there, its guards in w), log it and
+    restart there.
+
+    On return the guards at the restart are the state's reference and its acceleration
+    and powers are in w.a_start / w.stage_p[0]. Returns (status, the interface that stopped
+    the run or −1, topology). A switch that changes no mode is counted in ``events.idle``;
+    ``MAX_IDLE_SWITCHES`` of them in a row stop the run (NO_PROGRESS).
+    """
+    old = np.empty(len(state.modes), dtype=np.int64)
+    for e in range(len(old)):
+        old[e] = state.modes[e]
+    crossing = first_crossed(state, w)
+    status, lost, topology, culprit = resolve(t, state, s, w)
+    state.energy[PROJECTION] += lost
+    last = log_switches(t, old, state.modes, events)
+    events.idle[0] = events.idle[0] + 1 if last < 0 else 0
+    stop_interface = -1
+    if status != FINISHED:
+        stop_interface = culprit if culprit >= 0 else last
+    elif events.idle[0] >= MAX_IDLE_SWITCHES:
+        status = NO_PROGRESS
+        stop_interface = crossing
+    elif piling_up(t, events, controls):
+        status = ZENO
+        stop_interface = last
+    start(t, state, topology, s, w)
+    if status == FINISHED and not is_finite(state):
+        status = NOT_FINITE
+    return status, stop_interface, topology
+
+
+@njit_step_merged
+def start(t, state, topology, s, w):
+    """Evaluate the first stage and the guards at a (re)start point; they become the
+    state's reference."""
+    set_powers(w.stage_p[0], evaluate_guards(t, state.x, state.v, state.modes, topology, s, w,
+                                             w.a_start))
+    keep_guards(state, w)
+
+
+@njit_merged
+def begin(s, x0, v0, controls, n_samples):
+    """Everything a driver needs at t0: work arrays, output, log, state, status, topology."""
+    n_blades, n_interfaces = len(s.mass), len(s.gap)
+    w = new_work(n_blades, n_interfaces)
+    out = new_output(n_samples, n_blades, n_interfaces)
+    events = new_events(controls.event_capacity, controls.zeno_events)
+    state = new_state(x0, v0, n_interfaces)
+    candidates = initial_modes(state, s, w)
+    status, lost, topology, _ = settle(controls.t0, state, candidates, s, w)
+    state.energy[PROJECTION] += lost
+    start(controls.t0, state, topology, s, w)
+    record(out, np.int64(0), controls.t0, state.x, state.v, state.modes, state.energy, w)
+    return w, out, events, state, status, topology
+
+
+# ---- locate: the switch inside a step ----------------------------------------------------
+
+@njit_step_merged
+def locate_fixed(t, h, theta, state, topology, s, w, controls):
+    """The earliest switch in (0, θh] of the RK4 step from t of size h; moves the state
+    there.
+
+    The switch lies in (lo, hi] of the step; each trial state is integrated anew from the
+    step's start. Returns hi, the step taken, with the guards at its end in w.
+    """
+    width = controls.event_tolerance
+    rk4_guarded(t, theta * h, state, topology, s, w)
+    lo, f_lo, hi, f_hi, side, g = bracket_start(theta * h, state, w)
+    previous, slow = hi, np.int64(0)
+    while hi - lo > width:
+        trial, slow = next_trial(lo, f_lo, hi, f_hi, width, previous, slow)
+        previous = hi - lo
+        rk4_guarded(t, trial, state, topology, s, w)
+        lo, f_lo, hi, f_hi, side, g = bracket_after(lo, f_lo, hi, f_hi, side, g, trial, state,
+                                                    w)
+    rk4_guarded(t, hi, state, topology, s, w)
+    move_state(state, w)
+    return hi
+
+
+@njit_step_merged
+def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
+    """The earliest switch in (0, θ] of the adaptive step from t of size h; moves the state
+    there.
+
+    The switch is located on the step's dense output; the samples up to it are recorded,
+    and the state at it is integrated anew by a Dormand–Prince step from t, so that the
+    state and its work columns keep the order of the steps rather than the dense output's.
+    Leaves the guards there in w (if rounding leaves them uncrossed, the switch changes no
+    mode and the next step finds it again). Returns (the switch time, the next sample).
+    """
+    width = controls.event_tolerance / h
+    dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
+    evaluate_guards(t + theta * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
+    lo, f_lo, hi, f_hi, side, g = bracket_start(theta, state, w)
+    previous, slow = hi, np.int64(0)
+    while hi - lo > width:
+        trial, slow = next_trial(lo, f_lo, hi, f_hi, width, previous, slow)
+        previous = hi - lo
+        dense_state(trial, h, state, w, w.xt, w.vt, w.e_sample)
+        evaluate_guards(t + trial * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
+        lo, f_lo, hi, f_hi, side, g = bracket_after(lo, f_lo, hi, f_hi, side, g, trial, state,
+                                                    w)
+    t_final = last_sample(controls)
+    t_event = t_final if hi == 1.0 and t + h >= t_final else t + hi * h
+    sample = record_dense(sample, t, t_event, h, state, topology, s, w, controls, out)
+    dp5_step(t, t_event - t, state, topology, s, w, controls)
+    move_state(state, w)
+    return t_event, sample
+
+
+@njit_step_merged
+def record_dense(sample, t, t_to, h, state, topology, s, w, controls, out):
+    """Record the samples in (t, t_to] from the dense output of the step of size h from t.
+
+    Returns the index of the next sample. Overwrites the forces and guards in w.
+    """
+    while sample < controls.n_samples:
+        time = controls.t0 + sample * controls.sample_step
+        if time > t_to:
+            break
+        dense_state((time - t) / h, h, state, w, w.xt, w.vt, w.e_sample)
+        evaluate_guards(time, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
+        record(out, sample, time, w.xt, w.vt, state.modes, w.e_sample, w)
+        sample += 1
+    return sample
+
+
+# ---- the drivers --------------------------------------------------------------------------
+
+@njit_step
+def advance_fixed(k, t, state, topology, s, w, controls, out, sample):
+    """RK4 steps along the grid t0 + k·step, recording samples, until a guard crosses.
+
+    Starts at time t inside step k (t = t0 + k·step unless a switch was just resolved).
+    Returns (k, t, sample, status, switched): with ``switched``, t is the first switch
+    found in step k, located (``locate_fixed``) and the state moved there; otherwise the
+    run took its last sample or stopped with the status.
+    """
+    n_steps = (controls.n_samples - 1) * controls.steps_per_sample
+    while k < n_steps:
+        t_end = controls.t0 + (k + 1) * controls.step
+        h = t_end - t
+        rk4_guarded(t, h, state, topology, s, w)
+        theta = 2.0
+        if (HAS_CONTACT_EVENTS or HAS_STICK) and any_crossed(state, w):
+            theta = 1.0
+        else:
+            if HAS_CONTACT_EVENTS:
+                theta = graze_fixed(t, h, state, topology, s, w, controls.event_tolerance)
+            if HAS_STICK and len(topology.stuck_interfaces) > 0:
+                theta = min(theta, breakaway_fixed(t, h, state, topology, s, w))
+        if theta <= 1.0:
+            hi = locate_fixed(t, h, theta, state, topology, s, w, controls)
+            return k, t_end if hi == h else t + hi, sample, FINISHED, True
+        keep_guards(state, w)
+        take_step(state, w)
+        if not is_finite(state):
+            return k, t, sample, NOT_FINITE, False
+        t = t_end
+        k += 1
+        if k % controls.steps_per_sample == 0:
+            record(out, sample, t, state.x, state.v, state.modes, state.energy, w)
+            sample += 1
+    return k, t, sample, FINISHED, False
+
+
+@njit_entry
+def run_fixed_step(s, x0, v0, controls):
+    """Integrate fixed RK4 steps of ``controls.step`` from (t0, x0, v0) to the last sample,
+    locating every switch; returns a ``records.Run``.
+
+    Steps stay on the grid t0 + k·step: after a switch inside a step, the rest of the step
+    is integrated in the new modes. Samples are taken every ``steps_per_sample`` steps.
+    Zeno guard: ``zeno_events`` switches within ``zeno_window`` seconds stop the run.
+    """
+    w, out, events, state, status, topology = begin(s, x0, v0, controls, controls.n_samples)
+    k, t, sample = np.int64(0), controls.t0, np.int64(1)
+    stop_interface = -1
+    while status == FINISHED:
+        k, t, sample, status, switched = advance_fixed(k, t, state, topology, s, w, controls,
+                                                       out, sample)
+        if not switched or status != FINISHED:
+            break
+        t_end = controls.t0 + (k + 1) * controls.step
+        status, stop_interface, topology = switch(t, state, s, w, events, controls)
+        if t == t_end:
+            k += 1
+            if k % controls.steps_per_sample == 0:
+                record(out, sample, t, state.x, state.v, state.modes, state.energy, w)
+                sample += 1
+    return finish(status, t, stop_interface, k, out, sample, events)
+
+
+@njit_step
+def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
+    """Dormand–Prince steps from t, recording samples, until a guard crosses or the end.
+
+    Returns (t, h, sample, steps, status, switched): with ``switched``, t is the first
+    switch found, located (``locate_dense``) and the state moved there; otherwise the run
+    reached its last sample or stopped with the status. A step that shrinks below
+    h_min stops the run: NOT_FINITE if the last trial's error was inf or NaN (a law gave a
+    non-finite force ahead), else STEP_TOO_SMALL.
+    """
+    error = 0.0
+    t_final = last_sample(controls)
+    while sample < controls.n_samples:
+        last = h >= t_final - t
+        if last:
+            h = t_final - t
+        if h < controls.h_min and not (last and h > 0.0):
+            status = STEP_TOO_SMALL if math.isfinite(error) else NOT_FINITE
+            return t, h, sample, steps, status, False
+        error = dp5_step(t, h, state, topology, s, w, controls)
+        if not error <= 1.0:
+            h = retry_step(h, error)
+            continue
+        steps += 1
+        if HAS_CONTACT_EVENTS or HAS_STICK:
+            theta = 1.0 if any_crossed(state, w) else 2.0
+            theta = min(theta, kinematic_dip(h, state, s, w))
+            if HAS_STICK and len(topology.stuck_interfaces) > 0:
+                theta = min(theta, breakaway_dense(t, h, state, topology, s, w))
+            if HAS_CONTACT_EVENTS:
+                theta = min(theta, graze_dense(h, controls.event_tolerance, state, s, w))
+            if theta <= 1.0:
+                t, sample = locate_dense(t, h, theta, sample, state, topology, s, w, controls,
+                                         out)
+                return t, h, sample, steps, FINISHED, True
+        t_new = t_final if last else t + h
+        keep_guards(state, w)
+        sample = record_dense(sample, t, t_new, h, state, topology, s, w, controls, out)
+        take_step(state, w)
+        if not is_finite(state):
+            return t, h, sample, steps, NOT_FINITE, False
+        t = t_new
+        h = next_step(h, error, controls.h_max)
+    return t, h, sample, steps, FINISHED, False
+
+
+@njit_entry
+def run_adaptive(s, x0, v0, controls):
+    """Integrate by Dormand–Prince 5(4) from (t0, x0, v0) to the last sample; returns a
+    ``records.Run``.
+
+    Steps are accepted when the scaled local error (``dp5_step``) is at most 1, and the next
+    step follows from the controller (``advance.next_step``), capped at h_max. Samples at
+    t0 + k·sample_step and the guards inside a step come from the step's dense output, so
+    steps never shorten to meet them. A step below h_min stops the run (STEP_TOO_SMALL).
+    """
+    w, out, events, state, status, topology = begin(s, x0, v0, controls, controls.n_samples)
+    # np.int64, not literals: a literal argument would compile the callee twice
+    t, h, sample, steps = controls.t0, min(controls.step, controls.h_max), np.int64(1), \
+        np.int64(0)
+    stop_interface = -1
+    while status == FINISHED and sample < controls.n_samples:
+        t, h, sample, steps, status, switched = advance_adaptive(t, h, sample, steps, state,
+                                                                 topology, s, w, controls, out)
+        if not switched or status != FINISHED:
+            break
+        status, stop_interface, topology = switch(t, state, s, w, events, controls)
+    return finish(status, t, stop_interface, steps, out, sample, events)

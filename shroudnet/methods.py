@@ -1,0 +1,146 @@
+"""Method settings of ``simulate``: the integrator, the accuracy asked for, the Zeno guard.
+
+``FixedStep`` and ``Adaptive`` choose the integrator and its knobs; ``Accuracy`` asks for a
+relative error and becomes the ``Adaptive`` settings that deliver it on a scene;
+``ZenoGuard`` says when a run whose switches pile up stops.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from contact_laws import check_int, check_real
+
+from .scene import Scene
+
+
+@dataclass(frozen=True, kw_only=True)
+class FixedStep:
+    """Classical fourth-order Runge–Kutta on a fixed grid, switches located by bisection.
+
+    This is the paper's scheme. The global error falls as h⁴ between switches.
+
+    Parameters
+    ----------
+    steps_per_period : int
+        Steps per excitation period T_e, ≥ 8.
+    """
+
+    steps_per_period: int = 1000
+
+    def __post_init__(self):
+        object.__setattr__(self, "steps_per_period",
+                           check_int("FixedStep", "steps_per_period", self.steps_per_period,
+                                     low=8))
+
+
+@dataclass(frozen=True, kw_only=True)
+class Adaptive:
+    """Dormand–Prince 5(4) with error control and dense output; switches found on it.
+
+    A step is accepted when the RMS over blades of its local error estimate, each component
+    divided by atol + rtol·|value|, is at most 1. Displacements are held to ``atol`` [m] and
+    velocities to ``atol``·lΩ [m/s], the same scale for harmonic motion at the excitation
+    frequency. Samples and switches are taken from the step's 4th-order dense output, so
+    they do not shorten the steps.
+
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance per step, in [1e-14, 0.1].
+    atol : float
+        Absolute tolerance on displacements per step [m], > 0.
+    max_step : float
+        Largest step, in excitation periods, in (0, 1].
+    """
+
+    rtol: float = 1e-8
+    atol: float = 1e-12
+    max_step: float = 0.05
+
+    def __post_init__(self):
+        check_real("Adaptive", "rtol", self.rtol, low=1e-14, high=0.1)
+        check_real("Adaptive", "atol", self.atol, low=0.0, low_open=True, unit="m")
+        check_real("Adaptive", "max_step", self.max_step, low=0.0, low_open=True, high=1.0,
+                   unit="periods")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Accuracy:
+    """Ask for a relative error; get the adaptive settings that deliver it.
+
+    ``target`` bounds the relative error of what a periodic response is read for: its
+    Poincaré points (relative to the response amplitude) and E_ρ. For each scene it
+    becomes ``Adaptive(rtol=target/100, atol=rtol·x_s)`` with x_s = Σ|q_n| / min k_i, the
+    static deflection under the whole excitation, and an event tolerance of at most
+    target/100 periods. The factor 100 comes from the work–precision study
+    (``shroudnet.precision``, README "What accuracy costs"): on the paper's group the
+    error of the adaptive integrator is 7–16 times its rtol, and that of the event
+    location 0.3–6 times its tolerance. In chaos no single trajectory converges; E_ρ and
+    the attractor's bounds then converge to the sampling error of the record instead.
+
+    Parameters
+    ----------
+    target : float
+        The relative error asked for, in [1e-8, 0.1].
+    """
+
+    target: float
+
+    def __post_init__(self):
+        check_real("Accuracy", "target", self.target, low=1e-8, high=0.1)
+
+    def settings(self, scene: Scene, event_tolerance: float) -> tuple[Adaptive, float]:
+        """The integrator and event tolerance [periods] that deliver ``target`` on ``scene``."""
+        deflection = scene.arrays.static_deflection
+        rtol = self.target / ACCURACY_MARGIN
+        method = Adaptive(rtol=rtol, atol=rtol * (deflection if deflection > 0.0 else 1e-6))
+        return method, min(event_tolerance, rtol)
+
+
+#: How much tighter than the asked accuracy the step and event tolerances are set.
+ACCURACY_MARGIN = 100.0
+
+
+@dataclass(frozen=True, kw_only=True)
+class ZenoGuard:
+    """Stop a run when switches pile up: ``events`` of them within ``window`` periods.
+
+    Chattering and Zeno behaviour (infinitely many switches in finite time) otherwise make
+    an event-driven integrator crawl. Past an accumulation point of switches, a located
+    switch leaves the state within the event tolerance of the next one, so the pile-up
+    goes on at a spacing of some tens of event tolerances. The default window, 10⁶ event
+    tolerances (10⁻⁴ periods at the default tolerance) but at most 10⁻³ periods, is wide
+    enough to see that, and 200 switches in it would mean at least 2·10⁵ per period, far
+    beyond any motion the integrator resolves. (With a loose event tolerance such a
+    pile-up moves on by many tolerances per switch, so it ends without the guard.) The
+    run stops with a ``SimulationError`` naming the time and the interface.
+
+    Parameters
+    ----------
+    events : int
+        Switches that make a pile-up, ≥ 2.
+    window : float, optional
+        Their time span, in excitation periods, > 0; by default
+        min(10⁶ × ``event_tolerance``, 10⁻³).
+    """
+
+    events: int = 200
+    window: float | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "events", check_int("ZenoGuard", "events", self.events, low=2))
+        if self.window is not None:
+            check_real("ZenoGuard", "window", self.window, low=0.0, low_open=True,
+                       unit="periods")
+
+    def window_at(self, event_tolerance: float) -> float:
+        """The window in periods for a run that locates switches to ``event_tolerance``."""
+        if self.window is not None:
+            return self.window
+        return min(ZENO_WINDOW_TOLERANCES * event_tolerance, ZENO_WINDOW_LIMIT)
+
+
+#: The default Zeno window, in event tolerances, and its upper limit in periods.
+ZENO_WINDOW_TOLERANCES = 1e6
+ZENO_WINDOW_LIMIT = 1e-3

@@ -1,0 +1,269 @@
+"""The engine's parts that do not depend on the laws, and the kernel generator."""
+
+import importlib
+import math
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate._ivp.rk import RK45
+
+from contact_laws import ExponentialFriction, LinearSpring
+from shroudnet import Mode, Simulation, simulate
+from shroudnet.engine import codes, generate, locate, tableau
+from shroudnet.engine.cache import cache_size, clear_cache
+from shroudnet.engine.clusters import cluster_labels
+from shroudnet.engine.detect import crossed, depth, parabola_low, predicted_low
+from shroudnet.engine.regroup import static_friction_operator
+from shroudnet.scenes import three_blade_paper
+
+# ---- the Runge–Kutta tableau --------------------------------------------------------------
+
+
+def test_the_dormand_prince_tableau_is_scipys_rk45():
+    """Checked against scipy's own coefficients, typed in independently."""
+    t = tableau.DORMAND_PRINCE
+    assert np.array_equal(t.c, RK45.C)
+    assert np.array_equal(t.a, RK45.A)
+    assert np.array_equal(t.b[:-1], RK45.B) and t.b[-1] == 0.0
+    assert np.array_equal(t.e, RK45.E)
+    assert np.array_equal(t.p, RK45.P)
+
+
+@pytest.mark.parametrize("field, where", [("a", (3, 1)), ("b", 2), ("e", 0), ("p", (4, 2)),
+                                          ("c", 2)])
+def test_a_mistyped_coefficient_fails_the_tableaus_check(field, where):
+    broken = getattr(tableau.DORMAND_PRINCE, field).copy()
+    broken[where] *= 1.0 + 1e-9
+    with pytest.raises(ValueError, match="Runge–Kutta tableau"):
+        tableau.DORMAND_PRINCE._replace(**{field: broken}).check()
+
+
+# ---- codes, defined once -------------------------------------------------------------------
+
+def test_the_compiled_codes_are_the_enums():
+    assert (codes.OPEN, codes.STICK, codes.SLIP_POSITIVE, codes.SLIP_NEGATIVE) == tuple(Mode)
+    assert (codes.CLOSING, codes.SEPARATION, codes.STICKING, codes.REVERSAL,
+            codes.BREAKAWAY) == tuple(codes.EventKind)
+    assert codes.N_WORK == len(codes.WorkColumn) and codes.N_POWERS == codes.PROJECTION
+    assert codes.FINISHED == codes.Status.FINISHED == 0
+
+
+def test_every_stopping_status_has_a_message_naming_time_and_place():
+    for status in codes.Status:
+        text = status.message("at t = 1 s", " on interface 0", zeno_events=200,
+                              zeno_window=1e-4, smallest_step=1e-14)
+        assert "at t = 1 s" in text and "on interface 0" in text and "{" not in text
+
+
+def test_a_simulations_work_has_one_column_per_work_code():
+    sim = simulate(three_blade_paper(), 1)
+    assert sim.work.shape[1] == len(codes.WorkColumn)
+    assert isinstance(sim, Simulation) and sim.compile_seconds >= 0.0
+
+
+# ---- detect and locate --------------------------------------------------------------------
+
+@given(before=st.floats(-1.0, 1.0), after=st.floats(-1.0, 1.0))
+def test_a_guard_is_past_its_crossing_exactly_when_its_depth_is_negative(before, after):
+    assert (depth(before, after) < 0.0) == crossed(before, after)
+
+
+@given(a=st.floats(-1.0, 1.0), b=st.floats(-1.0, 1.0), c=st.floats(-1.0, 1.0))
+def test_the_parabolas_low_point_is_the_lowest_on_a_fine_grid(a, b, c):
+    s = np.linspace(-1.0, 1.0, 2001)
+    values = b + 0.5 * (c - a) * s + 0.5 * (a - 2.0 * b + c) * s * s
+    offset, value = parabola_low(a, b, c)
+    assert value <= values.min() + 1e-12
+    assert value == pytest.approx(b + 0.5 * (c - a) * offset
+                                  + 0.5 * (a - 2.0 * b + c) * offset ** 2, abs=1e-12)
+
+
+def test_the_predicted_low_of_samples_of_a_parabola_is_its_vertex():
+    theta = np.linspace(0.0, 1.0, 5)
+    at, value = predicted_low(tuple((theta - 0.6) ** 2 - 0.01))
+    assert at == pytest.approx(0.6) and value == pytest.approx(-0.01)
+
+
+def _illinois(function, width):
+    """Locate the root of ``function`` on (0, 1] the way the kernel's locate does."""
+    lo, f_lo, hi, f_hi, side = 0.0, function(0.0), 1.0, function(1.0), 0
+    previous, slow, evaluations = hi, 0, 0
+    while hi - lo > width:
+        trial, slow = locate.next_trial(lo, f_lo, hi, f_hi, width, previous, slow)
+        previous = hi - lo
+        evaluations += 1
+        lo, f_lo, hi, f_hi, side = locate.narrow(lo, f_lo, hi, f_hi, trial,
+                                                         function(trial), side)
+    return lo, hi, evaluations
+
+
+@pytest.mark.parametrize("root", [1e-7, 0.013, 0.37, 0.5, 0.9, 1.0 - 1e-9])
+@pytest.mark.parametrize("shape", ["linear", "convex", "concave", "sine"])
+def test_illinois_brackets_the_root_to_the_width_in_far_fewer_evaluations_than_bisection(
+        root, shape):
+    g = {"linear": lambda x: root - x,
+         "convex": lambda x: math.exp(-3.0 * x) - math.exp(-3.0 * root),
+         "concave": lambda x: root ** 0.5 - x ** 0.5,
+         "sine": lambda x: math.sin(3.0 * (root - x))}[shape]
+    width = 1e-10
+    lo, hi, evaluations = _illinois(g, width)
+    assert g(lo) >= 0.0 > g(hi) and hi - lo <= width and abs(lo - root) < 2 * width
+    assert evaluations <= 12  # bisection: log2(1/width) = 34
+
+
+def test_a_root_where_the_guard_is_flat_takes_little_more_than_bisection():
+    """(1 − x)³ − (1 − r)³ with r → 1: a near-triple root, where secants crawl."""
+    root = 1.0 - 1e-9
+    lo, hi, evaluations = _illinois(lambda x: (1.0 - x) ** 3 - (1.0 - root) ** 3, 1e-10)
+    assert lo <= root <= hi
+    assert evaluations <= math.ceil(math.log2(1e10)) + locate.SLOW_NARROWING
+
+
+@pytest.mark.parametrize("root", [1e-7, 0.3, 0.9])
+def test_a_kink_still_ends_in_a_bracket_by_halving(root):
+    """A guard that is flat, then falls: the secant is poor, halving takes over after
+    ``SLOW_NARROWING`` evaluations that fail to halve the bracket."""
+    lo, hi, evaluations = _illinois(lambda x: 1.0 if x < root else root - x, 1e-10)
+    assert lo <= root <= hi and hi - lo <= 1e-10
+    assert evaluations <= math.ceil(math.log2(1e10)) + locate.SLOW_NARROWING
+
+
+# ---- regroup: static friction without LAPACK ------------------------------------------------
+
+def _incidence(n_blades, left, right, cos_angle, stuck):
+    edges = np.flatnonzero(stuck)
+    g = np.zeros((n_blades, len(edges)))
+    for k, e in enumerate(edges):
+        if left[e] >= 0:
+            g[left[e], k] += cos_angle[e]
+        if right[e] >= 0:
+            g[right[e], k] -= cos_angle[e]
+    return g
+
+
+@settings(max_examples=150, deadline=None)
+@given(data=st.data())
+def test_the_static_friction_operator_is_the_pseudo_inverse_on_consistent_forces(data):
+    """Trees (exact), cycles (minimum norm), grounded and free clusters: the closed form
+    against numpy's pseudo-inverse, on imbalances a set of friction forces can balance."""
+    n = data.draw(st.integers(1, 6))
+    m = data.draw(st.integers(1, 9))
+    ends = st.integers(-1, n - 1)
+    left = np.array(data.draw(st.lists(ends, min_size=m, max_size=m)))
+    right = np.array(data.draw(st.lists(ends, min_size=m, max_size=m)))
+    keep = left != right
+    left, right = left[keep], right[keep]
+    if not len(left):
+        return
+    cos_angle = np.array(data.draw(st.lists(st.floats(0.2, 1.0), min_size=len(left),
+                                            max_size=len(left))))
+    stuck = np.array(data.draw(st.lists(st.booleans(), min_size=len(left),
+                                        max_size=len(left))))
+    labels, grounded = cluster_labels(n, left, right, stuck)
+    operator, stuck_interfaces = static_friction_operator(n, left, right, cos_angle, stuck,
+                                                          labels, grounded)
+    g = _incidence(n, left, right, cos_angle, stuck)
+    assert np.array_equal(stuck_interfaces, np.flatnonzero(stuck))
+    b = g @ np.array(data.draw(st.lists(st.floats(-1.0, 1.0), min_size=g.shape[1],
+                                        max_size=g.shape[1])))
+    assert np.allclose(operator @ b, np.linalg.pinv(g) @ b, atol=1e-10)
+
+
+# ---- the generator --------------------------------------------------------------------------
+
+def _paper(alpha):
+    return three_blade_paper(alpha=alpha)
+
+
+def test_no_parameter_value_chooses_another_kernel():
+    """α = π/2 exactly rules stick out on both interfaces; it used to compile a kernel of
+    its own. The kernel now depends on the law classes only."""
+    kernels = {generate.load_kernel(_paper(a)).__name__ for a in (math.pi / 2,
+                                                                 math.pi / 2 - 1e-12, 0.3)}
+    assert len(kernels) == 1
+
+
+def test_the_effect_flags_follow_the_law_classes():
+    arrays = three_blade_paper().arrays
+    assert generate.flags(arrays) == {"HAS_CONTACT_EVENTS": True, "HAS_STICK": True,
+                                      "HAS_FRICTION": True, "HAS_REGULARISED": False}
+
+
+def test_the_header_dispatches_on_each_law_class_with_its_parameters():
+    text = generate.header([LinearSpring], [ExponentialFriction], {"HAS_STICK": True})
+    assert "HAS_STICK = True" in text
+    assert "return _normal_0(penetration, rate, params[0])" in text
+    assert "return _friction_0(slip_speed, params[0], params[1], params[2])" in text
+    compile(text, "header", "exec")  # valid Python
+
+
+_LAW_MODULE = '''
+from dataclasses import dataclass
+from contact_laws import NormalLaw
+from lawhelper import spring
+
+@dataclass(frozen=True)
+class HelpedSpring(NormalLaw):
+    stiffness: float
+
+    @staticmethod
+    def normal_force(penetration, rate, stiffness):
+        return spring(penetration, stiffness)
+'''
+
+
+def test_a_change_in_a_laws_helper_module_gives_a_new_kernel(tmp_path, monkeypatch):
+    """The cache key covers the modules a law's function reaches, not only its own text."""
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path / "cache"))
+    monkeypatch.syspath_prepend(str(tmp_path))
+    (tmp_path / "lawmodule.py").write_text(_LAW_MODULE)
+    names = []
+    for exponent in ("1.0", "1.5"):
+        (tmp_path / "lawhelper.py").write_text(
+            f"def spring(penetration, stiffness):\n"
+            f"    return stiffness * max(penetration, 0.0) ** {exponent}\n")
+        for module in ("lawhelper", "lawmodule"):
+            sys.modules.pop(module, None)
+        law = importlib.import_module("lawmodule").HelpedSpring(stiffness=3e5)
+        names.append(generate.load_kernel(three_blade_paper(normal=law)).__name__)
+        assert f"** {exponent}" in generate.law_sources(type(law), "normal")
+    assert names[0] != names[1]
+
+
+def test_a_user_law_without_a_helper_keeps_one_kernel():
+    law = LinearSpring(stiffness=2e5)
+    assert (generate.load_kernel(three_blade_paper(normal=law)).__name__
+            == generate.load_kernel(three_blade_paper()).__name__)
+
+
+# ---- the cache ------------------------------------------------------------------------------
+
+def test_the_cache_reports_its_size_and_clears(tmp_path, monkeypatch):
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
+    monkeypatch.setattr("shroudnet.engine.cache._engine_files", lambda: [])
+    (tmp_path / "kernel_x.py").write_text("x" * 1000)
+    assert cache_size() == (1000, 1)
+    assert clear_cache() == 1000
+    assert cache_size() == (0, 0) and not tmp_path.exists()
+
+
+@pytest.mark.slow  # compiles a kernel in a cache of its own
+def test_a_compile_is_announced_once_and_timed_apart(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
+    generate._kernel.cache_clear()
+    scene = three_blade_paper(normal=LinearSpring(stiffness=3e5))
+    try:
+        first = simulate(scene, 1)
+        announced = capsys.readouterr().err
+        second = simulate(scene, 1)
+        again = capsys.readouterr().err
+    finally:
+        generate._kernel.cache_clear()
+    assert "compiling the adaptive integrator for LinearSpring + ExponentialFriction" in \
+        announced and "once" in announced
+    assert again == ""
+    assert first.compile_seconds > second.compile_seconds == 0.0
+
