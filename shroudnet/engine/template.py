@@ -505,13 +505,14 @@ def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
     """The earliest switch in (0, θ] of the adaptive step from t of size h; moves the state
     there.
 
-    The switch is located on the step's dense output; the samples up to it are recorded,
-    and the state at it is integrated anew by a Dormand–Prince step from t, so that the
-    state and its work columns keep the order of the steps rather than the dense output's.
-    Leaves the guards there in w (if rounding leaves them uncrossed, the switch changes no
-    mode and the next step finds it again). Returns (the switch time, the next sample).
+    The switch is located on the step's dense output to half the event tolerance, the
+    samples up to it are recorded, and the state half a tolerance past it is integrated
+    anew by a Dormand–Prince step from t, so that the state and its work columns keep the
+    order of the steps rather than the dense output's. Should that state not have
+    crossed yet (the two differ by the dense output's error), the dense output's state
+    is taken. Leaves the guards there in w. Returns (the switch time, the next sample).
     """
-    width = controls.event_tolerance / h
+    width = 0.5 * controls.event_tolerance / h
     dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
     evaluate_guards(t + theta * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
     lo, f_lo, hi, f_hi, side, g = bracket_start(theta, state, w)
@@ -523,10 +524,16 @@ def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
         evaluate_guards(t + trial * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
         lo, f_lo, hi, f_hi, side, g = bracket_after(lo, f_lo, hi, f_hi, side, g, trial, state,
                                                     w)
+    past = min(1.0, hi + width)
     t_final = last_sample(controls)
-    t_event = t_final if hi == 1.0 and t + h >= t_final else t + hi * h
+    t_event = t_final if past == 1.0 and t + h >= t_final else t + past * h
     sample = record_dense(sample, t, t_event, h, state, topology, s, w, controls, out)
     dp5_step(t, t_event - t, state, topology, s, w, controls)
+    if not any_crossed(state, w):  # the whole step again, for its dense output at hi
+        t_event = t + hi * h
+        dp5_step(t, h, state, topology, s, w, controls)
+        dense_state(hi, h, state, w, w.x_new, w.v_new, w.e_new)
+        evaluate_guards(t_event, w.x_new, w.v_new, state.modes, topology, s, w, w.a_end)
     move_state(state, w)
     return t_event, sample
 
