@@ -116,6 +116,18 @@ def may_graze(e, h, x, v, x_end, v_end, modes, s):
     return g0 + rate0 * meet <= 0.0
 
 
+@njit_inlined
+def mark_grazing(h, state, s, w):
+    """Mark in w.contact_trial (1 or 0) the contacts that ``may_graze`` in the step of size h
+    from the state to w.x_new, w.v_new; returns whether any may."""
+    any_marked = False
+    for e in range(len(state.modes)):
+        marked = may_graze(e, h, state.x, state.v, w.x_new, w.v_new, state.modes, s)
+        w.contact_trial[e] = 1.0 if marked else 0.0
+        any_marked = any_marked or marked
+    return any_marked
+
+
 @njit_inlined_callable
 def parabola_low(a, b, c):
     """(s, p(s)) at the lowest point for s in [−1, 1] of the parabola p through (−1, a),

@@ -186,6 +186,8 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
 
     A compile is announced before it starts, once per kernel and driver.
     """
+    if not hasattr(driver, "overloads"):  # NUMBA_DISABLE_JIT=1: plain Python, for debugging
+        return driver, 0.0
     if not driver.overloads:
         if not _cached(driver):
             module = sys.modules[driver.py_func.__module__]

@@ -11,7 +11,7 @@ import numpy as np
 
 from .clusters import cluster_labels
 from .codes import STICK
-from .compiled import njit_entry, njit_internal
+from .compiled import njit_entry, njit_inlined, njit_internal
 from .records import Topology
 
 
@@ -59,6 +59,8 @@ def static_friction_operator(n_blades, left, right, cos_angle, stuck, labels, gr
             stuck_interfaces[k] = e
             k += 1
     n_stuck = len(stuck_interfaces)
+    if n_stuck == 0:
+        return np.zeros((0, n_blades)), stuck_interfaces
     g = np.zeros((n_blades, n_stuck))
     for k in range(n_stuck):
         e = stuck_interfaces[k]
@@ -109,6 +111,15 @@ def _spd_inverse(matrix):
                 value -= lower[k, i] * inverse[k, c]
             inverse[i, c] = value / lower[i, i]
     return inverse
+
+
+@njit_inlined
+def same_stuck(topology, modes):
+    """Whether ``modes`` stick the interfaces ``topology`` was built for, and no other."""
+    for e in range(len(modes)):
+        if topology.stuck[e] != (modes[e] == STICK):
+            return False
+    return True
 
 
 @njit_internal

@@ -39,14 +39,14 @@ from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_merged,
                                        njit_step, njit_step_merged)
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard, crossed,
                                      event_guards, first_crossed, graze_dense,
-                                     kinematic_dip, may_graze, predicted_low, stuck_crossed)
+                                     kinematic_dip, mark_grazing, predicted_low, stuck_crossed)
 from shroudnet.engine.dynamics import (cluster_accelerations, excitation_forces,
                                        interface_kinematics, resultant_forces,
                                        static_friction)
 from shroudnet.engine.locate import bracket_after, bracket_start, next_trial
 from shroudnet.engine.records import (finish, last_sample, new_events, new_output, new_state,
                                       new_work)
-from shroudnet.engine.regroup import project_velocities, regroup
+from shroudnet.engine.regroup import project_velocities, regroup, same_stuck
 from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches, piling_up,
                                       relative_acceleration)
 from shroudnet.engine.tableau import DIP_POINTS, DP_A, DP_B, DP_C, DP_E, DP_STAGES
@@ -120,11 +120,12 @@ def derivative(t, x, v, modes, topology, s, w, acceleration):
     return excitation, damping, friction, contact
 
 
-@njit_step
+@njit_step_merged
 def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
     """``derivative``, then static friction and guards into w (w.friction includes static).
 
-    Returns the powers, as ``derivative``.
+    Returns the powers, as ``derivative``. Merged into the step loops; the paths taken
+    once per switch call ``evaluate_guards_apart``.
     """
     powers = derivative(t, x, v, modes, topology, s, w, acceleration)
     if HAS_STICK and len(topology.stuck_interfaces) > 0:
@@ -134,6 +135,12 @@ def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
     event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu, s.opens,
                  s.can_stick, w.contact, w.motion)
     return powers
+
+
+@njit_step
+def evaluate_guards_apart(t, x, v, modes, topology, s, w, acceleration):
+    """``evaluate_guards`` compiled on its own, for the paths taken once per switch."""
+    return evaluate_guards(t, x, v, modes, topology, s, w, acceleration)
 
 
 @njit_step_merged
@@ -147,7 +154,7 @@ def stuck_forces(time, xt, vt, modes, topology, s, w):
 
 # ---- advance: one step with fixed modes --------------------------------------------------
 
-@njit_step
+@njit_step_merged
 def rk4_step(t, h, state, topology, s, w):
     """One classical Runge–Kutta step of size h with fixed modes, into w.x_new, w.v_new and
     w.e_new.
@@ -182,7 +189,7 @@ def rk4_step(t, h, state, topology, s, w):
     w.e_new[PROJECTION] = energy[PROJECTION]
 
 
-@njit_step
+@njit_step_merged
 def rk4_guarded(t, h, state, topology, s, w):
     """``rk4_step``, then the forces and guards at its end (w.a_end, w.stage_p[-1])."""
     rk4_step(t, h, state, topology, s, w)
@@ -190,7 +197,23 @@ def rk4_guarded(t, h, state, topology, s, w):
                                                          topology, s, w, w.a_end))
 
 
+# The step loops merge the steps they take every step (a function compiled on its own takes
+# the records as some 430 machine words of arguments, and passing them cost more than the
+# three blades' forces); the paths taken once per switch call these, compiled once each.
+
 @njit_step
+def rk4_step_apart(t, h, state, topology, s, w):
+    """``rk4_step`` compiled on its own."""
+    rk4_step(t, h, state, topology, s, w)
+
+
+@njit_step
+def rk4_guarded_apart(t, h, state, topology, s, w):
+    """``rk4_guarded`` compiled on its own."""
+    rk4_guarded(t, h, state, topology, s, w)
+
+
+@njit_step_merged
 def dp5_step(t, h, state, topology, s, w, controls):
     """One Dormand–Prince step of size h: the new state into w.x_new, w.v_new, w.e_new.
 
@@ -230,6 +253,12 @@ def dp5_step(t, h, state, topology, s, w, controls):
         error += (h * stage_sum(DP_E, sv, DP_STAGES, i) / scale_x) ** 2 \
             + (h * stage_sum(DP_E, sa, DP_STAGES, i) / scale_v) ** 2
     return math.sqrt(error / (2 * n))
+
+
+@njit_step
+def dp5_step_apart(t, h, state, topology, s, w, controls):
+    """``dp5_step`` compiled on its own."""
+    return dp5_step(t, h, state, topology, s, w, controls)
 
 
 # ---- detect: switches hidden inside a step ------------------------------------------------
@@ -279,7 +308,7 @@ def breakaway_fixed(t, h, state, topology, s, w):
     puts them lowest, each state integrated anew from the step's start. Returns θ ≤ 1, or
     2 with the step's end state and guards restored in w."""
     modes = state.modes
-    rk4_step(t, 0.5 * h, state, topology, s, w)
+    rk4_step_apart(t, 0.5 * h, state, topology, s, w)
     stuck_forces(t + 0.5 * h, w.x_new, w.v_new, modes, topology, s, w)
     if stuck_crossed(topology, state, s, w):
         return 0.5
@@ -291,28 +320,22 @@ def breakaway_fixed(t, h, state, topology, s, w):
         if value < 0.0 and 0.0 < theta < first:
             first = theta
     if first < 1.0:
-        rk4_step(t, first * h, state, topology, s, w)
+        rk4_step_apart(t, first * h, state, topology, s, w)
         stuck_forces(t + first * h, w.x_new, w.v_new, modes, topology, s, w)
         if stuck_crossed(topology, state, s, w):
             return first
-    rk4_guarded(t, h, state, topology, s, w)
+    rk4_guarded_apart(t, h, state, topology, s, w)
     return 2.0
 
 
 @njit_step
 def graze_fixed(t, h, state, topology, s, w, tolerance):
-    """``detect.graze_dense`` for the fixed-step RK4 step of size h from t, each trial state
-    integrated anew from the step's start. Returns θ ≤ 1, or 2 with the step's end state
-    and guards restored in w when no contact guard dips below 0."""
+    """``detect.graze_dense`` for the fixed-step RK4 step of size h from t, on the contacts
+    ``detect.mark_grazing`` marked, each trial state integrated anew from the step's start.
+    Returns θ ≤ 1, or 2 with the step's end state and guards restored in w when no contact
+    guard dips below 0."""
     modes = state.modes
     candidates = w.contact_trial
-    searched = False
-    for e in range(len(modes)):
-        candidates[e] = 1.0 if may_graze(e, h, state.x, state.v, w.x_new, w.v_new, modes,
-                                         s) else 0.0
-        searched = searched or candidates[e] > 0.0
-    if not searched:
-        return 2.0
     first = 2.0
     for e in range(len(modes)):
         if candidates[e] == 0.0:
@@ -320,23 +343,23 @@ def graze_fixed(t, h, state, topology, s, w, tolerance):
         lo, hi = 0.0, 1.0
         while (hi - lo) * h > tolerance:
             mid = 0.5 * (lo + hi)
-            rk4_step(t, mid * h, state, topology, s, w)
+            rk4_step_apart(t, mid * h, state, topology, s, w)
             if contact_guard(e, w.x_new, w.v_new, modes, s)[1] < 0.0:
                 lo = mid
             else:
                 hi = mid
-        rk4_step(t, hi * h, state, topology, s, w)
+        rk4_step_apart(t, hi * h, state, topology, s, w)
         if contact_guard(e, w.x_new, w.v_new, modes, s)[0] < 0.0:
             first = min(first, hi)
     if first > 1.0:
-        rk4_guarded(t, h, state, topology, s, w)
+        rk4_guarded_apart(t, h, state, topology, s, w)
     return first
 
 
 # ---- resolve and regroup: a switch (allocates: once per event) ----------------------------
 
 @njit_merged
-def settle(t, state, candidates, s, w):
+def settle(t, state, candidates, topology, s, w):
     """Release stuck interfaces until every one holds: a terminating mode-selection rule.
 
     ``state.modes`` holds the tentative set, with every candidate for stick
@@ -355,19 +378,21 @@ def settle(t, state, candidates, s, w):
     |f| > μ_s N, as its breakaway guard says; a candidate only beyond
     μ_s N (1 + ``FRICTION_SLACK``).
 
-    Returns (status, kinetic energy lost to the projection, topology, the interface that
-    made the set inconsistent or −1); state.v is projected.
+    ``topology`` is that of the modes before the switch, kept while the set of stuck
+    interfaces stays the same. Returns (status, kinetic energy lost to the projection,
+    topology, the interface that made the set inconsistent or −1); state.v is projected.
     """
     modes, x, v = state.modes, state.x, state.v
     n = len(modes)
     tried = np.zeros(n, dtype=np.int64)  # per interface: bit 1 slip +, bit 2 slip − tried
     v_trial = np.empty(len(v))
     for _ in range(4 * n + 2):
-        topology = regroup(s, modes)
+        if not same_stuck(topology, modes):
+            topology = regroup(s, modes)
         for i in range(len(v)):
             v_trial[i] = v[i]
         lost = project_velocities(s, topology, v_trial)
-        evaluate_guards(t, x, v_trial, modes, topology, s, w, w.a_end)
+        evaluate_guards_apart(t, x, v_trial, modes, topology, s, w, w.a_end)
         worst = -1
         worst_ratio = 0.0
         for e in topology.stuck_interfaces:
@@ -401,8 +426,9 @@ def settle(t, state, candidates, s, w):
 
 
 @njit_merged
-def resolve(t, state, s, w):
-    """The new modes after the guards in w crossed; returns what ``settle`` returns."""
+def resolve(t, state, topology, s, w):
+    """The new modes after the guards in w crossed, from those of ``topology``; returns what
+    ``settle`` returns."""
     modes = state.modes
     candidates = np.zeros(len(modes), dtype=np.bool_)
     for e in range(len(modes)):
@@ -414,13 +440,13 @@ def resolve(t, state, s, w):
         elif crossed(state.motion_before[e], w.motion[e]) and modes[e] != STICK:
             modes[e] = STICK  # slip velocity reached zero: try to stick
             candidates[e] = True
-    return settle(t, state, candidates, s, w)
+    return settle(t, state, candidates, topology, s, w)
 
 
 @njit_merged
-def switch(t, state, s, w, events, controls):
-    """Resolve the switch located at t (the state there, its guards in w), log it and
-    restart there.
+def switch(t, state, topology, s, w, events, controls):
+    """Resolve the switch located at t (the state there, its guards in w; ``topology`` that
+    of the modes before it), log it and restart there.
 
     On return the guards at the restart are the state's reference and its acceleration
     and powers are in w.a_start / w.stage_p[0]. Returns (status, the interface that stopped
@@ -431,7 +457,7 @@ def switch(t, state, s, w, events, controls):
     for e in range(len(old)):
         old[e] = state.modes[e]
     crossing = first_crossed(state, w)
-    status, lost, topology, culprit = resolve(t, state, s, w)
+    status, lost, topology, culprit = resolve(t, state, topology, s, w)
     state.energy[PROJECTION] += lost
     last = log_switches(t, old, state.modes, events)
     events.idle[0] = events.idle[0] + 1 if last < 0 else 0
@@ -454,8 +480,8 @@ def switch(t, state, s, w, events, controls):
 def start(t, state, topology, s, w):
     """Evaluate the first stage and the guards at a (re)start point; they become the
     state's reference."""
-    set_powers(w.stage_p[0], evaluate_guards(t, state.x, state.v, state.modes, topology, s, w,
-                                             w.a_start))
+    set_powers(w.stage_p[0], evaluate_guards_apart(t, state.x, state.v, state.modes, topology,
+                                                   s, w, w.a_start))
     keep_guards(state, w)
 
 
@@ -468,7 +494,8 @@ def begin(s, x0, v0, controls, n_samples):
     events = new_events(controls.event_capacity, controls.zeno_events)
     state = new_state(x0, v0, n_interfaces)
     candidates = initial_modes(state, s, w)
-    status, lost, topology, _ = settle(controls.t0, state, candidates, s, w)
+    status, lost, topology, _ = settle(controls.t0, state, candidates,
+                                       regroup(s, state.modes), s, w)
     state.energy[PROJECTION] += lost
     start(controls.t0, state, topology, s, w)
     record(out, np.int64(0), controls.t0, state.x, state.v, state.modes, state.energy, w)
@@ -486,16 +513,16 @@ def locate_fixed(t, h, theta, state, topology, s, w, controls):
     step's start. Returns hi, the step taken, with the guards at its end in w.
     """
     width = controls.event_tolerance
-    rk4_guarded(t, theta * h, state, topology, s, w)
+    rk4_guarded_apart(t, theta * h, state, topology, s, w)
     lo, f_lo, hi, f_hi, side, g = bracket_start(theta * h, state, w)
     previous, slow = hi, np.int64(0)
     while hi - lo > width:
         trial, slow = next_trial(lo, f_lo, hi, f_hi, width, previous, slow)
         previous = hi - lo
-        rk4_guarded(t, trial, state, topology, s, w)
+        rk4_guarded_apart(t, trial, state, topology, s, w)
         lo, f_lo, hi, f_hi, side, g = bracket_after(lo, f_lo, hi, f_hi, side, g, trial, state,
                                                     w)
-    rk4_guarded(t, hi, state, topology, s, w)
+    rk4_guarded_apart(t, hi, state, topology, s, w)
     move_state(state, w)
     return hi
 
@@ -514,26 +541,26 @@ def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
     """
     width = 0.5 * controls.event_tolerance / h
     dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
-    evaluate_guards(t + theta * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
+    evaluate_guards_apart(t + theta * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
     lo, f_lo, hi, f_hi, side, g = bracket_start(theta, state, w)
     previous, slow = hi, np.int64(0)
     while hi - lo > width:
         trial, slow = next_trial(lo, f_lo, hi, f_hi, width, previous, slow)
         previous = hi - lo
         dense_state(trial, h, state, w, w.xt, w.vt, w.e_sample)
-        evaluate_guards(t + trial * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
+        evaluate_guards_apart(t + trial * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
         lo, f_lo, hi, f_hi, side, g = bracket_after(lo, f_lo, hi, f_hi, side, g, trial, state,
                                                     w)
     past = min(1.0, hi + width)
     t_final = last_sample(controls)
     t_event = t_final if past == 1.0 and t + h >= t_final else t + past * h
     sample = record_dense(sample, t, t_event, h, state, topology, s, w, controls, out)
-    dp5_step(t, t_event - t, state, topology, s, w, controls)
+    dp5_step_apart(t, t_event - t, state, topology, s, w, controls)
     if not any_crossed(state, w):  # the whole step again, for its dense output at hi
         t_event = t + hi * h
-        dp5_step(t, h, state, topology, s, w, controls)
+        dp5_step_apart(t, h, state, topology, s, w, controls)
         dense_state(hi, h, state, w, w.x_new, w.v_new, w.e_new)
-        evaluate_guards(t_event, w.x_new, w.v_new, state.modes, topology, s, w, w.a_end)
+        evaluate_guards_apart(t_event, w.x_new, w.v_new, state.modes, topology, s, w, w.a_end)
     move_state(state, w)
     return t_event, sample
 
@@ -575,7 +602,7 @@ def advance_fixed(k, t, state, topology, s, w, controls, out, sample):
         if (HAS_CONTACT_EVENTS or HAS_STICK) and any_crossed(state, w):
             theta = 1.0
         else:
-            if HAS_CONTACT_EVENTS:
+            if HAS_CONTACT_EVENTS and mark_grazing(h, state, s, w):
                 theta = graze_fixed(t, h, state, topology, s, w, controls.event_tolerance)
             if HAS_STICK and len(topology.stuck_interfaces) > 0:
                 theta = min(theta, breakaway_fixed(t, h, state, topology, s, w))
@@ -612,7 +639,7 @@ def run_fixed_step(s, x0, v0, controls):
         if not switched or status != FINISHED:
             break
         t_end = controls.t0 + (k + 1) * controls.step
-        status, stop_interface, topology = switch(t, state, s, w, events, controls)
+        status, stop_interface, topology = switch(t, state, topology, s, w, events, controls)
         if t == t_end:
             k += 1
             if k % controls.steps_per_sample == 0:
@@ -687,5 +714,5 @@ def run_adaptive(s, x0, v0, controls):
                                                                  topology, s, w, controls, out)
         if not switched or status != FINISHED:
             break
-        status, stop_interface, topology = switch(t, state, s, w, events, controls)
+        status, stop_interface, topology = switch(t, state, topology, s, w, events, controls)
     return finish(status, t, stop_interface, steps, out, sample, events)
