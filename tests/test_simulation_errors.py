@@ -130,13 +130,25 @@ def test_a_law_that_gives_nan_stops_the_fixed_step_run_as_not_finite(unchecked_l
 
 def test_a_force_jump_the_tolerances_cannot_follow_collapses_the_step():
     """A jump J in the normal force at δ = δ1: a step of h across it errs by about
-    h J / m in velocity, against atol·lΩ ≈ 2.5e-9 m/s. With J = 1e9 N that is still 250
-    times too much at the smallest step (1e-14 periods = 5e-17 s), so the step collapses
-    as it closes in on δ1."""
+    h J / m in velocity, against atol·lΩ ≈ 1.3e-9 m/s at atol = 1e-12 m. With J = 1e9 N
+    that is still 500 times too much at the smallest step (1e-14 periods = 5e-17 s), so
+    the step collapses as it closes in on δ1."""
     scene = three_blade_paper(normal=SteppedSpring(stiffness=3e5, step=1e-6, jump=1e9))
     with pytest.raises(SimulationError, match=r"adaptive step fell below 1e-14 periods at "
                                               r"t = .*jump in a contact law"):
-        simulate(scene, 5, method=Adaptive())
+        simulate(scene, 5, method=Adaptive(atol=1e-12))
+
+
+def test_motion_chattering_across_a_force_jump_stops_the_run_instead_of_hanging():
+    """With a looser atol the same jump does not collapse the step: the 1e9 N throws the
+    blades back each time δ passes δ1, and the steps, some 1e-16 s each, cross it and come
+    back, accepted, without end (the run used to hang here). No guard sees the jump, so
+    no event is located; the run stops once the steps stay that small."""
+    scene = three_blade_paper(normal=SteppedSpring(stiffness=3e5, step=1e-6, jump=1e9))
+    with pytest.raises(SimulationError, match=r"adaptive steps stayed below 1e-09 periods for "
+                                              r"10000 steps in a row at t = .*"
+                                              r"chatter across it"):
+        simulate(scene, 5, method=Adaptive(atol=3.4e-12))
 
 
 def test_a_full_event_log_keeps_the_first_switches_and_exact_counts():

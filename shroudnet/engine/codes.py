@@ -45,14 +45,17 @@ class Status(IntEnum):
     NOT_FINITE = 3
     STEP_TOO_SMALL = 4
     NO_PROGRESS = 5
+    STALLED = 6
 
     def message(self, when: str, where: str, **details) -> str:
         """What stopped the run ``when`` (a time) ``where`` (an interface), and what to do.
 
         ``details`` fill the message's numbers: ``zeno_events`` and ``zeno_window``
-        [periods] for ZENO, ``smallest_step`` [periods] for STEP_TOO_SMALL.
+        [periods] for ZENO, ``smallest_step`` [periods] for STEP_TOO_SMALL and STALLED.
         """
         return _MESSAGES[self].format(when=when, where=where, max_idle=MAX_IDLE_SWITCHES,
+                                      stall_steps=STALL_STEPS,
+                                      stall_step=STALL_SIZE * details.get("smallest_step", 0.0),
                                       **details)
 
 
@@ -74,6 +77,14 @@ class WorkColumn(IntEnum):
 #: and the mode rule disagree, and the run would creep on by one event tolerance a switch.
 MAX_IDLE_SWITCHES = 1000
 
+#: Accepted adaptive steps in a row, each shorter than ``STALL_SIZE`` times the smallest
+#: step, before a run is stopped (STALLED). A force that jumps where no guard looks (a law
+#: discontinuous inside the contact) can make the motion chatter across the jump: each
+#: step then crosses it and comes back, accepted, at some 1e-16 s a step, and the run
+#: would take years. Switches never need this: they are located, not stepped to.
+STALL_STEPS = 10_000
+STALL_SIZE = 1e5
+
 _MESSAGES = {
     Status.ZENO: (
         "Zeno or chattering behaviour {when}{where}: {zeno_events} switches within "
@@ -94,6 +105,11 @@ _MESSAGES = {
         "the adaptive step fell below {smallest_step:g} periods {when}{where}: the forces "
         "change too abruptly there for the tolerances (a jump in a contact law, or a very "
         "stiff contact); smooth the law, or loosen rtol/atol."),
+    Status.STALLED: (
+        "the adaptive steps stayed below {stall_step:g} periods for {stall_steps} steps in a "
+        "row {when}{where}: the forces switch back and forth faster "
+        "than the steps, with no event to follow (a contact law with a jump makes the motion "
+        "chatter across it); make the law continuous, or loosen rtol/atol."),
     Status.NOT_FINITE: (
         "the state or the forces became non-finite {when}{where}: a contact or friction law "
         "returned inf or NaN there, or the fixed step is too large for the stiffest contact "
@@ -105,7 +121,8 @@ _MESSAGES = {
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)
 CLOSING, SEPARATION, STICKING, REVERSAL, BREAKAWAY = (int(k) for k in EventKind)
 N_EVENT_KINDS = len(EventKind)
-FINISHED, ZENO, INCONSISTENT, NOT_FINITE, STEP_TOO_SMALL, NO_PROGRESS = (int(s) for s in Status)
+FINISHED, ZENO, INCONSISTENT, NOT_FINITE, STEP_TOO_SMALL, NO_PROGRESS, STALLED = (
+    int(s) for s in Status)
 #: Work columns integrated from the powers ``derivative`` returns, and all the columns.
 N_POWERS = int(WorkColumn.CONTACT) + 1
 N_WORK = len(WorkColumn)

@@ -34,7 +34,8 @@ from shroudnet.engine.advance import (dense_state, is_finite, keep_guards, move_
                                       take_step)
 from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N_POWERS,
                                     NO_PROGRESS, NOT_FINITE, OPEN, PROJECTION,
-                                    SLIP_NEGATIVE, SLIP_POSITIVE, STEP_TOO_SMALL, STICK, ZENO)
+                                    SLIP_NEGATIVE, SLIP_POSITIVE, STALL_SIZE, STALL_STEPS,
+                                    STALLED, STEP_TOO_SMALL, STICK, ZENO)
 from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_merged,
                                        njit_step, njit_step_merged)
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard, crossed,
@@ -656,9 +657,11 @@ def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
     switch found, located (``locate_dense``) and the state moved there; otherwise the run
     reached its last sample or stopped with the status. A step that shrinks below
     h_min stops the run: NOT_FINITE if the last trial's error was inf or NaN (a law gave a
-    non-finite force ahead), else STEP_TOO_SMALL.
+    non-finite force ahead), else STEP_TOO_SMALL; ``STALL_STEPS`` accepted steps in a row
+    below ``STALL_SIZE``·h_min stop it as STALLED.
     """
     error = 0.0
+    tiny = 0
     t_final = last_sample(controls)
     while sample < controls.n_samples:
         last = h >= t_final - t
@@ -672,6 +675,9 @@ def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
             h = retry_step(h, error)
             continue
         steps += 1
+        tiny = tiny + 1 if h < STALL_SIZE * controls.h_min else 0
+        if tiny > STALL_STEPS:
+            return t, h, sample, steps, STALLED, False
         if HAS_CONTACT_EVENTS or HAS_STICK:
             theta = 1.0 if any_crossed(state, w) else 2.0
             theta = min(theta, kinematic_dip(h, state, s, w))
