@@ -129,7 +129,7 @@ def baseline_comparison(gammas=(1.0, 2.2, 3.5), periods: int = 50, repeats: int 
         scene = gamma_scene(gamma1)
         reference = simulate(scene, periods, method=Adaptive(rtol=1e-12, atol=1e-16),
                              samples_per_period=1, event_tolerance=1e-13).x
-        run = functools.partial(simulate, scene, periods, method=Adaptive(),
+        run = functools.partial(simulate, scene, periods, method=Adaptive(atol=1e-12),
                                 samples_per_period=1)
         run()
         ours_seconds, ours = median_time(run, repeats)

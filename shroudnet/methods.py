@@ -41,28 +41,44 @@ class Adaptive:
     A step is accepted when the RMS over blades of its local error estimate, each component
     divided by atol + rtol·|value|, is at most 1. Displacements are held to ``atol`` [m] and
     velocities to ``atol``·lΩ [m/s], the same scale for harmonic motion at the excitation
-    frequency. Samples and switches are taken from the step's 4th-order dense output, so
-    they do not shorten the steps.
+    frequency. By default atol = rtol·x_s, with x_s = Σ|q_n| / min k_i the static
+    deflection under the whole excitation (``DISPLACEMENT_SCALE`` when nothing excites the
+    group), so that rtol alone sets the accuracy: halve it and every component, the energy
+    ledger's residual included, follows. A fixed atol instead stops the error falling once
+    rtol·|x| drops below it, at small excitation first. Samples and switches are taken from
+    the step's 4th-order dense output, so they do not shorten the steps.
 
     Parameters
     ----------
     rtol : float
         Relative tolerance per step, in [1e-14, 0.1].
-    atol : float
-        Absolute tolerance on displacements per step [m], > 0.
+    atol : float, optional
+        Absolute tolerance on displacements per step [m], > 0; by default rtol·x_s.
     max_step : float
         Largest step, in excitation periods, in (0, 1].
     """
 
     rtol: float = 1e-8
-    atol: float = 1e-12
+    atol: float | None = None
     max_step: float = 0.05
 
     def __post_init__(self):
         check_real("Adaptive", "rtol", self.rtol, low=1e-14, high=0.1)
-        check_real("Adaptive", "atol", self.atol, low=0.0, low_open=True, unit="m")
+        if self.atol is not None:
+            check_real("Adaptive", "atol", self.atol, low=0.0, low_open=True, unit="m")
         check_real("Adaptive", "max_step", self.max_step, low=0.0, low_open=True, high=1.0,
                    unit="periods")
+
+    def absolute_tolerance(self, scene: Scene) -> float:
+        """The displacement tolerance [m] on ``scene``: ``atol``, or by default rtol·x_s."""
+        if self.atol is not None:
+            return self.atol
+        deflection = scene.arrays.static_deflection
+        return self.rtol * (deflection if deflection > 0.0 else DISPLACEMENT_SCALE)
+
+
+#: The displacement scale [m] of the default atol when nothing excites the group.
+DISPLACEMENT_SCALE = 1e-4
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -71,8 +87,8 @@ class Accuracy:
 
     ``target`` bounds the relative error of what a periodic response is read for: its
     Poincaré points (relative to the response amplitude) and E_ρ. For each scene it
-    becomes ``Adaptive(rtol=target/100, atol=rtol·x_s)`` with x_s = Σ|q_n| / min k_i, the
-    static deflection under the whole excitation, and an event tolerance of at most
+    becomes ``Adaptive(rtol=target/100)`` (whose atol is rtol·x_s, x_s the static
+    deflection under the whole excitation) and an event tolerance of at most
     target/100 periods. The factor 100 comes from the work–precision study
     (``shroudnet.precision``, README "What accuracy costs"): on the paper's group the
     error of the adaptive integrator is 7–16 times its rtol, and that of the event
@@ -92,10 +108,8 @@ class Accuracy:
 
     def settings(self, scene: Scene, event_tolerance: float) -> tuple[Adaptive, float]:
         """The integrator and event tolerance [periods] that deliver ``target`` on ``scene``."""
-        deflection = scene.arrays.static_deflection
         rtol = self.target / ACCURACY_MARGIN
-        method = Adaptive(rtol=rtol, atol=rtol * (deflection if deflection > 0.0 else 1e-6))
-        return method, min(event_tolerance, rtol)
+        return Adaptive(rtol=rtol), min(event_tolerance, rtol)
 
 
 #: How much tighter than the asked accuracy the step and event tolerances are set.

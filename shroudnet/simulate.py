@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from dataclasses import asdict
+from dataclasses import asdict, replace
 from pathlib import Path
 
 import numpy as np
@@ -92,6 +92,7 @@ def simulate(scene: Scene, periods: int, *,
                                     0.0, 0.0)
         steps_per_sample = method.steps_per_period // samples_per_period
     else:
+        method = replace(method, atol=method.absolute_tolerance(scene))  # as recorded
         driver, step, rtol, atol = (kernel.run_adaptive, INITIAL_STEP * period, method.rtol,
                                     method.atol)
         steps_per_sample = 0
