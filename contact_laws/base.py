@@ -6,8 +6,19 @@ graphs; an interface composes a gap and an angle with one law of each kind.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, fields
 from typing import ClassVar
+
+#: Relative step of the central differences that stand in for a derivative a law does not
+#: give: about the cube root of the rounding unit, which balances truncation and rounding.
+DIFFERENCE_STEP = 6e-6
+
+
+def central_difference(function: Callable[[float], float], at: float, scale: float) -> float:
+    """f'(at) by a central difference, the step ``DIFFERENCE_STEP``·max(|at|, scale)."""
+    step = DIFFERENCE_STEP * max(abs(at), scale)
+    return (function(at + step) - function(at - step)) / (2.0 * step)
 
 
 @dataclass(frozen=True)
@@ -29,11 +40,17 @@ class NormalLaw:
        arithmetic on floats (``math`` functions, ``max``, ``min``, ``if``) so that numba can
        compile it into the integrator's loop;
     4. optionally ``opens = False`` as a class attribute for a contact that never opens,
-       whatever the penetration (a preloaded contact such as ``ConstantLoad``).
+       whatever the penetration (a preloaded contact such as ``ConstantLoad``);
+    5. optionally a ``@staticmethod normal_force_gradient(penetration, rate, *parameters)``
+       returning (∂N/∂δ [N/m], ∂N/∂δ̇ [N·s/m]), in the same plain arithmetic. Tangent
+       dynamics (Jacobians, Floquet multipliers, Lyapunov exponents) need it; a law without
+       it is differentiated by central differences of ``normal_force``, which costs two
+       evaluations per partial derivative and about five significant digits.
 
-    A law is evaluated with ``law(penetration, rate)``. A scene probes a law of one's own
-    for point 3 at sample penetrations and rates when it is built, and refuses it with the
-    point at fault; a sampled check, not a proof.
+    A law is evaluated with ``law(penetration, rate)`` and differentiated with
+    ``law.gradient(penetration, rate)``. A scene probes a law of one's own for point 3 at
+    sample penetrations and rates when it is built, and refuses it with the point at fault;
+    a sampled check, not a proof.
     """
 
     opens: ClassVar[bool] = True
@@ -41,6 +58,27 @@ class NormalLaw:
     @staticmethod
     def normal_force(penetration: float, rate: float, *parameters: float) -> float:
         raise NotImplementedError
+
+    @staticmethod
+    def normal_force_gradient(penetration: float, rate: float,
+                              *parameters: float) -> tuple[float, float]:
+        raise NotImplementedError
+
+    @classmethod
+    def has_analytic_gradient(cls) -> bool:
+        """Whether the class gives ``normal_force_gradient`` (else central differences)."""
+        return cls.normal_force_gradient is not NormalLaw.normal_force_gradient
+
+    def gradient(self, penetration: float, rate: float = 0.0) -> tuple[float, float]:
+        """(∂N/∂δ [N/m], ∂N/∂δ̇ [N·s/m]) at (δ, δ̇): the law's own, else central differences
+        with steps relative to max(|δ|, 1 µm) and max(|δ̇|, 1 mm/s)."""
+        penetration, rate = float(penetration), float(rate)
+        if self.has_analytic_gradient():
+            d_penetration, d_rate = type(self).normal_force_gradient(penetration, rate,
+                                                                    *self.parameters())
+            return float(d_penetration), float(d_rate)
+        return (central_difference(lambda d: self(d, rate), penetration, 1e-6),
+                central_difference(lambda r: self(penetration, r), rate, 1e-3))
 
     def parameters(self) -> tuple[float, ...]:
         """The law's parameters in declaration order, as passed to ``normal_force``."""
@@ -63,16 +101,40 @@ class FrictionLaw:
     2. ``__post_init__`` that validates every field, naming it and its allowed range;
     3. a ``@staticmethod coefficient(slip_speed, *parameters)`` taking ``|v| ≥ 0`` and the
        fields in declaration order and returning μ ≥ 0, written in plain arithmetic that numba
-       can compile. It must not exceed its value at zero speed: μ(0) is the static limit.
+       can compile. It must not exceed its value at zero speed: μ(0) is the static limit;
+    4. optionally a ``@staticmethod coefficient_slope(slip_speed, *parameters)`` returning
+       dμ/d|v| [s/m], in the same plain arithmetic, for tangent dynamics; a law without it
+       is differentiated by central differences of ``coefficient``.
 
-    A law is evaluated with ``law(slip_speed)``; ``law.static_coefficient`` is μ(0). A scene
-    probes a law of one's own for point 3 (finite, 0 ≤ μ(v) ≤ ``static_coefficient``) at
-    slip speeds from 0 to 100 m/s when it is built; a sampled check, not a proof.
+    A law is evaluated with ``law(slip_speed)`` and differentiated with
+    ``law.slope(slip_speed)``; ``law.static_coefficient`` is μ(0). A scene probes a law of
+    one's own for point 3 (finite, 0 ≤ μ(v) ≤ ``static_coefficient``) at slip speeds from 0
+    to 100 m/s when it is built; a sampled check, not a proof.
     """
 
     @staticmethod
     def coefficient(slip_speed: float, *parameters: float) -> float:
         raise NotImplementedError
+
+    @staticmethod
+    def coefficient_slope(slip_speed: float, *parameters: float) -> float:
+        raise NotImplementedError
+
+    @classmethod
+    def has_analytic_slope(cls) -> bool:
+        """Whether the class gives ``coefficient_slope`` (else central differences)."""
+        return cls.coefficient_slope is not FrictionLaw.coefficient_slope
+
+    def slope(self, slip_speed: float) -> float:
+        """dμ/d|v| [s/m] at the slip speed |v|: the law's own, else a central difference
+        with a step relative to max(|v|, 1 mm/s) (one-sided at |v| = 0)."""
+        speed = abs(float(slip_speed))
+        if self.has_analytic_slope():
+            return float(type(self).coefficient_slope(speed, *self.parameters()))
+        step = DIFFERENCE_STEP * max(speed, 1e-3)
+        if speed < step:  # μ is defined for |v| ≥ 0 only
+            return (self(speed + step) - self(speed)) / step
+        return central_difference(self, speed, 1e-3)
 
     def parameters(self) -> tuple[float, ...]:
         """The law's parameters in declaration order, as passed to ``coefficient``."""

@@ -31,6 +31,10 @@ class Coulomb(FrictionLaw):
     def coefficient(slip_speed, mu):
         return mu
 
+    @staticmethod
+    def coefficient_slope(slip_speed, mu):
+        return 0.0
+
 
 @dataclass(frozen=True, kw_only=True)
 class ExponentialFriction(FrictionLaw):
@@ -59,6 +63,10 @@ class ExponentialFriction(FrictionLaw):
     @staticmethod
     def coefficient(slip_speed, mu_static, mu_kinetic, beta):
         return mu_kinetic + (mu_static - mu_kinetic) * math.exp(-beta * slip_speed)
+
+    @staticmethod
+    def coefficient_slope(slip_speed, mu_static, mu_kinetic, beta):
+        return -beta * (mu_static - mu_kinetic) * math.exp(-beta * slip_speed)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -94,6 +102,16 @@ class Stribeck(FrictionLaw):
     def coefficient(slip_speed, mu_static, mu_kinetic, stribeck_velocity, exponent):
         return mu_kinetic + (mu_static - mu_kinetic) * math.exp(
             -((slip_speed / stribeck_velocity) ** exponent))
+
+    @staticmethod
+    def coefficient_slope(slip_speed, mu_static, mu_kinetic, stribeck_velocity, exponent):
+        # −(μ_s − μ_k) δ r^(δ−1) e^(−r^δ) / v_s with r = |v|/v_s; at |v| = 0 it is 0 for
+        # δ > 1, −(μ_s − μ_k)/v_s for δ = 1 and −inf for δ < 1.
+        ratio = slip_speed / stribeck_velocity
+        if ratio == 0.0 and exponent != 1.0:
+            return 0.0 if exponent > 1.0 else -math.inf
+        return -(mu_static - mu_kinetic) * exponent * ratio ** (exponent - 1.0) \
+            * math.exp(-(ratio ** exponent)) / stribeck_velocity
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -135,3 +153,6 @@ class Regularised(FrictionLaw):
 
     def __call__(self, slip_speed: float) -> float:
         return self.law(slip_speed)
+
+    def slope(self, slip_speed: float) -> float:
+        return self.law.slope(slip_speed)

@@ -1,6 +1,7 @@
 """Normal-contact laws N(δ, δ̇): the force pressing two shrouds apart while they overlap.
 
-Each ``normal_force`` is called only while the contact is closed (penetration δ > 0).
+Each ``normal_force`` is called only while the contact is closed (penetration δ > 0);
+``normal_force_gradient`` gives (∂N/∂δ, ∂N/∂δ̇), zero where a law clips its force at 0.
 """
 
 from __future__ import annotations
@@ -31,6 +32,10 @@ class LinearSpring(NormalLaw):
     def normal_force(penetration, rate, stiffness):
         return stiffness * penetration
 
+    @staticmethod
+    def normal_force_gradient(penetration, rate, stiffness):
+        return stiffness, 0.0
+
 
 @dataclass(frozen=True, kw_only=True)
 class Hertz(NormalLaw):
@@ -55,6 +60,13 @@ class Hertz(NormalLaw):
     def normal_force(penetration, rate, stiffness, exponent):
         # A trial state inside a step that separates can hold δ < 0: no force, not NaN.
         return stiffness * max(penetration, 0.0) ** exponent
+
+    @staticmethod
+    def normal_force_gradient(penetration, rate, stiffness, exponent):
+        # ∂N/∂δ = k n δ^(n−1); at δ ≤ 0 the contact carries no force, so 0 (also for n = 1).
+        if penetration <= 0.0:
+            return 0.0, 0.0
+        return stiffness * exponent * penetration ** (exponent - 1.0), 0.0
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -82,6 +94,13 @@ class KelvinVoigt(NormalLaw):
     @staticmethod
     def normal_force(penetration, rate, stiffness, damping):
         return max(0.0, stiffness * penetration + damping * rate)
+
+    @staticmethod
+    def normal_force_gradient(penetration, rate, stiffness, damping):
+        # (k, c) where the force is positive; 0 where it is clipped.
+        if stiffness * penetration + damping * rate <= 0.0:
+            return 0.0, 0.0
+        return stiffness, damping
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -115,6 +134,14 @@ class HuntCrossley(NormalLaw):
     def normal_force(penetration, rate, stiffness, damping, exponent):
         return max(0.0, stiffness * max(penetration, 0.0) ** exponent * (1.0 + damping * rate))
 
+    @staticmethod
+    def normal_force_gradient(penetration, rate, stiffness, damping, exponent):
+        # ∂N/∂δ = k n δ^(n−1) (1 + d δ̇), ∂N/∂δ̇ = k δ^n d; 0 where the force is clipped.
+        if penetration <= 0.0 or 1.0 + damping * rate <= 0.0:
+            return 0.0, 0.0
+        elastic = stiffness * penetration ** exponent
+        return exponent * elastic / penetration * (1.0 + damping * rate), elastic * damping
+
 
 @dataclass(frozen=True, kw_only=True)
 class ConstantLoad(NormalLaw):
@@ -138,3 +165,7 @@ class ConstantLoad(NormalLaw):
     @staticmethod
     def normal_force(penetration, rate, force):
         return force
+
+    @staticmethod
+    def normal_force_gradient(penetration, rate, force):
+        return 0.0, 0.0

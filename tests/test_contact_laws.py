@@ -6,7 +6,7 @@ import math
 
 import numba
 import pytest
-from hypothesis import given
+from hypothesis import assume, given
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
@@ -264,3 +264,122 @@ def test_contact_laws_do_not_import_shroudnet():
     import sys
     code = "import sys, contact_laws; assert 'shroudnet' not in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+# ---- derivatives, for tangent dynamics -----------------------------------------------------
+
+def _richardson(function, at, step):
+    """f'(at) by Richardson-extrapolated central differences: error O(step⁴), written here
+    so that no derivative below is checked against the code it checks."""
+    def central(h):
+        return (function(at + h) - function(at - h)) / (2.0 * h)
+    return (4.0 * central(step / 2.0) - central(step)) / 3.0
+
+
+BUILT_IN_NORMAL = [law for law in EVERY_NORMAL_LAW if type(law).__module__.startswith("contact")]
+BUILT_IN_FRICTION = [law for law in EVERY_FRICTION_LAW
+                     if type(law).__module__.startswith("contact")]
+
+
+@pytest.mark.parametrize("law", BUILT_IN_NORMAL, ids=str)
+def test_every_built_in_normal_law_gives_its_gradient(law):
+    assert law.has_analytic_gradient()
+
+
+@pytest.mark.parametrize("law", BUILT_IN_FRICTION, ids=str)
+def test_every_built_in_friction_law_gives_its_slope(law):
+    assert (law.exact if isinstance(law, cl.Regularised) else law).has_analytic_slope()
+
+
+@st.composite
+def _smooth_normal_points(draw):
+    """A built-in normal law with random parameters, and (δ, δ̇) at least 1 % of the way from
+    any kink (touch, or the clipping of a damped force at zero)."""
+    stiffness = draw(st.floats(1e4, 1e9))
+    law = draw(st.sampled_from([
+        cl.LinearSpring(stiffness=stiffness),
+        cl.Hertz(stiffness=stiffness, exponent=draw(st.floats(1.0, 3.0))),
+        cl.KelvinVoigt(stiffness=stiffness, damping=draw(st.floats(0.0, 100.0))),
+        cl.HuntCrossley(stiffness=stiffness, damping=draw(st.floats(0.0, 5.0)),
+                        exponent=draw(st.floats(1.0, 3.0))),
+        cl.ConstantLoad(force=draw(st.floats(0.0, 100.0))),
+    ]))
+    penetration = draw(st.floats(1e-7, 1e-3))
+    rate = draw(st.floats(-10.0, 10.0))
+    room = math.inf  # how far δ̇ may move before the force is clipped [m/s]
+    if isinstance(law, cl.KelvinVoigt):
+        clip = law.stiffness * penetration + law.damping * rate
+        assume(abs(clip) > 0.01 * (law.stiffness * penetration + law.damping * abs(rate)))
+        room = abs(clip) / law.damping if law.damping else math.inf
+    if isinstance(law, cl.HuntCrossley):
+        assume(abs(1.0 + law.damping * rate) > 0.01)
+        room = abs(1.0 + law.damping * rate) / law.damping if law.damping else math.inf
+    return law, penetration, rate, room
+
+
+@given(point=_smooth_normal_points())
+def test_normal_force_gradient_matches_finite_differences(point):
+    law, penetration, rate, room = point
+    d_penetration, d_rate = law.gradient(penetration, rate)
+    expected_penetration = _richardson(lambda d: law(d, rate), penetration, 1e-3 * penetration)
+    rate_step = min(1e-3 * max(abs(rate), 0.1), 0.1 * room)
+    expected_rate = _richardson(lambda r: law(penetration, r), rate, rate_step)
+    force_scale = law(penetration, abs(rate)) + 1e-300
+    assert d_penetration == pytest.approx(expected_penetration, rel=1e-6,
+                                          abs=1e-9 * force_scale / penetration)
+    assert d_rate == pytest.approx(expected_rate, rel=1e-6, abs=1e-9 * force_scale)
+
+
+def test_normal_force_gradient_is_zero_where_the_force_is_clipped():
+    assert cl.Hertz(stiffness=1e9).gradient(-1e-6, 0.3) == (0.0, 0.0)
+    assert cl.KelvinVoigt(stiffness=1e5, damping=20.0).gradient(2e-6, -0.3) == (0.0, 0.0)
+    assert cl.HuntCrossley(stiffness=1e8, damping=0.5).gradient(4e-6, -3.0) == (0.0, 0.0)
+    # where it is not: (k, c), and Hertz's k n δ^(n−1) at n = 3/2, δ = 4 µm
+    assert cl.KelvinVoigt(stiffness=1e5, damping=20.0).gradient(2e-6, 0.3) == (1e5, 20.0)
+    assert cl.Hertz(stiffness=1e9).gradient(4e-6)[0] == pytest.approx(1e9 * 1.5 * 2e-3)
+
+
+@st.composite
+def _friction_points(draw):
+    mu_s = draw(st.floats(0.01, 2.0))
+    mu_k = draw(st.floats(0.0, 1.0)) * mu_s
+    law = draw(st.sampled_from([
+        cl.Coulomb(mu=mu_s),
+        cl.ExponentialFriction(mu_static=mu_s, mu_kinetic=mu_k, beta=draw(st.floats(0.0, 50.0))),
+        cl.Stribeck(mu_static=mu_s, mu_kinetic=mu_k,
+                    stribeck_velocity=draw(st.floats(1e-4, 1.0)),
+                    exponent=draw(st.floats(0.2, 4.0))),
+    ]))
+    return law, draw(st.floats(1e-5, 10.0))
+
+
+@given(point=_friction_points())
+def test_friction_slope_matches_finite_differences(point):
+    law, speed = point
+    expected = _richardson(law, speed, 1e-3 * speed)
+    assert law.slope(speed) == pytest.approx(expected, rel=1e-6, abs=1e-9 * law(0.0) / speed)
+    assert law.slope(-speed) == law.slope(speed)
+
+
+def test_friction_slope_at_zero_speed_follows_the_stribeck_exponent():
+    def stribeck(exponent):
+        return cl.Stribeck(mu_static=0.6, mu_kinetic=0.2, stribeck_velocity=0.01,
+                           exponent=exponent)
+    assert stribeck(2.0).slope(0.0) == 0.0
+    assert stribeck(1.0).slope(0.0) == pytest.approx(-0.4 / 0.01)
+    assert stribeck(0.5).slope(0.0) == -math.inf
+    assert cl.Regularised(law=PAPER_EQ4, velocity=1e-3).slope(0.1) == PAPER_EQ4.slope(0.1)
+    assert PAPER_EQ4.slope(0.1) == pytest.approx(-5.0 * 0.2 * EXP_M05)
+
+
+def test_a_user_law_without_derivatives_is_differentiated_by_central_differences():
+    spring = CubicSpring(linear=1e5, cubic=1e13)
+    assert not spring.has_analytic_gradient()
+    stiffness, damping = spring.gradient(1e-4, 0.2)
+    assert stiffness == pytest.approx(1e5 + 3 * 1e13 * 1e-8, rel=1e-8)
+    assert damping == 0.0
+    weakening = RationalWeakening(mu_static=0.5, mu_kinetic=0.25, speed=0.05)
+    assert not weakening.has_analytic_slope()
+    for speed in (0.0, 1e-4, 0.05, 3.0):
+        exact = -0.25 / 0.05 / (1.0 + speed / 0.05) ** 2
+        assert weakening.slope(speed) == pytest.approx(exact, rel=1e-4)
