@@ -559,7 +559,8 @@ def _excitation_document(excitation: Excitation) -> dict:
 
 def _run_document(run: RunSettings) -> dict:
     name = next(n for n, (cls, _) in _METHODS.items() if isinstance(run.method, cls))
-    return {"method": name, **dataclasses.asdict(run.method), "periods": run.periods,
+    knobs = {k: v for k, v in dataclasses.asdict(run.method).items() if v is not None}
+    return {"method": name, **knobs, "periods": run.periods,
             "transient": run.transient, "samples_per_period": run.samples_per_period,
             "event_tolerance": run.event_tolerance, "blade": run.blade}
 
