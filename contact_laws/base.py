@@ -13,6 +13,11 @@ from typing import ClassVar
 #: Relative step of the central differences that stand in for a derivative a law does not
 #: give: about the cube root of the rounding unit, which balances truncation and rounding.
 DIFFERENCE_STEP = 6e-6
+#: The smallest scales [m, m/s, m/s] the difference steps of ``NormalLaw.gradient`` (in δ
+#: and δ̇) and ``FrictionLaw.slope`` (in |v|) are taken relative to.
+PENETRATION_SCALE = 1e-6
+RATE_SCALE = 1e-3
+SPEED_SCALE = 1e-3
 
 
 def central_difference(function: Callable[[float], float], at: float, scale: float) -> float:
@@ -77,8 +82,8 @@ class NormalLaw:
             d_penetration, d_rate = type(self).normal_force_gradient(penetration, rate,
                                                                     *self.parameters())
             return float(d_penetration), float(d_rate)
-        return (central_difference(lambda d: self(d, rate), penetration, 1e-6),
-                central_difference(lambda r: self(penetration, r), rate, 1e-3))
+        return (central_difference(lambda d: self(d, rate), penetration, PENETRATION_SCALE),
+                central_difference(lambda r: self(penetration, r), rate, RATE_SCALE))
 
     def parameters(self) -> tuple[float, ...]:
         """The law's parameters in declaration order, as passed to ``normal_force``."""
@@ -131,10 +136,10 @@ class FrictionLaw:
         speed = abs(float(slip_speed))
         if self.has_analytic_slope():
             return float(type(self).coefficient_slope(speed, *self.parameters()))
-        step = DIFFERENCE_STEP * max(speed, 1e-3)
+        step = DIFFERENCE_STEP * max(speed, SPEED_SCALE)
         if speed < step:  # μ is defined for |v| ≥ 0 only
             return (self(speed + step) - self(speed)) / step
-        return central_difference(self, speed, 1e-3)
+        return central_difference(self, speed, SPEED_SCALE)
 
     def parameters(self) -> tuple[float, ...]:
         """The law's parameters in declaration order, as passed to ``coefficient``."""

@@ -60,6 +60,9 @@ from .engine.codes import Mode as Mode
 from .scene import Scene as Scene
 from .scene import SceneArrays as SceneArrays
 from .simulate import simulate as simulate
+from .stability import LyapunovExponents as LyapunovExponents
+from .stability import lyapunov as lyapunov
+from .stability import monodromy as monodromy
 from .simulation import EnergyLedger as EnergyLedger
 from .engine.codes import EventKind as EventKind
 from .simulation import EventLog as EventLog

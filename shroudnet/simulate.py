@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from dataclasses import asdict, replace
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -13,7 +13,7 @@ from contact_laws import check_int, check_real
 from .engine.codes import EventKind, Mode, Status, WorkColumn
 from .engine.dynamics import interface_kinematics
 from .engine.generate import compiled, kernel_scene, load_kernel
-from .engine.records import Controls
+from .engine.records import Controls, Run
 from .methods import Accuracy, Adaptive, FixedStep, ZenoGuard
 from .scene import Scene
 from .simulation import EnergyLedger, EventLog, Simulation, SimulationError
@@ -63,6 +63,52 @@ def simulate(scene: Scene, periods: int, *,
         On Zeno or chattering behaviour, a mode set with no consistent choice, a step size
         that collapses, or a non-finite state; the message names the time and the interface.
     """
+    done = integrate(scene, periods, method=method, samples_per_period=samples_per_period,
+                     event_tolerance=event_tolerance, zeno=zeno, initial=initial,
+                     event_capacity=event_capacity)
+    run, method = done.run, done.method
+    out = run.output
+    events = EventLog(time=run.events.time, interface=run.events.interface,
+                      kind=run.events.kind,
+                      counts={k.name.lower(): int(run.events.counts[k]) for k in EventKind})
+    ledger = _ledger(scene, out.x, out.v, out.modes, out.energy)
+    settings = {"method": type(method).__name__, **asdict(method), "periods": periods,
+                "samples_per_period": samples_per_period,
+                "event_tolerance": done.event_tolerance,
+                "zeno": {"events": zeno.events, "window": done.zeno_window}}
+    return Simulation(scene=scene, settings=settings, t=out.t, x=out.x, v=out.v,
+                      normal_force=out.normal, friction_force=out.friction, modes=out.modes,
+                      events=events, energy=ledger, work=out.energy,
+                      samples_per_period=samples_per_period, steps=int(run.steps),
+                      compile_seconds=done.compile_seconds)
+
+
+@dataclass(frozen=True)
+class Integration:
+    """What ``integrate`` did: the kernel's ``records.Run``, the method with every knob as
+    used (``Accuracy`` resolved, the default atol filled in), the event tolerance
+    [periods] and the Zeno window [periods] it used, and the seconds spent compiling."""
+
+    run: Run
+    method: FixedStep | Adaptive
+    event_tolerance: float
+    zeno_window: float
+    compile_seconds: float
+
+
+def integrate(scene: Scene, periods: int, *,
+              method: FixedStep | Adaptive | Accuracy = Adaptive(),
+              samples_per_period: int = 100, event_tolerance: float = 1e-10,
+              zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
+              tangent: np.ndarray | None = None,
+              orthonormalise: bool = False) -> Integration:
+    """``simulate``'s checks and run, returning the kernel's raw record.
+
+    With ``tangent`` (2 n_blades × k), the run integrates those k tangent vectors of the
+    start with the state (``engine.tangent``), in a kernel compiled for it, by the adaptive
+    method only; ``orthonormalise`` re-orthonormalises them after every step. Arguments
+    as ``simulate``; raises what it raises.
+    """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate needs a shroudnet.Scene, got {scene!r}")
     periods = check_int("simulate", "periods", periods, low=1)
@@ -83,8 +129,15 @@ def simulate(scene: Scene, periods: int, *,
         _initial(initial[0], n, "x0"), _initial(initial[1], n, "v0"))
     _check_memory(scene, periods, samples_per_period, event_capacity)
 
+    n_columns = 0 if tangent is None else tangent.shape[1]
+    if tangent is not None and isinstance(method, FixedStep):
+        raise ValueError("the tangent flow is integrated by the adaptive method only: use "
+                         "method=Adaptive(...) or Accuracy(...), not FixedStep")
+    tangent0 = np.zeros((2 * n, n_columns)) if tangent is None else np.array(
+        tangent, dtype=float)
+
     period = scene.excitation_period
-    kernel = load_kernel(scene)
+    kernel = load_kernel(scene, tangent=tangent is not None)
     zeno_window = zeno.window_at(event_tolerance)
     n_samples = periods * samples_per_period + 1
     if isinstance(method, FixedStep):
@@ -102,27 +155,17 @@ def simulate(scene: Scene, periods: int, *,
         atol_x=atol, atol_v=atol * scene.arrays.excitation_frequency,
         h_max=getattr(method, "max_step", 1.0) * period, h_min=SMALLEST_STEP * period,
         event_tolerance=event_tolerance * period, zeno_events=zeno.events,
-        zeno_window=zeno_window * period, event_capacity=event_capacity)
-    arguments = (kernel_scene(scene), x0, v0, controls)
+        zeno_window=zeno_window * period, event_capacity=event_capacity,
+        orthonormalise=orthonormalise)
+    arguments = (kernel_scene(scene), x0, v0, tangent0, controls)
     driver, compile_seconds = compiled(driver, arguments)
     run = driver(*arguments)
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
                                             zeno.events, zeno_window))
-    out = run.output
-    events = EventLog(time=run.events.time, interface=run.events.interface,
-                      kind=run.events.kind,
-                      counts={k.name.lower(): int(run.events.counts[k]) for k in EventKind})
-    ledger = _ledger(scene, out.x, out.v, out.modes, out.energy)
-    settings = {"method": type(method).__name__, **asdict(method), "periods": periods,
-                "samples_per_period": samples_per_period, "event_tolerance": event_tolerance,
-                "zeno": {"events": zeno.events, "window": zeno_window}}
-    return Simulation(scene=scene, settings=settings, t=out.t, x=out.x, v=out.v,
-                      normal_force=out.normal, friction_force=out.friction, modes=out.modes,
-                      events=events, energy=ledger, work=out.energy,
-                      samples_per_period=samples_per_period, steps=int(run.steps),
-                      compile_seconds=compile_seconds)
+    return Integration(run=run, method=method, event_tolerance=event_tolerance,
+                       zeno_window=zeno_window, compile_seconds=compile_seconds)
 
 
 #: An adaptive step below this many excitation periods stops the run.

@@ -10,6 +10,9 @@ the contact and friction laws:
 - ``regroup``: stick clusters (``clusters``), the static friction operator, and one
   velocity for each cluster.
 
+``tangent`` carries the variational (tangent) state through the steps and multiplies it
+by the saltation matrix of each switch, in the kernels compiled for it.
+
 ``dynamics`` assembles the forces and accelerations of a set of modes (``assembly``
 does the same in plain Python for a ``Scene``). ``template`` holds the functions that
 must see the laws; ``generate`` writes it behind a header that dispatches to a scene's law

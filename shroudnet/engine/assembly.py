@@ -25,8 +25,10 @@ def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
     """Normal force N_e and sliding friction f_e [N] from each interface's laws.
 
     Open interfaces carry nothing; stuck ones carry N and no sliding friction (their static
-    friction comes from ``static_friction``). Exact laws slip with f = ±μ(|v|) N by the sign
-    of the mode (paper eqs. 5–6); regularised ones with f = μ(|v|) N tanh(v/v_ε).
+    friction comes from ``static_friction``). Exact laws slip with f = σ μ(σv) N, σ = ±1 by
+    the sign of the mode (paper eqs. 5–6), continued past the mode's end (σv < 0) by the
+    tangent line μ(0) + μ'(0) σv, as the compiled loop does (``sliding_coefficient``);
+    regularised ones with f = μ(|v|) N tanh(v/v_ε).
     This is the plain-Python evaluation of the laws; it calls each law object.
     """
     normal = np.zeros(arrays.n_interfaces)
@@ -38,11 +40,15 @@ def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
         friction_law = arrays.friction_laws[e]
         if friction_law is None or modes[e] == STICK:
             continue
-        sliding = friction_law(slip_velocity[e]) * normal[e]
         if arrays.regularisation[e] > 0.0:
-            friction[e] = sliding * math.tanh(slip_velocity[e] / arrays.regularisation[e])
-        else:
-            friction[e] = sliding if modes[e] == SLIP_POSITIVE else -sliding
+            friction[e] = friction_law(slip_velocity[e]) * normal[e] \
+                * math.tanh(slip_velocity[e] / arrays.regularisation[e])
+            continue
+        sign = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
+        speed = sign * slip_velocity[e]
+        mu = friction_law(speed) if speed >= 0.0 else (
+            friction_law(0.0) + friction_law.slope(0.0) * speed)
+        friction[e] = sign * mu * normal[e]
     return normal, friction
 
 

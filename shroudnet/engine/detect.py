@@ -75,6 +75,17 @@ def first_crossed(state, w):
 
 
 @njit_inlined
+def count_crossed(state, w):
+    """How many interfaces' guards in w crossed since the state's reference."""
+    count = 0
+    for e in range(len(state.contact_before)):
+        if crossed(state.contact_before[e], w.contact[e]) or crossed(state.motion_before[e],
+                                                                     w.motion[e]):
+            count += 1
+    return count
+
+
+@njit_inlined
 def any_crossed(state, w):
     return first_crossed(state, w) >= 0
 

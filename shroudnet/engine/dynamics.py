@@ -44,6 +44,21 @@ def excitation_forces(t, amplitudes, cos_phase, sin_phase, excitation_frequency,
             out[i] += amplitudes[n, i] * (sine * cos_phase[n, i] + cosine * sin_phase[n, i])
 
 
+@njit_step_callable
+def excitation_rate(t, amplitudes, cos_phase, sin_phase, excitation_frequency, out):
+    """dQ_i/dt [N/s] of ``excitation_forces`` (same tables), written into ``out``."""
+    for i in range(len(out)):
+        out[i] = 0.0
+    for n in range(1, amplitudes.shape[0]):
+        rate = n * excitation_frequency
+        angle = rate * t
+        sine = math.sin(angle)
+        cosine = math.cos(angle)
+        for i in range(len(out)):
+            out[i] += rate * amplitudes[n, i] * (cosine * cos_phase[n, i]
+                                                 - sine * sin_phase[n, i])
+
+
 @njit_inlined
 def relative_motion(x, v, left, right, e):
     """(u, u̇) of interface e: u = x_i − x_j of its left and right blades [m], and its rate

@@ -29,18 +29,42 @@ KernelScene = namedtuple("KernelScene", [
 #: the first trial step (``run_adaptive``) and the number of fixed steps per sample; the
 #: adaptive tolerances (rtol, atol on x [m] and on ẋ [m/s]) and step limits; the event
 #: tolerance; the Zeno guard (switches within a window [s]); and how many events the log
-#: keeps.
+#: keeps; and whether the tangent's columns are orthonormalised after every step
+#: (``tangent.orthonormalise``, for Lyapunov exponents).
 Controls = namedtuple("Controls", [
     "t0", "sample_step", "n_samples", "step", "steps_per_sample",
     "rtol", "atol_x", "atol_v", "h_max", "h_min",
-    "event_tolerance", "zeno_events", "zeno_window", "event_capacity",
+    "event_tolerance", "zeno_events", "zeno_window", "event_capacity", "orthonormalise",
 ])
 
 #: The integrator's state between steps: displacements x [m] and velocities ẋ [m/s] by
 #: blade, the cumulative work columns [J] (``codes.WorkColumn``), each interface's mode,
 #: and its contact and motion guards where the last step ended (``detect.event_guards``),
-#: the reference a switch is detected against.
-State = namedtuple("State", ["x", "v", "energy", "modes", "contact_before", "motion_before"])
+#: the reference a switch is detected against; and its ``Tangent`` (no columns unless a
+#: run asks for the tangent flow).
+State = namedtuple("State", ["x", "v", "energy", "modes", "contact_before", "motion_before",
+                             "tangent"])
+
+#: The tangent (variational) state of a run and its scratch (``tangent``). ``matrix``
+#: (2 n_blades × k) holds k tangent vectors, displacement rows then velocity rows;
+#: ``log_growth`` the log of each column's growth removed by orthonormalisation, and
+#: ``history`` its value at every sample. Per interface, from the laws where the flow was
+#: last linearised (``template.linearise``): ∂N/∂u, ∂N/∂u̇, and ∂F/∂u, ∂F/∂u̇ of its force
+#: F = N sin α + f cos α on the blades (u = x_left − x_right). ``stages``: the tangent of
+#: each Runge–Kutta stage, and ``candidate`` the tangent at the end of a step until the
+#: step's tangent error accepts it. Scratch: ``direction`` (one tangent vector), the changes of the
+#: resultants and accelerations along it, per-cluster ``rows``, ``imbalance`` and
+#: ``q_rate`` (dQ/dt) per blade; ``guard_normal`` the gradient of the guard that crossed,
+#: ``f_minus`` and ``f_plus`` the vector field (ẋ, ẍ) before and after the switch.
+#: ``singular`` counts the switches whose saltation matrix was singular (a grazing
+#: switch, or several guards at once), the first at ``singular_time[0]`` on interface
+#: ``singular_interface[0]``. ``work`` and ``acceleration``: the forces at a stage.
+Tangent = namedtuple("Tangent", [
+    "matrix", "log_growth", "history", "normal_u", "normal_du", "force_u", "force_du",
+    "stages", "candidate", "direction", "resultant_change", "acceleration_change", "rows",
+    "imbalance", "q_rate", "guard_normal", "f_minus", "f_plus", "singular", "singular_time",
+    "singular_interface", "work", "acceleration",
+])
 
 #: Stick clusters of a set of modes (``regroup``): which interfaces are stuck, each blade's
 #: cluster, whether each cluster is grounded, its mass, and the static friction operator
@@ -73,8 +97,9 @@ Output = namedtuple("Output", ["t", "x", "v", "normal", "friction", "modes", "en
 
 #: What a driver returns: its ``codes.Status``, the time it stopped at [s], the interface
 #: that stopped it (−1 for none), the Runge–Kutta steps taken (accepted ones, for the
-#: adaptive driver), the samples taken, and the events logged.
-Run = namedtuple("Run", ["status", "time", "interface", "steps", "output", "events"])
+#: adaptive driver), the samples taken, the events logged, and the tangent state.
+Run = namedtuple("Run", ["status", "time", "interface", "steps", "output", "events",
+                         "tangent"])
 
 
 @njit_inlined
@@ -114,16 +139,31 @@ def new_output(n_samples, n_blades, n_interfaces):
 
 
 @njit_internal
-def new_state(x0, v0, n_interfaces):
-    x, v = np.empty(len(x0)), np.empty(len(v0))
-    for i in range(len(x0)):
-        x[i], v[i] = x0[i], v0[i]
-    return State(x, v, np.zeros(N_WORK), np.zeros(n_interfaces, np.int64),
-                 np.empty(n_interfaces), np.empty(n_interfaces))
+def new_tangent(tangent0, n_interfaces, n_samples):
+    """A ``Tangent`` starting from the columns of ``tangent0`` (2 n_blades × k, k ≥ 0)."""
+    b, m = tangent0.shape[0] // 2, n_interfaces
+    k = tangent0.shape[1]
+    return Tangent(tangent0.copy(), np.zeros(k), np.zeros((n_samples, k)), np.zeros(m),
+                   np.zeros(m), np.zeros(m), np.zeros(m), np.zeros((DP_STAGES, 2 * b, k)),
+                   np.zeros((2 * b, k)), np.zeros(2 * b), np.zeros(b), np.zeros(b),
+                   np.zeros(b), np.zeros(b), np.zeros(b), np.zeros(2 * b), np.zeros(2 * b),
+                   np.zeros(2 * b),
+                   np.zeros(1, dtype=np.int64), np.full(1, np.nan),
+                   np.full(1, -1, dtype=np.int64), new_work(b, m), np.zeros(b))
 
 
 @njit_internal
-def finish(status, time, interface, steps, out, n_samples, events):
+def new_state(x0, v0, tangent):
+    x, v = np.empty(len(x0)), np.empty(len(v0))
+    for i in range(len(x0)):
+        x[i], v[i] = x0[i], v0[i]
+    n_interfaces = len(tangent.normal_u)
+    return State(x, v, np.zeros(N_WORK), np.zeros(n_interfaces, np.int64),
+                 np.empty(n_interfaces), np.empty(n_interfaces), tangent)
+
+
+@njit_internal
+def finish(status, time, interface, steps, out, n_samples, events, tangent):
     """The driver's ``Run``: the samples taken and the events logged, trimmed."""
     n = min(events.n_events[0], len(events.time))
     output = Output(out.t[:n_samples], out.x[:n_samples], out.v[:n_samples],
@@ -131,4 +171,11 @@ def finish(status, time, interface, steps, out, n_samples, events):
                     out.energy[:n_samples])
     logged = Events(events.time[:n], events.interface[:n], events.kind[:n], events.counts,
                     events.recent, events.n_events, events.idle)
-    return Run(status, time, interface, steps, output, logged)
+    g = tangent
+    kept = Tangent(g.matrix, g.log_growth, g.history[:n_samples], g.normal_u, g.normal_du,
+                   g.force_u, g.force_du, g.stages, g.candidate, g.direction,
+                   g.resultant_change,
+                   g.acceleration_change, g.rows, g.imbalance, g.q_rate, g.guard_normal,
+                   g.f_minus, g.f_plus, g.singular, g.singular_time, g.singular_interface,
+                   g.work, g.acceleration)
+    return Run(status, time, interface, steps, output, logged, kept)

@@ -6,9 +6,13 @@ The header defines, for the law classes of a scene:
 
 - ``normal_force(kind, params, penetration, rate)`` and
   ``friction_coefficient(kind, params, slip_speed)``, which dispatch on the law's index;
+- ``normal_force_gradient(kind, params, penetration, rate)`` (∂N/∂δ, ∂N/∂δ̇) and
+  ``friction_slope(kind, params, slip_speed)`` (dμ/d|v|): the laws' own derivatives, or
+  central differences of the law where it gives none;
 - the effect flags ``HAS_CONTACT_EVENTS``, ``HAS_STICK``, ``HAS_FRICTION`` and
   ``HAS_REGULARISED``, compile-time constants that remove the code of effects the laws
-  rule out.
+  rule out, and ``HAS_TANGENT``, set only in the kernels of runs that integrate the
+  tangent flow (``tangent``), so that other runs carry none of its code.
 
 A step reads as five phases, each with a module of its own for what does not need the
 laws: advance (one Runge–Kutta step with fixed modes; ``advance``), detect (a guard
@@ -23,6 +27,9 @@ located on the step's dense output, and the state there integrated anew).
 The state carries, beside x and ẋ, the work done so far: excitation, damping, friction and
 contact work from the powers ``derivative`` returns (integrated by the same Runge–Kutta
 weights), and the kinetic energy removed when velocities are projected onto stick clusters.
+In a tangent kernel it carries the tangent vectors too: each adaptive step differentiates
+itself (``tangent_step``), and each switch multiplies them by its saltation matrix
+(``saltation``).
 """
 
 import math
@@ -38,19 +45,24 @@ from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N
                                     STALLED, STEP_TOO_SMALL, STICK, ZENO)
 from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_merged,
                                        njit_step, njit_step_merged)
-from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard, crossed,
-                                     event_guards, first_crossed, graze_dense,
-                                     kinematic_dip, mark_grazing, predicted_low, stuck_crossed)
+from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard,
+                                     count_crossed, crossed, event_guards, first_crossed,
+                                     graze_dense, kinematic_dip, mark_grazing, predicted_low,
+                                     stuck_crossed)
 from shroudnet.engine.dynamics import (cluster_accelerations, excitation_forces,
                                        interface_kinematics, resultant_forces,
                                        static_friction)
 from shroudnet.engine.locate import bracket_after, bracket_start, next_trial
 from shroudnet.engine.records import (finish, last_sample, new_events, new_output, new_state,
-                                      new_work)
+                                      new_tangent, new_work)
 from shroudnet.engine.regroup import project_velocities, regroup, same_stuck
 from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches, piling_up,
                                       relative_acceleration)
 from shroudnet.engine.tableau import DIP_POINTS, DP_A, DP_B, DP_C, DP_E, DP_STAGES
+from shroudnet.engine.tangent import (apply_saltation, breakaway_normal, candidate_tangent,
+                                      commit_tangent, contact_normal, last_stage_tangent,
+                                      linearised_acceleration, project_tangent, slip_normal,
+                                      stage_tangent, tangent_error)
 
 #: Relative slack on |f| ≤ μ_s N for an interface whose slip velocity has just reached zero,
 #: so that rounding in its static friction does not release it at once. An interface
@@ -61,8 +73,27 @@ FRICTION_SLACK = 1e-9
 # ---- the right-hand side and the guards (every stage of every step) -------------------
 
 @njit_step
+def sliding_coefficient(kind, params, speed):
+    """μ and dμ/ds of an exact law at the slip speed s = ±u̇ cos α signed by the slip mode:
+    μ(s) for s ≥ 0; for s < 0, a state past the end of its mode (within the event
+    tolerance past a located switch, or a Runge–Kutta stage just beyond it), the tangent
+    line μ(0) + μ'(0) s. The mode's vector field thus continues across the switching
+    surface with a continuous slope, where μ(|s|) would have a kink: stages beyond the
+    kink made the tangent flow converge at first order only."""
+    if speed >= 0.0:
+        return (friction_coefficient(kind, params, speed),
+                friction_slope(kind, params, speed))
+    slope = friction_slope(kind, params, 0.0)
+    return friction_coefficient(kind, params, 0.0) + slope * speed, slope
+
+
+@njit_step
 def law_forces(s, modes, w):
-    """N and sliding f on every interface from its laws, into w.normal and w.friction."""
+    """N and sliding f on every interface from its laws, into w.normal and w.friction.
+
+    Exact laws slip with f = σ μ(σ u̇ cos α) N, σ = ±1 by the mode (``sliding_coefficient``),
+    regularised ones with f = μ(|u̇ cos α|) N tanh(u̇ cos α / v_ε) (paper eqs. 2–6).
+    """
     for e in range(len(modes)):
         w.normal[e] = 0.0
         w.friction[e] = 0.0
@@ -73,14 +104,15 @@ def law_forces(s, modes, w):
         w.normal[e] = normal
         if not HAS_FRICTION or s.friction_kind[e] < 0 or modes[e] == STICK:
             continue
-        sliding = normal * friction_coefficient(s.friction_kind[e], s.friction_params[e],
-                                                abs(w.slip[e]))
         if HAS_REGULARISED and s.regularisation[e] > 0.0:
-            w.friction[e] = sliding * math.tanh(w.slip[e] / s.regularisation[e])
-        elif modes[e] == SLIP_POSITIVE:
-            w.friction[e] = sliding
+            w.friction[e] = normal * friction_coefficient(
+                s.friction_kind[e], s.friction_params[e], abs(w.slip[e])) \
+                * math.tanh(w.slip[e] / s.regularisation[e])
         else:
-            w.friction[e] = -sliding
+            sign = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
+            mu, _ = sliding_coefficient(s.friction_kind[e], s.friction_params[e],
+                                        sign * w.slip[e])
+            w.friction[e] = sign * normal * mu
 
 
 @njit_entry
@@ -260,6 +292,118 @@ def dp5_step(t, h, state, topology, s, w, controls):
 def dp5_step_apart(t, h, state, topology, s, w, controls):
     """``dp5_step`` compiled on its own."""
     return dp5_step(t, h, state, topology, s, w, controls)
+
+
+# ---- the tangent flow (tangent kernels only) ---------------------------------------------
+
+@njit_step
+def linearise(t, x, v, modes, topology, s, g):
+    """The forces at (t, x, v) into g.work, and each closed interface's slopes into g:
+    ∂N/∂u = ∂N/∂δ sin α and ∂N/∂u̇ = ∂N/∂δ̇ sin α, and, unless it is stuck, ∂F/∂u and ∂F/∂u̇ of
+    F = N sin α + f cos α, with f = μ(|w|) N σ, w = u̇ cos α, σ = ±1 by the slip mode
+    and μ at σw (``sliding_coefficient``): ∂f/∂u = μ σ ∂N/∂u, ∂f/∂u̇ = μ σ ∂N/∂u̇ +
+    N μ'(σw) cos α; for a regularised law σ = tanh(w/ε) and μ at |w|, so the last term is
+    N (μ'(|w|) sgn(w) σ + μ σ') cos α (paper eqs. 2–6)."""
+    derivative(t, x, v, modes, topology, s, g.work, g.acceleration)
+    w = g.work
+    for e in range(len(modes)):
+        g.normal_u[e] = 0.0
+        g.normal_du[e] = 0.0
+        g.force_u[e] = 0.0
+        g.force_du[e] = 0.0
+        if modes[e] == OPEN:
+            continue
+        sine, cosine = s.sin_angle[e], s.cos_angle[e]
+        d_penetration, d_rate = normal_force_gradient(s.normal_kind[e], s.normal_params[e],
+                                                      w.penetration[e], w.rate[e])
+        g.normal_u[e] = d_penetration * sine
+        g.normal_du[e] = d_rate * sine
+        if modes[e] == STICK:
+            continue
+        force_u = sine * g.normal_u[e]
+        force_du = sine * g.normal_du[e]
+        if HAS_FRICTION and s.friction_kind[e] >= 0:
+            kind, params, slip = s.friction_kind[e], s.friction_params[e], w.slip[e]
+            if HAS_REGULARISED and s.regularisation[e] > 0.0:
+                mu = friction_coefficient(kind, params, abs(slip))
+                sigma = math.tanh(slip / s.regularisation[e])
+                d_sigma = (1.0 - sigma * sigma) / s.regularisation[e]
+                sign = 1.0 if slip >= 0.0 else -1.0
+                d_slip = w.normal[e] * (friction_slope(kind, params, abs(slip)) * sign * sigma
+                                        + mu * d_sigma)
+            else:
+                sigma = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
+                mu, slope = sliding_coefficient(kind, params, sigma * slip)
+                d_slip = w.normal[e] * slope
+            force_u += cosine * mu * sigma * g.normal_u[e]
+            force_du += cosine * (mu * sigma * g.normal_du[e] + d_slip * cosine)
+        g.force_u[e] = force_u
+        g.force_du[e] = force_du
+
+
+@njit_entry
+def linearise_at(t, x, v, modes, s, tangent0):
+    """``linearise`` and the vector field's Jacobian at (t, x, v) in ``modes``, callable
+    from Python for tests: returns (J, ẍ), J = ∂(ẋ, ẍ)/∂(x, ẋ) (2 n_blades square)."""
+    n = len(x)
+    g = new_tangent(tangent0, len(modes), 1)
+    topology = regroup(s, modes)
+    linearise(t, x, v, modes, topology, s, g)
+    jacobian = np.zeros((2 * n, 2 * n))
+    for r in range(2 * n):
+        for q in range(2 * n):
+            g.direction[q] = 1.0 if q == r else 0.0
+        linearised_acceleration(g.direction, s, modes, topology, g)
+        for i in range(n):
+            jacobian[i, r] = g.direction[n + i]
+            jacobian[n + i, r] = g.acceleration_change[i]
+    return jacobian, g.acceleration.copy()
+
+
+@njit_step
+def tangent_step(t, h, state, topology, s, w, controls):
+    """The tangent through the Dormand–Prince step of size h from t just taken (its stages
+    in w), the exact derivative of the step (``tangent``), into state.tangent.candidate;
+    returns its scaled local error (``tangent.tangent_error``). ``commit_tangent`` makes
+    it the tangent."""
+    g = state.tangent
+    x = g.work.xt
+    v = g.work.vt
+    for j in range(DP_STAGES - 1):
+        for i in range(len(x)):
+            x[i] = state.x[i] + h * stage_sum(DP_A[j], w.stage_v, j, i)
+            v[i] = w.stage_v[j, i]
+        linearise(t + DP_C[j] * h, x, v, state.modes, topology, s, g)
+        stage_tangent(j, h, s, state.modes, topology, g)
+    candidate_tangent(h, g)
+    linearise(t + h, w.x_new, w.v_new, state.modes, topology, s, g)
+    last_stage_tangent(s, state.modes, topology, g)
+    return tangent_error(h, controls.rtol, s, g)
+
+
+@njit_step
+def guard_gradient(t, e, state, topology, s, w):
+    """Before a switch at t found on interface e: f⁻ = (ẋ, ẍ) of the modes before it into
+    g.f_minus, and the gradient of the guard that crossed into g.guard_normal; returns
+    its ∂g/∂t (nonzero for a breakaway only, through the excitation)."""
+    g = state.tangent
+    n = len(state.x)
+    for i in range(n):
+        g.f_minus[i] = state.v[i]
+        g.f_minus[n + i] = w.a_end[i]
+    if crossed(state.contact_before[e], w.contact[e]):
+        contact_normal(e, s, g)
+        return 0.0
+    if state.modes[e] != STICK:
+        slip_normal(e, s, g)
+        return 0.0
+    linearise(t, state.x, state.v, state.modes, topology, s, g)
+    gw = g.work
+    static_friction(topology.operator, topology.stuck_interfaces, s.mass, gw.resultant,
+                    g.acceleration, gw.normal, s.sin_angle, s.left, s.right, gw.imbalance,
+                    gw.friction)
+    sign = 1.0 if gw.friction[e] >= 0.0 else -1.0
+    return breakaway_normal(e, sign, t, s, state.modes, topology, g)
 
 
 # ---- detect: switches hidden inside a step ------------------------------------------------
@@ -458,6 +602,12 @@ def switch(t, state, topology, s, w, events, controls):
     for e in range(len(old)):
         old[e] = state.modes[e]
     crossing = first_crossed(state, w)
+    tangent = HAS_TANGENT and state.tangent.matrix.shape[1] > 0 and crossing >= 0
+    time_rate = 0.0
+    several = False
+    if tangent:
+        time_rate = guard_gradient(t, crossing, state, topology, s, w)
+        several = count_crossed(state, w) > 1
     status, lost, topology, culprit = resolve(t, state, topology, s, w)
     state.energy[PROJECTION] += lost
     last = log_switches(t, old, state.modes, events)
@@ -472,6 +622,12 @@ def switch(t, state, topology, s, w, events, controls):
         status = ZENO
         stop_interface = last
     start(t, state, topology, s, w)
+    if tangent:
+        g = state.tangent
+        for i in range(len(state.x)):
+            g.f_plus[i] = state.v[i]
+            g.f_plus[len(state.x) + i] = w.a_start[i]
+        apply_saltation(t, crossing, time_rate, several, s, topology, g)
     if status == FINISHED and not is_finite(state):
         status = NOT_FINITE
     return status, stop_interface, topology
@@ -487,17 +643,22 @@ def start(t, state, topology, s, w):
 
 
 @njit_merged
-def begin(s, x0, v0, controls, n_samples):
-    """Everything a driver needs at t0: work arrays, output, log, state, status, topology."""
+def begin(s, x0, v0, tangent0, controls, n_samples):
+    """Everything a driver needs at t0: work arrays, output, log, state, status, topology.
+
+    The tangent starts from ``tangent0`` with its velocity rows projected as the state's
+    are (the derivative of the start's projection)."""
     n_blades, n_interfaces = len(s.mass), len(s.gap)
     w = new_work(n_blades, n_interfaces)
     out = new_output(n_samples, n_blades, n_interfaces)
     events = new_events(controls.event_capacity, controls.zeno_events)
-    state = new_state(x0, v0, n_interfaces)
+    state = new_state(x0, v0, new_tangent(tangent0, n_interfaces, n_samples))
     candidates = initial_modes(state, s, w)
     status, lost, topology, _ = settle(controls.t0, state, candidates,
                                        regroup(s, state.modes), s, w)
     state.energy[PROJECTION] += lost
+    if HAS_TANGENT:
+        project_tangent(s, topology, state.tangent)
     start(controls.t0, state, topology, s, w)
     record(out, np.int64(0), controls.t0, state.x, state.v, state.modes, state.energy, w)
     return w, out, events, state, status, topology
@@ -557,8 +718,17 @@ def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
     t_event = t_final if past == 1.0 and t + h >= t_final else t + past * h
     sample = record_dense(sample, t, t_event, h, state, topology, s, w, controls, out)
     dp5_step_apart(t, t_event - t, state, topology, s, w, controls)
-    if not any_crossed(state, w):  # the whole step again, for its dense output at hi
+    tangent = HAS_TANGENT and state.tangent.matrix.shape[1] > 0
+    if any_crossed(state, w):
+        if tangent:
+            tangent_step(t, t_event - t, state, topology, s, w, controls)
+            commit_tangent(state.tangent, s, controls.orthonormalise)
+    else:  # the whole step again, for its dense output at hi
         t_event = t + hi * h
+        if tangent:  # the tangent of a step to hi, which the dense state matches to its error
+            dp5_step_apart(t, hi * h, state, topology, s, w, controls)
+            tangent_step(t, hi * h, state, topology, s, w, controls)
+            commit_tangent(state.tangent, s, controls.orthonormalise)
         dp5_step_apart(t, h, state, topology, s, w, controls)
         dense_state(hi, h, state, w, w.x_new, w.v_new, w.e_new)
         evaluate_guards_apart(t_event, w.x_new, w.v_new, state.modes, topology, s, w, w.a_end)
@@ -579,6 +749,9 @@ def record_dense(sample, t, t_to, h, state, topology, s, w, controls, out):
         dense_state((time - t) / h, h, state, w, w.xt, w.vt, w.e_sample)
         evaluate_guards(time, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
         record(out, sample, time, w.xt, w.vt, state.modes, w.e_sample, w)
+        if HAS_TANGENT:  # the growth up to the step's start: enough for its convergence
+            for c in range(len(state.tangent.log_growth)):
+                state.tangent.history[sample, c] = state.tangent.log_growth[c]
         sample += 1
     return sample
 
@@ -623,7 +796,7 @@ def advance_fixed(k, t, state, topology, s, w, controls, out, sample):
 
 
 @njit_entry
-def run_fixed_step(s, x0, v0, controls):
+def run_fixed_step(s, x0, v0, tangent0, controls):
     """Integrate fixed RK4 steps of ``controls.step`` from (t0, x0, v0) to the last sample,
     locating every switch; returns a ``records.Run``.
 
@@ -631,7 +804,8 @@ def run_fixed_step(s, x0, v0, controls):
     is integrated in the new modes. Samples are taken every ``steps_per_sample`` steps.
     Zeno guard: ``zeno_events`` switches within ``zeno_window`` seconds stop the run.
     """
-    w, out, events, state, status, topology = begin(s, x0, v0, controls, controls.n_samples)
+    w, out, events, state, status, topology = begin(s, x0, v0, tangent0, controls,
+                                                    controls.n_samples)
     k, t, sample = np.int64(0), controls.t0, np.int64(1)
     stop_interface = -1
     while status == FINISHED:
@@ -646,7 +820,7 @@ def run_fixed_step(s, x0, v0, controls):
             if k % controls.steps_per_sample == 0:
                 record(out, sample, t, state.x, state.v, state.modes, state.energy, w)
                 sample += 1
-    return finish(status, t, stop_interface, k, out, sample, events)
+    return finish(status, t, stop_interface, k, out, sample, events, state.tangent)
 
 
 @njit_step
@@ -671,6 +845,9 @@ def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
             status = STEP_TOO_SMALL if math.isfinite(error) else NOT_FINITE
             return t, h, sample, steps, status, False
         error = dp5_step(t, h, state, topology, s, w, controls)
+        tangent = HAS_TANGENT and state.tangent.matrix.shape[1] > 0
+        if tangent and error <= 1.0:
+            error = max(error, tangent_step(t, h, state, topology, s, w, controls))
         if not error <= 1.0:
             h = retry_step(h, error)
             continue
@@ -690,6 +867,8 @@ def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
                                          out)
                 return t, h, sample, steps, FINISHED, True
         t_new = t_final if last else t + h
+        if tangent:
+            commit_tangent(state.tangent, s, controls.orthonormalise)
         keep_guards(state, w)
         sample = record_dense(sample, t, t_new, h, state, topology, s, w, controls, out)
         take_step(state, w)
@@ -701,7 +880,7 @@ def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
 
 
 @njit_entry
-def run_adaptive(s, x0, v0, controls):
+def run_adaptive(s, x0, v0, tangent0, controls):
     """Integrate by Dormand–Prince 5(4) from (t0, x0, v0) to the last sample; returns a
     ``records.Run``.
 
@@ -710,7 +889,8 @@ def run_adaptive(s, x0, v0, controls):
     t0 + k·sample_step and the guards inside a step come from the step's dense output, so
     steps never shorten to meet them. A step below h_min stops the run (STEP_TOO_SMALL).
     """
-    w, out, events, state, status, topology = begin(s, x0, v0, controls, controls.n_samples)
+    w, out, events, state, status, topology = begin(s, x0, v0, tangent0, controls,
+                                                    controls.n_samples)
     # np.int64, not literals: a literal argument would compile the callee twice
     t, h, sample, steps = controls.t0, min(controls.step, controls.h_max), np.int64(1), \
         np.int64(0)
@@ -721,4 +901,4 @@ def run_adaptive(s, x0, v0, controls):
         if not switched or status != FINISHED:
             break
         status, stop_interface, topology = switch(t, state, topology, s, w, events, controls)
-    return finish(status, t, stop_interface, steps, out, sample, events)
+    return finish(status, t, stop_interface, steps, out, sample, events, state.tangent)

@@ -1,0 +1,175 @@
+"""Stability from the tangent flow: monodromy matrices and Lyapunov exponents.
+
+Both integrate the variational equations with the state, through every switch by its
+saltation matrix (``engine.tangent``, DESIGN §6), in a kernel compiled for it on first use.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from contact_laws import check_int
+
+from .methods import Accuracy, Adaptive
+from .scene import Scene
+from .simulate import integrate
+from .simulation import SimulationError
+
+#: The default accuracy of the tangent flow: the trajectory to rtol 1e-10, so that the
+#: monodromy matrix and the orbits found with it are good to about that.
+TANGENT_METHOD = Adaptive(rtol=1e-10)
+
+#: Blocks the record of ``lyapunov`` is cut into for the error of its exponents.
+LYAPUNOV_BLOCKS = 10
+
+
+def monodromy(scene: Scene, periods: int = 1, initial=None, *,
+              method: Adaptive | Accuracy = TANGENT_METHOD,
+              event_tolerance: float = 1e-10) -> np.ndarray:
+    """The Jacobian of the ``periods``-period stroboscopic map at the start ``initial``.
+
+    The map takes the state (x, ẋ) at t = 0 to the state at t = periods·T_e. Its Jacobian
+    M is integrated with the state (the tangent flow), multiplied by the saltation matrix
+    of every switch on the way (contact closing and opening, stick, slip reversal,
+    breakaway, and the velocity projection onto stick clusters). The Floquet multipliers
+    of a periodic orbit are its eigenvalues; a stick phase gives zero multipliers.
+
+    Parameters
+    ----------
+    scene : Scene
+    periods : int
+        Excitation periods of the map, ≥ 1.
+    initial : (x0, v0), optional
+        The start: displacements [m] and velocities [m/s] by blade position; default at
+        rest. A start with stuck interfaces has its velocities projected onto the stick
+        clusters first, and M includes that projection.
+    method : Adaptive or Accuracy
+        The accuracy of the trajectory; M is the exact derivative of the computed map.
+    event_tolerance : float
+        As ``simulate``.
+
+    Returns
+    -------
+    float array (2 n_blades, 2 n_blades)
+        Rows and columns: displacements by blade position, then velocities.
+
+    Raises
+    ------
+    SimulationError
+        As ``simulate``; and where a switch on the way is grazing (the flow tangent to the
+        switching surface) or several interfaces switch at the same instant: the map is
+        not differentiable there.
+    """
+    periods = check_int("monodromy", "periods", periods, low=1)
+    n = len(scene.blades)
+    done = integrate(scene, periods, method=method, samples_per_period=1,
+                     event_tolerance=event_tolerance, initial=initial, event_capacity=0,
+                     tangent=np.eye(2 * n))
+    tangent = done.run.tangent
+    if tangent.singular[0] > 0:
+        raise SimulationError(_singular_message(scene, tangent, "the monodromy matrix"))
+    return tangent.matrix.copy()
+
+
+@dataclass(frozen=True)
+class LyapunovExponents:
+    """The largest Lyapunov exponents of a run, descending.
+
+    ``per_period``: natural log of the growth per excitation period; ``per_second``: the
+    same per second; ``error``: each one's standard error, from the spread of the
+    exponents over ``LYAPUNOV_BLOCKS`` equal blocks of the record (nan for an exponent of
+    −inf: a direction that a stick phase removed). ``periods`` and ``transient``: the
+    periods measured and skipped before; ``singular_switches``: grazing switches met.
+    """
+
+    per_period: np.ndarray
+    per_second: np.ndarray
+    error: np.ndarray
+    periods: int
+    transient: int
+    singular_switches: int
+
+    @property
+    def largest(self) -> float:
+        """λ_max per period."""
+        return float(self.per_period[0])
+
+    def is_positive(self) -> bool:
+        """Whether λ_max is positive beyond its error (chaos) — by two standard errors."""
+        return bool(self.per_period[0] > 2.0 * self.error[0])
+
+
+def lyapunov(scene: Scene, periods: int, *, transient: int = 300, exponents: int = 1,
+             initial=None, method: Adaptive | Accuracy = Adaptive(),
+             event_tolerance: float = 1e-10, seed: int = 0) -> LyapunovExponents:
+    """The ``exponents`` largest Lyapunov exponents, by the QR (Benettin) method.
+
+    After ``transient`` periods from ``initial`` (default at rest), ``exponents`` random
+    orthonormal tangent vectors are integrated with the state over ``periods`` periods,
+    through every switch by its saltation matrix (Müller 1995), and re-orthonormalised
+    after every step; the exponents are the mean logarithmic growth rates. Without
+    contact, each is −c/(2m) per second.
+
+    Parameters
+    ----------
+    scene : Scene
+    periods : int
+        Periods measured, ≥ ``LYAPUNOV_BLOCKS``.
+    transient : int
+        Periods run first and discarded, ≥ 0.
+    exponents : int
+        How many, from the largest: 1 … 2 n_blades.
+    initial : (x0, v0), optional
+        The start of the transient.
+    method : Adaptive or Accuracy
+    event_tolerance : float
+        As ``simulate``.
+    seed : int
+        Seed of the random initial tangent vectors.
+    """
+    n = len(scene.blades)
+    periods = check_int("lyapunov", "periods", periods, low=LYAPUNOV_BLOCKS)
+    transient = check_int("lyapunov", "transient", transient, low=0)
+    exponents = check_int("lyapunov", "exponents", exponents, low=1, high=2 * n)
+    if transient > 0:
+        before = integrate(scene, transient, method=method, samples_per_period=1,
+                           event_tolerance=event_tolerance, initial=initial,
+                           event_capacity=0).run.output
+        initial = (before.x[-1], before.v[-1])
+    rng = np.random.default_rng(seed)
+    start, _ = np.linalg.qr(rng.standard_normal((2 * n, exponents)))
+    frequency = scene.arrays.excitation_frequency  # orthonormal in |δx|² + |δẋ / lΩ|²
+    start[n:] *= frequency if frequency > 0.0 else 1.0
+    done = integrate(scene, periods, method=method, samples_per_period=1,
+                     event_tolerance=event_tolerance, initial=initial, event_capacity=0,
+                     tangent=start, orthonormalise=True)
+    tangent = done.run.tangent
+    growth = tangent.log_growth.copy()
+    per_period = growth / periods
+    increments = np.diff(np.vstack([np.zeros(exponents), tangent.history[1:periods], growth]),
+                         axis=0)
+    with np.errstate(invalid="ignore"):
+        blocks = np.array([block.mean(axis=0)
+                           for block in np.array_split(increments, LYAPUNOV_BLOCKS)])
+        error = blocks.std(axis=0, ddof=1) / np.sqrt(LYAPUNOV_BLOCKS)
+    error[~np.isfinite(per_period)] = np.nan
+    order = np.argsort(-per_period, kind="stable")
+    period = scene.excitation_period
+    return LyapunovExponents(per_period=per_period[order],
+                             per_second=per_period[order] / period, error=error[order],
+                             periods=periods, transient=transient,
+                             singular_switches=int(tangent.singular[0]))
+
+
+def _singular_message(scene, tangent, what):
+    e = int(tangent.singular_interface[0])
+    left, right, _ = scene.group.interfaces[e]
+    t = float(tangent.singular_time[0])
+    return (f"{what} is not defined: at t = {t:.9g} s (period "
+            f"{t / scene.excitation_period:.6f}) interface {e} ({left!r}, {right!r}) "
+            f"switches grazing its switching surface, or together with another interface, "
+            f"and the trajectory does not depend differentiably on its start there "
+            f"({int(tangent.singular[0])} such switches). Move the start or the parameter "
+            f"slightly.")

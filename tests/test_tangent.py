@@ -1,0 +1,329 @@
+"""Tangent dynamics: the Jacobian of every mode's vector field, the monodromy matrix
+through every kind of switch, and Lyapunov exponents.
+
+Each is checked against a reference computed here, independently of the tangent flow:
+central differences of the plain-Python assembly (``assemble``), central differences of
+the trajectory the plain integrator computes (``simulate``), and closed forms (damped
+linear oscillators, a cluster moving as one body).
+
+Most scenes are ``facing_pads`` scenes, which hold every built-in exact law, so that they
+share one kernel with ``test_physics_references``.
+"""
+
+import math
+
+import numpy as np
+import pytest
+import scipy.linalg
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz, HuntCrossley,
+                          KelvinVoigt, LinearSpring, Regularised, Stribeck)
+from shroudnet import (Adaptive, Blade, BladeGroup, Excitation, Interface, Scene,
+                       SimulationError, assemble, lyapunov, monodromy, simulate)
+from shroudnet.engine.generate import kernel_scene, load_kernel
+from shroudnet.scenes import three_blade_paper
+from tests.groups import states
+from tests.test_physics_references import BLADE, IDLE, facing_pads
+
+#: The trajectories the differences are taken of: as exact as the integrator goes.
+EXACT = Adaptive(rtol=1e-12)
+#: Relative step of the differences, and the agreement asked of the monodromy matrix.
+DIFFERENCE = 1e-5
+AGREEMENT = 1e-6
+
+
+def stroboscopic_map(scene, periods, y):
+    """The state after ``periods`` periods from y = (x, ẋ), by ``simulate``."""
+    n = len(y) // 2
+    run = simulate(scene, periods, method=EXACT, samples_per_period=1,
+                   initial=(y[:n], y[n:]), event_capacity=0)
+    return np.concatenate([run.x[-1], run.v[-1]])
+
+
+def differenced_monodromy(scene, periods, y, scale):
+    """∂(map)/∂y by fourth-order central differences, step ``DIFFERENCE``·scale_j."""
+    columns = []
+    for j in range(len(y)):
+        step = DIFFERENCE * scale[j]
+        values = {}
+        for k in (-2, -1, 1, 2):
+            moved = y.copy()
+            moved[j] += k * step
+            values[k] = stroboscopic_map(scene, periods, moved)
+        columns.append((8.0 * (values[1] - values[-1]) - (values[2] - values[-2]))
+                       / (12.0 * step))
+    return np.array(columns).T
+
+
+def state_scale(y):
+    """Per component, the largest |x| or |ẋ| of the state: the scale differences and
+    errors are measured against."""
+    n = len(y) // 2
+    return np.concatenate([np.full(n, np.abs(y[:n]).max()), np.full(n, np.abs(y[n:]).max())])
+
+
+def scaled_error(matrix, reference, scale):
+    """max |M − M_ref| / max |M_ref| in the coordinates y_j / scale_j."""
+    inverse = 1.0 / scale
+    a = inverse[:, None] * matrix * scale[None, :]
+    b = inverse[:, None] * reference * scale[None, :]
+    return np.abs(a - b).max() / np.abs(b).max()
+
+
+def settled_state(scene, periods):
+    run = simulate(scene, periods, samples_per_period=1, event_capacity=0)
+    return np.concatenate([run.x[-1], run.v[-1]])
+
+
+def free_oscillators(scene, blades=None):
+    """The monodromy of blades without contact: exp(A T_e), A = [[0, I], [−k/m, −c/m]]."""
+    a = scene.arrays
+    n = a.n_blades
+    system = np.zeros((2 * n, 2 * n))
+    system[:n, n:] = np.eye(n)
+    system[n:, :n] = -np.diag(a.stiffness / a.mass)
+    system[n:, n:] = -np.diag(a.damping / a.mass)
+    return scipy.linalg.expm(system * scene.excitation_period)
+
+
+# ---- the Jacobian of each mode's vector field ---------------------------------------------
+
+ALL_LAWS = (
+    Interface(gap=1e-5, angle=0.7, normal=LinearSpring(stiffness=1e6),
+              friction=ExponentialFriction(mu_static=0.5, mu_kinetic=0.3, beta=5.0)),
+    Interface(gap=-1e-5, angle=1.1, normal=Hertz(stiffness=1e9, exponent=1.5),
+              friction=Stribeck(mu_static=0.6, mu_kinetic=0.2, stribeck_velocity=0.05)),
+    Interface(gap=0.0, angle=0.4, normal=KelvinVoigt(stiffness=1e6, damping=30.0),
+              friction=Coulomb(mu=0.3)),
+    Interface(gap=5e-6, angle=0.9, normal=HuntCrossley(stiffness=1e9, damping=0.5),
+              friction=Regularised(law=ExponentialFriction(mu_static=0.5, mu_kinetic=0.3,
+                                                           beta=2.0), velocity=0.05)),
+    Interface(gap=0.0, angle=1.3, normal=ConstantLoad(force=20.0),
+              friction=Stribeck(mu_static=0.5, mu_kinetic=0.4, stribeck_velocity=0.02)),
+)
+
+
+def all_laws_chain():
+    """Five blades between two fixed nodes, one interface with each built-in law."""
+    group = BladeGroup().add_fixed("disc").add_fixed("casing")
+    names = [f"b{i}" for i in range(5)]
+    for k, name in enumerate(names):
+        group.add_blade(name, Blade(mass=0.05 + 0.02 * k, damping=1.0 + k,
+                                    stiffness=2e5 + 1e5 * k))
+    for left, right, interface in zip(["disc"] + names[:-1], names, ALL_LAWS):
+        group.connect(left, right, interface)
+    excitation = Excitation(engine_order=1, amplitudes=(1.0, 20.0), phases=[0.3 * k for k in
+                                                                             range(5)])
+    return Scene(group=group, excitation=excitation, speed_rpm=6000.0)
+
+
+CHAIN = all_laws_chain()
+
+
+def differenced_field_jacobian(scene, t, y, modes):
+    """∂(ẋ, ẍ)/∂(x, ẋ) by central differences of ``assemble`` in fixed modes."""
+    n = len(y) // 2
+    scale = np.concatenate([np.full(n, 1e-5), np.full(n, 0.1)])
+
+    def field(state):
+        return np.concatenate([state[n:], assemble(scene, t, state[:n], state[n:],
+                                                   modes).acceleration])
+
+    columns = []
+    for j in range(2 * n):
+        step = 1e-6 * scale[j]
+        moved_up, moved_down = y.copy(), y.copy()
+        moved_up[j] += step
+        moved_down[j] -= step
+        columns.append((field(moved_up) - field(moved_down)) / (2.0 * step))
+    return np.array(columns).T
+
+
+def near_a_kink(scene, x, v, modes):
+    """Whether a law is evaluated within a difference step of where it has a kink: a
+    contact at δ = 0 (Hertz, Hunt–Crossley) or at the clip of a damped law."""
+    a = scene.arrays
+    u = np.where(a.left >= 0, x[a.left], 0.0) - np.where(a.right >= 0, x[a.right], 0.0)
+    du = np.where(a.left >= 0, v[a.left], 0.0) - np.where(a.right >= 0, v[a.right], 0.0)
+    penetration, rate = (u - a.gap) * a.sin_angle, du * a.sin_angle
+    for e, law in enumerate(a.normal_laws):
+        if isinstance(law, ConstantLoad):
+            continue
+        if abs(penetration[e]) < 1e-8:
+            return True
+        if penetration[e] > 0.0 and law(penetration[e], rate[e]) < 1e-3:  # clipped
+            return True
+    return False
+
+
+@settings(max_examples=40)
+@given(data=st.data())
+def test_mode_jacobian_agrees_with_differences_of_the_assembly_for_every_law(data):
+    t, x, v, modes = data.draw(states(CHAIN))
+    assume(not near_a_kink(CHAIN, x, v, modes))
+    kernel = load_kernel(CHAIN, tangent=True)
+    jacobian, acceleration = kernel.linearise_at(t, x, v, modes.astype(np.int64),
+                                                 kernel_scene(CHAIN), np.zeros((10, 0)))
+    reference = differenced_field_jacobian(CHAIN, t, np.concatenate([x, v]), modes)
+    np.testing.assert_allclose(acceleration, assemble(CHAIN, t, x, v, modes).acceleration,
+                               rtol=1e-12, atol=1e-9)
+    row_scale = np.abs(reference).max(axis=1, keepdims=True) + 1.0
+    assert (np.abs(jacobian - reference) <= 1e-5 * row_scale).all()
+
+
+# ---- monodromy: closed forms --------------------------------------------------------------
+
+def test_monodromy_without_contact_is_that_of_damped_linear_oscillators():
+    scene = three_blade_paper(gap=1.0)
+    y0 = ([1e-5, -2e-5, 3e-5], [0.01, 0.0, -0.02])
+    matrix = monodromy(scene, 1, initial=y0)
+    expected = free_oscillators(scene)
+    assert np.abs(matrix - expected).max() <= 1e-8 * np.abs(expected).max()
+    moduli = np.sort(np.abs(np.linalg.eigvals(matrix)))
+    a = scene.arrays
+    decay = np.exp(-a.damping / (2 * a.mass) * scene.excitation_period)
+    np.testing.assert_allclose(moduli, np.sort(np.repeat(decay, 2)), rtol=1e-8)
+
+
+def test_monodromy_of_an_all_stuck_cluster_moves_it_as_one_body():
+    """Three blades held together by a large preload: relative displacements stay as they
+    are, relative velocities vanish (projected at the start: zero multipliers), and the
+    cluster's mean moves as one damped oscillator of the total mass."""
+    grip = Interface(gap=0.0, angle=0.0, normal=ConstantLoad(force=1e5),
+                     friction=Coulomb(mu=1.0))
+    group = BladeGroup()
+    for name in ("a", "b", "c"):
+        group.add_blade(name, BLADE)
+    group.connect("a", "b", grip).connect("b", "c", grip)
+    for k, interface in enumerate(IDLE):  # the laws of the shared kernel, never reached
+        group.add_blade(f"idle{k}", BLADE).add_fixed(f"pad{k}")
+        group.connect(f"idle{k}", f"pad{k}", interface)
+    n = 3 + len(IDLE)
+    scene = Scene(group=group, excitation=Excitation(
+        engine_order=1, amplitudes=(0.0, 5.0), phases=[0.0] * n), speed_rpm=6000.0)
+    matrix = monodromy(scene, 1)
+    cluster = [0, 1, 2, n, n + 1, n + 2]
+    m, c, k = BLADE.mass, BLADE.damping, BLADE.stiffness
+    body = scipy.linalg.expm(np.array([[0.0, 1.0], [-k / m, -c / m]])
+                             * scene.excitation_period)
+    mean = np.zeros((2, 6))  # (X, Ẋ) of the cluster from its blades' (x, ẋ)
+    mean[0, :3] = mean[1, 3:] = 1.0 / 3.0
+    expected = np.zeros((6, 6))
+    for i in range(3):
+        expected[i] = body[0] @ mean - mean[0]   # x_i = X + (x_i − X) at the start
+        expected[i, i] += 1.0
+        expected[3 + i] = body[1] @ mean         # ẋ_i = Ẋ
+    block = matrix[np.ix_(cluster, cluster)]
+    assert np.abs(block - expected).max() <= 1e-8 * np.abs(expected).max()
+    assert np.sum(np.abs(np.linalg.eigvals(block)) < 1e-12) == 2  # one per stuck interface
+
+
+# ---- monodromy against differences of the trajectory, every kind of switch -----------------
+
+def pads_scene(interface, amplitudes=(0.0, 20.0), blade=BLADE):
+    return facing_pads([(blade, interface)], amplitudes)
+
+
+def start_of(scene, x0, v0):
+    idle = [0.0] * len(IDLE)
+    return np.array([x0] + idle + [v0] + idle, dtype=float)
+
+
+CASES = {
+    # a blade knocking on a frictionless spring pad: impacts only
+    "impact": (pads_scene(Interface(gap=1e-4, angle=1.2, normal=LinearSpring(stiffness=1e7))),
+               (0.0, 0.0), 30),
+    # pressed against its pad and slipping to and fro: slip reversals
+    "slip reversal": (pads_scene(Interface(gap=0.0, angle=0.5, normal=ConstantLoad(force=5.0),
+                                           friction=ExponentialFriction(
+                                               mu_static=0.5, mu_kinetic=0.3, beta=5.0))),
+                      (0.0, 0.0), 20),
+    # pressed harder: stick phases, breakaway and sticking every period
+    "stick and breakaway": (pads_scene(Interface(gap=0.0, angle=0.5,
+                                                 normal=ConstantLoad(force=40.0),
+                                                 friction=Stribeck(mu_static=0.6,
+                                                                   mu_kinetic=0.4,
+                                                                   stribeck_velocity=0.05))),
+                            (0.0, 0.0), 20),
+    # the paper's group: impacts and slip on two coupled interfaces
+    "paper group": (three_blade_paper(), None, 50),
+}
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_monodromy_agrees_with_differences_of_the_trajectory(case):
+    scene, start, transient = CASES[case]
+    if start is None:
+        y = settled_state(scene, transient)
+    else:
+        run = simulate(scene, transient, samples_per_period=1,
+                       initial=np.split(start_of(scene, *start), 2), event_capacity=0)
+        y = np.concatenate([run.x[-1], run.v[-1]])
+    counts = simulate(scene, 1, method=EXACT, samples_per_period=1,
+                      initial=np.split(y, 2)).events.counts
+    expected_kinds = {"impact": ("closing", "separation"), "slip reversal": ("reversal",),
+                      "stick and breakaway": ("sticking", "breakaway"),
+                      "paper group": ("closing", "separation", "reversal")}[case]
+    assert all(counts[kind] > 0 for kind in expected_kinds), counts
+    scale = state_scale(y)
+    scale[scale == 0.0] = 1.0
+    n = len(y) // 2
+    matrix = monodromy(scene, 1, initial=(y[:n], y[n:]), method=EXACT)
+    reference = differenced_monodromy(scene, 1, y, scale)
+    assert scaled_error(matrix, reference, scale) <= AGREEMENT
+
+
+def test_interfaces_switching_at_the_same_instant_are_reported():
+    """Two identical blades, each against its own pad, started alike, switch at the same
+    instant: the monodromy says where, instead of multiplying in one saltation matrix."""
+    pad = Interface(gap=1e-4, angle=1.2, normal=LinearSpring(stiffness=1e7),
+                    friction=Coulomb(mu=0.3))
+    scene = facing_pads([(BLADE, pad), (BLADE, pad)], (0.0, 20.0))
+    with pytest.raises(SimulationError, match="together with another interface"):
+        monodromy(scene, 2)
+
+
+# ---- Lyapunov exponents ---------------------------------------------------------------------
+
+def test_lyapunov_exponents_without_contact_are_minus_c_over_2m():
+    scene = three_blade_paper(gap=1.0)
+    result = lyapunov(scene, 40, transient=0, exponents=6,
+                      initial=([1e-5, 0.0, -1e-5], [0.0, 0.01, 0.0]))
+    a = scene.arrays
+    expected = -a.damping[0] / (2 * a.mass[0]) * scene.excitation_period
+    np.testing.assert_allclose(result.per_period, expected, rtol=2e-2)
+    np.testing.assert_allclose(result.per_second, expected / scene.excitation_period,
+                               rtol=2e-2)
+
+
+def test_sum_of_all_exponents_is_the_mean_phase_space_contraction():
+    """Frictionless linear-spring impacts: the vector field's divergence is −Σ c_i/m_i in
+    every mode and each switch keeps phase-space volume (the field is continuous there),
+    so the 2N exponents sum to −Σ c_i/m_i · T_e per period."""
+    scene = three_blade_paper(gamma1=1.0, friction=None)
+    result = lyapunov(scene, 20, transient=20, exponents=6)
+    assert simulate(scene, 5).events.counts["closing"] > 0
+    a = scene.arrays
+    contraction = -np.sum(a.damping / a.mass) * scene.excitation_period
+    assert result.per_period.sum() == pytest.approx(contraction, rel=1e-6)
+
+
+def test_largest_exponent_of_a_stable_orbit_is_the_log_of_its_largest_multiplier():
+    """The paper's period-3 orbit at γ1 = 3.5 (Fig. 6): λ_max = ln|μ_max| / 3."""
+    scene = three_blade_paper(gamma1=3.5)
+    y = settled_state(scene, 300)
+    n = len(y) // 2
+    multipliers = np.linalg.eigvals(monodromy(scene, 3, initial=(y[:n], y[n:])))
+    expected = np.log(np.abs(multipliers).max()) / 3
+    result = lyapunov(scene, 300, transient=0, initial=(y[:n], y[n:]))
+    assert expected < 0.0
+    assert result.largest == pytest.approx(expected, abs=max(3 * result.error[0], 0.01))
+
+
+def test_the_papers_chaotic_case_has_a_positive_exponent_beyond_its_error():
+    result = lyapunov(three_blade_paper(gamma1=8.8), 200, transient=100)
+    assert result.is_positive()
+    assert result.largest > 0.1
+
