@@ -8,18 +8,21 @@ from __future__ import annotations
 
 import math
 from collections.abc import Hashable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import brentq
 
 from contact_laws import check_int
 
+from .methods import Adaptive
 from .simulation import Simulation
+from .stability import LYAPUNOV_BLOCKS, lyapunov
 
 #: Labels besides "p1" … "pN".
 QUASI_PERIODIC = "quasi-periodic"
 CHAOTIC = "chaotic"
+UNDETERMINED = "undetermined"
 
 
 @dataclass(frozen=True)
@@ -124,11 +127,15 @@ class Classification:
     """The kind of a steady motion, with the evidence for it.
 
     ``label`` is "p1", "p2", … "pN" (the response repeats after N excitation periods),
-    "quasi-periodic" or "chaotic". ``period`` is N, or None. ``mismatch`` is the largest
-    distance between Poincaré points N periods apart relative to the attractor's size (for
-    the best N tried when none repeats). ``zero_one`` is the 0–1 test's K on the Poincaré
-    displacements (near 1: chaos; near 0: regular), NaN with too few points.
-    ``broadband`` is the fraction of the spectrum's power outside its 20 strongest lines.
+    "quasi-periodic", "chaotic", or "undetermined" when the record cannot tell (``reason``
+    says why). ``period`` is N, or None. ``mismatch`` is the largest distance between
+    Poincaré points N periods apart relative to the attractor's size (for the best N tried
+    when none repeats). ``lyapunov`` is the largest Lyapunov exponent λ_max per period and
+    ``lyapunov_error`` its standard error (``stability.lyapunov``; NaN where it was not
+    computed): the main evidence between chaos and quasi-periodicity. ``zero_one`` is the
+    0–1 test's K on the Poincaré displacements (near 1: chaos; near 0: regular), NaN with
+    too few points; ``broadband`` is the fraction of the spectrum's power outside its 20
+    strongest lines: both secondary evidence.
     """
 
     label: str
@@ -138,57 +145,121 @@ class Classification:
     mismatch: float
     zero_one: float
     broadband: float
+    lyapunov: float = math.nan
+    lyapunov_error: float = math.nan
+    reason: str = ""
 
     def __str__(self) -> str:
-        return (f"{self.label}: {self.n_points} Poincaré points, repeat mismatch "
-                f"{self.mismatch:.1e} (tolerance {self.tolerance:g}), 0-1 test K = "
+        exponent = "" if math.isnan(self.lyapunov) else (
+            f"λ_max = {self.lyapunov:+.3g} ± {self.lyapunov_error:.1g} per period, ")
+        why = f" ({self.reason})" if self.reason else ""
+        return (f"{self.label}{why}: {self.n_points} Poincaré points, repeat mismatch "
+                f"{self.mismatch:.1e} (tolerance {self.tolerance:g}), {exponent}0-1 test K = "
                 f"{self.zero_one:.2f}, broadband fraction {self.broadband:.1e}")
 
 
 def classify_section(points, *, scale=None, tolerance: float = 1e-5, max_period: int = 64,
-                     chaos_threshold: float = 0.5, broadband: float = math.nan
-                     ) -> Classification:
+                     chaos_threshold: float = 0.5, broadband: float = math.nan,
+                     exponent=None) -> Classification:
     """Classify a motion from its Poincaré points (rows (x, ẋ), one per forcing period).
 
     The motion is pN for the smallest N ≤ ``max_period`` with every point within
     ``tolerance`` of the point N periods later, distances taken per coordinate relative to
-    ``scale`` (default: the largest |value| of each coordinate). Otherwise the 0–1 test
-    decides: K > ``chaos_threshold`` is chaotic, else quasi-periodic.
+    ``scale`` (default: the largest |value| of each coordinate). Otherwise, given the
+    motion's ``exponent`` (``stability.LyapunovExponents``), λ_max decides
+    (``exponent_label``); without it the 0–1 test does: K > ``chaos_threshold`` is
+    chaotic, else quasi-periodic, and fewer than ``MIN_ZERO_ONE_POINTS`` points are
+    undetermined.
     """
     points = np.asarray(points, dtype=float)
+    period, mismatch = repeat_period(points, scale, tolerance, max_period)
+    if period is not None:
+        return Classification(f"p{period}", period, len(points), tolerance, mismatch, 0.0,
+                              broadband)
+    k = zero_one_test(points[:, 0])
+    if exponent is not None:
+        label, reason = exponent_label(exponent)
+        return Classification(label, None, len(points), tolerance, mismatch, k, broadband,
+                              exponent.largest, float(exponent.error[0]), reason)
+    if not math.isfinite(k) or len(points) < MIN_ZERO_ONE_POINTS:
+        return Classification(UNDETERMINED, None, len(points), tolerance, mismatch, k,
+                              broadband, reason=f"{len(points)} Poincaré points are too few "
+                              f"for the 0–1 test (it needs {MIN_ZERO_ONE_POINTS})")
+    label = CHAOTIC if k > chaos_threshold else QUASI_PERIODIC
+    return Classification(label, None, len(points), tolerance, mismatch, k, broadband)
+
+
+def repeat_period(points, scale, tolerance, max_period) -> tuple[int | None, float]:
+    """(N, mismatch): the smallest N ≤ ``max_period`` whose points repeat to ``tolerance``
+    (None if none) and the relative distance of the closest repeat (``classify_section``)."""
     if points.ndim != 2 or points.shape[1] != 2 or len(points) < 2:
         raise ValueError("classify needs at least two Poincaré points (x, v) as rows")
     if not np.isfinite(points).all():
         raise ValueError("classify: the Poincaré points are not finite")
     scale = np.abs(points).max(axis=0) if scale is None else np.asarray(scale, dtype=float)
-    scale = np.where(scale > 0.0, scale, 1.0)
-    relative = points / scale
+    relative = points / np.where(scale > 0.0, scale, 1.0)
     mismatch = math.inf
     for period in range(1, min(max_period, len(points) - 1) + 1):
         gap = float(np.abs(relative[period:] - relative[:-period]).max())
         mismatch = min(mismatch, gap)
         if gap <= tolerance:
-            return Classification(f"p{period}", period, len(points), tolerance, gap, 0.0,
-                                  broadband)
-    k = zero_one_test(points[:, 0])
-    label = CHAOTIC if k > chaos_threshold else QUASI_PERIODIC
-    return Classification(label, None, len(points), tolerance, mismatch, k, broadband)
+            return period, gap
+    return None, mismatch
+
+
+#: The fewest Poincaré points the 0–1 test decides on.
+MIN_ZERO_ONE_POINTS = 50
+#: λ_max is taken as zero (quasi-periodic) when within this many standard errors of 0.
+EXPONENT_ERRORS = 2.0
+
+
+def exponent_label(exponent) -> tuple[str, str]:
+    """(label, reason) of a motion whose Poincaré points repeat with no period, from its
+    largest Lyapunov exponent λ ± σ (``stability.LyapunovExponents``): chaotic when
+    λ > 2σ; quasi-periodic when |λ| ≤ 2σ; undetermined when λ < −2σ (the motion is
+    attracted to an orbit whose period exceeds those tried, or has not settled on it)."""
+    largest, error = exponent.largest, float(exponent.error[0])
+    if largest > EXPONENT_ERRORS * error:
+        return CHAOTIC, ""
+    if abs(largest) <= EXPONENT_ERRORS * error:
+        return QUASI_PERIODIC, ""
+    return UNDETERMINED, (f"λ_max = {largest:.3g} ± {error:.1g} < 0 with no period "
+                          "repeating: a longer period, or a transient not yet settled")
 
 
 def classify(sim: Simulation, blade: Hashable | int, skip: int, *, tolerance: float = 1e-5,
-             max_period: int = 64) -> Classification:
+             max_period: int = 64, exponent: bool = True) -> Classification:
     """Classify the motion of a blade after ``skip`` transient periods.
 
     See ``classify_section``. Distances are relative to the largest |x| and |ẋ| of the
-    steady response. Give the run enough recorded periods: 2N + 1 to recognise pN, a few
-    hundred for the 0–1 test to separate chaos from quasi-periodicity.
+    steady response; 2N + 1 recorded periods recognise pN. When no period repeats, the
+    largest Lyapunov exponent over the recorded periods decides (``exponent_label``): it
+    is computed by ``stability.lyapunov`` from the state at ``skip`` periods, with the
+    run's rtol (the first time, that compiles the integrator with its tangent flow).
+    Fewer than ``stability.LYAPUNOV_BLOCKS`` recorded periods give "undetermined". With
+    ``exponent=False`` the 0–1 test decides instead, as ``classify_section`` does without
+    an exponent.
     """
     i = sim.scene.blade_position(blade)
     rows = _steady_rows(sim, skip)
     scale = (np.abs(sim.x[rows, i]).max(), np.abs(sim.v[rows, i]).max())
-    return classify_section(sim.poincare(blade, skip=skip), scale=scale, tolerance=tolerance,
-                            max_period=max_period,
-                            broadband=broadband_fraction(spectrum(sim, blade, skip)))
+    points = sim.poincare(blade, skip=skip)
+    broadband = broadband_fraction(spectrum(sim, blade, skip))
+    recorded = sim.periods - skip
+    result = None
+    if exponent and repeat_period(points, scale, tolerance, max_period)[0] is None:
+        if recorded < LYAPUNOV_BLOCKS:
+            kind = classify_section(points, scale=scale, tolerance=tolerance,
+                                    max_period=max_period, broadband=broadband)
+            return replace(kind, label=UNDETERMINED, reason=(
+                f"no period repeats in {recorded} recorded periods, and λ_max needs at "
+                f"least {LYAPUNOV_BLOCKS}"))
+        start = rows.start
+        result = lyapunov(sim.scene, recorded, transient=0,
+                          initial=(sim.x[start], sim.v[start]),
+                          method=Adaptive(rtol=sim.settings.get("rtol", Adaptive().rtol)))
+    return classify_section(points, scale=scale, tolerance=tolerance, max_period=max_period,
+                            broadband=broadband, exponent=result)
 
 
 def broadband_fraction(spectrum: Spectrum, lines: int = 20) -> float:

@@ -10,6 +10,10 @@
 4. Sweeps: seconds per bifurcation point, the speed-up with the number of workers, and the
    wall time and peak memory of a Fig. 6-class diagram (γ1 over [0.5, 10], 300 transient +
    100 recorded periods per value) on every core.
+5. The tangent flow: the cost of a period with one tangent vector (``lyapunov``) and with
+   all 2N (``monodromy``) against the plain run, for the paper's group and the 24-blade
+   ring of ``examples/scenes``; and the time ``lyapunov`` takes to give the paper's
+   chaotic exponent (γ1 = 8.8) to two digits.
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
 the kernel); nothing here is asserted, because timings depend on the machine.
@@ -27,6 +31,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -36,7 +41,9 @@ from .methods import Adaptive, FixedStep
 from .progress import progress_callback
 from .scene import Scene
 from .scenes import three_blade_paper
+from . import scenefile
 from .simulate import simulate
+from .stability import lyapunov
 from .sweep import default_workers, sweep
 
 #: The benchmark's operating point: p3 motion with stick, slip and impacts on both shrouds.
@@ -176,6 +183,30 @@ def _diagram_only(points, transient, record, workers) -> None:
         "worker_mb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}))
 
 
+RING = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "ring_24_travelling_wave.toml"
+
+
+def tangent_costs(scene, periods: int, repeats: int) -> tuple[float, float, float]:
+    """Seconds per period of the plain run, of ``lyapunov`` with one exponent and of
+    ``monodromy`` (2N tangent vectors), each from the same settled start (medians)."""
+    settled = simulate(scene, 100, samples_per_period=1)
+    start = (settled.x[-1], settled.v[-1])
+    n = len(start[0])
+    plain, _ = median_time(lambda: simulate(scene, periods, samples_per_period=1,
+                                            initial=start, event_capacity=0), repeats)
+    one, _ = median_time(lambda: lyapunov(scene, periods, transient=0, initial=start),
+                         repeats)
+    every, _ = median_time(lambda: lyapunov(scene, periods, transient=0, initial=start,
+                                            exponents=2 * n), repeats)
+    return plain / periods, one / periods, every / periods
+
+
+def chaotic_exponent(periods: int, repeats: int) -> tuple[float, object]:
+    """Seconds for λ_max of the paper's γ1 = 8.8 case (300 transient periods), and the result."""
+    return median_time(lambda: lyapunov(three_blade_paper(gamma1=8.8), periods,
+                                        transient=300), repeats)
+
+
 def worker_counts(cores: int) -> list[int]:
     counts = [1]
     while counts[-1] * 2 <= cores:
@@ -269,6 +300,20 @@ def main(argv=None) -> None:
     print(f"   peak resident memory of that run: {figures['own_mb']:.0f} MB in its main "
           f"process, {figures['worker_mb']:.0f} MB in its largest worker; the sweep keeps "
           f"{figures['kept_mb']:.2f} MB of results")
+    print("\n5. The tangent flow, one core, ms per period: plain run, with one tangent vector "
+          "(lyapunov), with all 2N (monodromy)")
+    scenes = {"paper group, 3 blades": three_blade_paper(**POINT)}
+    if RING.exists():
+        scenes["ring of 24 blades"] = scenefile.load(RING).scene
+    for label, scene in scenes.items():
+        lyapunov(scene, 10, transient=0)  # compile or load the kernel
+        plain, one, every = tangent_costs(scene, 20 if args.quick else 100, repeats)
+        print(f"   {label}: {plain * 1e3:.3f}, {one * 1e3:.3f} ({one / plain:.1f}x), "
+              f"{every * 1e3:.3f} ({every / plain:.1f}x)")
+    for periods in (500, 2000):
+        seconds, result = chaotic_exponent(periods, repeats)
+        print(f"   γ1 = 8.8: λ_max = {result.largest:.3f} ± {result.error[0]:.3f} per period "
+              f"from {periods} periods, {seconds:.2f} s")
     print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 

@@ -151,6 +151,9 @@ def _parser() -> argparse.ArgumentParser:
     sweep_.add_argument("--output", "-o", type=Path,
                         help="folder for the points and the diagram "
                         "(default: SCENE-sweep-PATH, here)")
+    sweep_.add_argument("--lyapunov", action="store_true",
+                        help="classify each point by its largest Lyapunov exponent, and "
+                        "keep it (integrates the tangent flow: about twice the time)")
     sweep_.add_argument("--retry-failed", action="store_true",
                         help="on resuming, run again the points whose simulation failed "
                         "(by default they are kept: the same code fails the same way)")
@@ -345,7 +348,8 @@ def _sweep(args) -> int:
         result = sweep(scene_at, values, parameter=args.param, blade=settings.blade,
                        transient=transient, record=args.record, method=settings.method,
                        workers=args.workers, store=results.open_sweep_store(folder),
-                       progress=_sweep_progress(), retry_failed=args.retry_failed)
+                       progress=_sweep_progress(), retry_failed=args.retry_failed,
+                       lyapunov=args.lyapunov)
     except KeyboardInterrupt:
         raise Interrupted(_kept(folder, len(values))) from None
     took = time.perf_counter() - start
@@ -353,6 +357,13 @@ def _sweep(args) -> int:
     print(f"swept    {args.param} over {len(values)} values from {values[0]:g} to "
           f"{values[-1]:g} in {took:.1f} s")
     print("motions  " + ", ".join(f"{label} ×{count}" for label, count in zip(labels, counts)))
+    exponents = [(p.value, p.classification.lyapunov) for p in result.points
+                 if not p.failed and np.isfinite(p.classification.lyapunov)]
+    if exponents:
+        low, high = min(exponents, key=lambda e: e[1]), max(exponents, key=lambda e: e[1])
+        print(f"λ_max    from {low[1]:+.3g} ({args.param} = {low[0]:g}) to {high[1]:+.3g} "
+              f"({args.param} = {high[0]:g}) per period, over the {len(exponents)} points "
+              "that do not repeat")
     failures = result.failures
     if failures:
         print(f"failed   {len(failures)} of {len(values)} points, left out of the diagram: "

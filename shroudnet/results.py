@@ -406,14 +406,18 @@ def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefi
 
 # ---- a sweep, point by point --------------------------------------------------------------
 
+#: The fields a saved classification must hold (later ones have defaults: files written
+#: before λ_max was kept lack them).
+_CLASSIFICATION_NEEDS = {f.name for f in dataclasses.fields(Classification)
+                         if f.default is dataclasses.MISSING}
 _POINT_HEADER = (
     _Field("value", "a number", _is_number),
     _Field("energy_density", "a number [m^2]", _is_number),
     _Field("friction_loss_per_cycle", "a number [J]", _is_number),
     _Field("classification", "a table of " + ", ".join(
         f.name for f in dataclasses.fields(Classification)),
-        lambda v: isinstance(v, dict) and set(v) == {f.name for f in dataclasses.fields(
-            Classification)}),
+        lambda v: isinstance(v, dict) and _CLASSIFICATION_NEEDS <= set(v) <= {
+            f.name for f in dataclasses.fields(Classification)}),
 )
 _FAILURE_HEADER = (
     _Field("value", "a number", _is_number),

@@ -36,6 +36,7 @@ import cloudpickle
 import numpy as np
 
 from .analysis import classify, friction_loss_per_cycle
+from .stability import LYAPUNOV_BLOCKS, lyapunov
 from .methods import Accuracy, Adaptive, FixedStep
 from .progress import ProgressReporter, SweepWarning
 from .scene import Scene
@@ -84,8 +85,9 @@ terminal_progress: Callable[[str | bool], ProgressCallback | None] | None = None
 
 def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient: int,
                  record: int, method=Adaptive(), samples_per_period: int = 50,
-                 initial=None, tolerance: float = 1e-5) -> SweepPoint:
-    """Run ``transient`` periods unrecorded, then ``record`` periods, and reduce them."""
+                 initial=None, tolerance: float = 1e-5, exponent: bool = False) -> SweepPoint:
+    """Run ``transient`` periods unrecorded, then ``record`` periods, and reduce them
+    (``classify``, with λ_max when ``exponent``)."""
     start = initial
     if transient > 0:
         run = simulate(scene, transient, method=method, samples_per_period=1, initial=initial)
@@ -95,7 +97,8 @@ def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient
     return SweepPoint(value=float(value), poincare=sim.poincare(blade, skip=0),
                       energy_density=sim.energy_density(blade, skip=0),
                       friction_loss_per_cycle=friction_loss_per_cycle(sim, skip=0),
-                      classification=classify(sim, blade, skip=0, tolerance=tolerance),
+                      classification=classify(sim, blade, skip=0, tolerance=tolerance,
+                                              exponent=exponent),
                       final_state=(sim.x[-1].copy(), sim.v[-1].copy()))
 
 
@@ -103,7 +106,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
           parameter: str = "value", blade: Hashable | int = 1, transient: int = 300,
           record: int = 100, method=Adaptive(), samples_per_period: int = 50,
           continuation: bool = False, initial=None, tolerance: float = 1e-5,
-          workers: int | None = None, executor=None, progress="auto",
+          lyapunov: bool = False, workers: int | None = None, executor=None, progress="auto",
           save_to: str | os.PathLike | None = None, store: StoreOpener | None = None,
           retry_failed: bool = False) -> Sweep:
     """The steady response of ``scene_at(value)`` for each value, in the order given.
@@ -140,6 +143,11 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         before it that did not fail (the first from ``initial``), so a forward and a
         backward sweep can land on different coexisting attractors. Inherently serial: not
         allowed with ``workers`` > 1 or an ``executor``.
+    lyapunov : bool
+        Classify each point with its largest Lyapunov exponent (``classify``): kept as
+        ``classification.lyapunov`` ± ``lyapunov_error``, at the cost of integrating the
+        tangent flow over the recorded periods of every point that does not repeat.
+        Without it the 0–1 test tells chaos from quasi-periodicity.
     progress : "auto", bool, None or callable
         ``progress(done, total)`` after each point (failed points count as done); "auto"
         shows points done, rate and time left on standard error when it is a terminal
@@ -182,10 +190,12 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     report = _reporter(progress)
     notice = _notifier(report)
     options = {"blade": blade, "transient": transient, "record": record, "method": method,
-               "samples_per_period": samples_per_period, "tolerance": tolerance}
+               "samples_per_period": samples_per_period, "tolerance": tolerance,
+               "exponent": lyapunov}
     settings = {"transient": transient, "record": record, "method": repr(method),
                 "samples_per_period": samples_per_period, "continuation": continuation,
-                "tolerance": tolerance, "initial": _listed(initial),
+                "tolerance": tolerance, **({"lyapunov": True} if lyapunov else {}),
+                "initial": _listed(initial),
                 "scenes": _source(scene_at)}
     points: list[SweepPoint | None] = [None] * len(values)
     if save_to is not None:
@@ -215,7 +225,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         _spread(executor, pickled, values, todo, initial, options, parameter, finished)
     elif todo:
         with _naming(parameter, values[todo[0]]):
-            _warm_kernel(scene_at(values[todo[0]]), method)
+            _warm_kernel(scene_at(values[todo[0]]), method, lyapunov)
         with _own_pool(min(workers, len(todo))) as pool:
             _spread(pool, pickled, values, todo, initial, options, parameter, finished)
     return Sweep(parameter=parameter, blade=blade, points=tuple(points), settings=settings)
@@ -487,11 +497,14 @@ def _pickled(scene_at) -> bytes:
                         f"{error}. Pass workers=1 to run the sweep in this process.") from None
 
 
-def _warm_kernel(scene, method):
-    """Compile (or load) the kernel here once, so the workers find it in the disk cache.
+def _warm_kernel(scene, method, tangent):
+    """Compile (or load) the kernel here once, so the workers find it in the disk cache;
+    and the one with the tangent flow, for ``tangent``.
 
-    A ``SimulationError`` in this one period is left to the point itself to report."""
+    A ``SimulationError`` here is left to the point itself to report."""
     try:
         simulate(scene, 1, method=method, samples_per_period=1)
+        if tangent:
+            lyapunov(scene, LYAPUNOV_BLOCKS, transient=0)
     except SimulationError:
         pass

@@ -21,7 +21,8 @@ from hypothesis import strategies as st
 from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz, HuntCrossley,
                           KelvinVoigt, LinearSpring, Regularised, Stribeck)
 from shroudnet import (Adaptive, Blade, BladeGroup, Excitation, Interface, Scene,
-                       SimulationError, assemble, lyapunov, monodromy, simulate)
+                       SimulationError, assemble, classify, lyapunov, monodromy,
+                       simulate)
 from shroudnet.engine.generate import kernel_scene, load_kernel
 from shroudnet.scenes import three_blade_paper
 from tests.groups import states
@@ -327,3 +328,30 @@ def test_the_papers_chaotic_case_has_a_positive_exponent_beyond_its_error():
     assert result.is_positive()
     assert result.largest > 0.1
 
+
+# ---- classification by λ_max ----------------------------------------------------------------
+
+ELEVEN = {  # the paper's chosen points (README, "The paper's claims beside shroudnet's")
+    "γ1 = 1": {"gamma1": 1.0}, "γ1 = 3.5": {"gamma1": 3.5}, "γ1 = 5.31": {"gamma1": 5.31},
+    "γ1 = 6": {"gamma1": 6.0}, "γ1 = 8.8": {"gamma1": 8.8}, "5030 rpm": {"speed_rpm": 5030.0},
+    "5790 rpm": {"speed_rpm": 5790.0}, "5990 rpm": {"speed_rpm": 5990.0},
+    "q1 = 5 N": {"q1": 5.0}, "q1 = 20 N": {"q1": 20.0}, "q1 = 50 N": {"q1": 50.0},
+}
+
+
+@pytest.mark.parametrize("case", ELEVEN)
+def test_the_papers_cases_are_classified_alike_from_100_and_500_recorded_periods(case):
+    scene = three_blade_paper(**ELEVEN[case])
+    short = classify(simulate(scene, 400, samples_per_period=20), "blade2", skip=300)
+    long = classify(simulate(scene, 800, samples_per_period=20), "blade2", skip=300)
+    assert short.label == long.label != "undetermined", (short, long)
+    if long.period is None:
+        assert math.isfinite(long.lyapunov) and math.isfinite(short.lyapunov)
+
+
+def test_a_record_too_short_is_undetermined_with_its_reason():
+    sim = simulate(three_blade_paper(), 5)
+    kind = classify(sim, "blade2", skip=0)
+    assert kind.label == "undetermined"
+    assert "10" in kind.reason
+    assert classify(sim, "blade2", skip=0, exponent=False).label == "undetermined"
