@@ -33,9 +33,11 @@ def test_the_benchmark_runs_and_prints_every_section(capsys):
     bench_main(["--quick"])
     out = capsys.readouterr().out
     for heading in ("1. Integration speed", "2. Scene specialisation", "3. Against plain",
-                    "4. Sweeps", "Fig. 6-class diagram", "peak resident memory"):
+                    "4. Sweeps", "Fig. 6-class diagram", "peak resident memory",
+                    "5. The tangent flow"):
         assert heading in out
     assert "steps/s" in out and "x per trajectory" in out and "speed-up" in out
+    assert "λ_max =" in out
 
 
 def test_a_second_process_loads_the_compiled_kernel_instead_of_compiling():
