@@ -45,7 +45,8 @@ class PaperStudy:
 
 
 def compute(*, scene_at, parameter, claims, values, transient, record, steady) -> PaperStudy:
-    """The response at each claimed value, then the bifurcation diagram over ``values``.
+    """The response at each claimed value, then the bifurcation diagram over ``values``,
+    with the largest Lyapunov exponent of every point that does not repeat.
 
     ``claims`` maps a parameter value to the paper's label; ``transient`` periods are run
     before ``steady`` (a claim) or ``record`` (a diagram point) periods are analysed.
@@ -56,7 +57,7 @@ def compute(*, scene_at, parameter, claims, values, transient, record, steady) -
         checked.append(Claim(value=value, paper=label,
                              found=classify(sim, BLADE, skip=transient), simulation=sim))
     diagram = sweep(scene_at, np.asarray(values), parameter=parameter, blade=BLADE,
-                    transient=transient, record=record, method=METHOD)
+                    transient=transient, record=record, method=METHOD, lyapunov=True)
     return PaperStudy(parameter=parameter, transient=transient, claims=tuple(checked),
                       diagram=diagram)
 

@@ -6,6 +6,7 @@ Nothing in the computation imports this module. Each function returns a matplotl
 
 from __future__ import annotations
 
+import math
 from collections.abc import Hashable, Mapping, Sequence
 
 import numpy as np
@@ -63,15 +64,30 @@ def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: 
 
 def bifurcation_diagram(result: Sweep, *, xlabel: str = "", title: str = "",
                         scale: float = 1e3, unit: str = "mm") -> Figure:
-    """Poincaré displacements of the swept blade against the parameter (Figs. 6, 12, 16)."""
+    """Poincaré displacements of the swept blade against the parameter (Figs. 6, 12, 16);
+    below them, where the sweep kept it (``sweep(..., lyapunov=True)``), the largest
+    Lyapunov exponent of each point that does not repeat, with its error."""
     values, section = result.diagram(0)
-    figure = Figure(figsize=(8, 5), layout="constrained")
-    axes = figure.add_subplot()
+    exponents = [(p.value, p.classification.lyapunov, p.classification.lyapunov_error)
+                 for p in result.points
+                 if not p.failed and math.isfinite(p.classification.lyapunov)]
+    figure = Figure(figsize=(8, 7 if exponents else 5), layout="constrained")
+    if exponents:
+        axes, below = figure.subplots(2, 1, sharex=True, height_ratios=(3, 1.4))
+    else:
+        axes, below = figure.add_subplot(), None
     axes.plot(values, section * scale, ",", color="k")
     if len(result.points) < 40:
         axes.plot(values, section * scale, ".", ms=2, color="k")
-    axes.set(xlabel=xlabel or result.parameter, ylabel=f"x at t = k T_e [{unit}]",
-             title=title)
+    axes.set(ylabel=f"x at t = k T_e [{unit}]", title=title)
+    label = xlabel or result.parameter
+    if below is None:
+        axes.set(xlabel=label)
+        return figure
+    where, largest, error = (np.array(column) for column in zip(*exponents))
+    below.axhline(0.0, color="0.6", lw=0.8)
+    below.errorbar(where, largest, yerr=2.0 * error, fmt=".", ms=3, color="C3", lw=0.6)
+    below.set(xlabel=label, ylabel="λ_max per period")
     return figure
 
 

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-LABEL = re.compile(r"p\d+|quasi-periodic|chaotic")
+LABEL = re.compile(r"p\d+|quasi-periodic|chaotic|undetermined")
 
 
 def test_readme_python_blocks_run():
@@ -122,7 +122,7 @@ def check_work_precision(example, result, arguments):
 
 
 #: Each example: arguments small enough for a test, the figures it must save, its check.
-STUDY = {"transient": 20, "record": 5, "steady": 10}
+STUDY = {"transient": 20, "record": 10, "steady": 10}
 EXAMPLES = {
     "paper_scene": ({}, [], check_paper_scene),
     "paper_three_blade": ({"periods": 20, "skip": 10}, [], check_paper_three_blade),

@@ -749,7 +749,7 @@ def record_dense(sample, t, t_to, h, state, topology, s, w, controls, out):
         dense_state((time - t) / h, h, state, w, w.xt, w.vt, w.e_sample)
         evaluate_guards(time, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
         record(out, sample, time, w.xt, w.vt, state.modes, w.e_sample, w)
-        if HAS_TANGENT:  # the growth up to the step's start: enough for its convergence
+        if HAS_TANGENT:  # the growth to within a step of the sample: enough for its spread
             for c in range(len(state.tangent.log_growth)):
                 state.tangent.history[sample, c] = state.tangent.log_growth[c]
         sample += 1
