@@ -18,6 +18,7 @@ from shroudnet.engine.clusters import cluster_labels
 from shroudnet.engine.detect import crossed, depth, parabola_low, predicted_low
 from shroudnet.engine.regroup import static_friction_operator
 from shroudnet.scenes import three_blade_paper
+from tests.laws import CubicSpring
 
 # ---- the Runge–Kutta tableau --------------------------------------------------------------
 
@@ -189,7 +190,21 @@ def test_no_parameter_value_chooses_another_kernel():
 def test_the_effect_flags_follow_the_law_classes():
     arrays = three_blade_paper().arrays
     assert generate.flags(arrays) == {"HAS_CONTACT_EVENTS": True, "HAS_STICK": True,
-                                      "HAS_FRICTION": True, "HAS_REGULARISED": False}
+                                      "HAS_FRICTION": True, "HAS_REGULARISED": False,
+                                      "HAS_TANGENT": False}
+    assert generate.flags(arrays, tangent=True)["HAS_TANGENT"]
+
+
+def test_the_header_differences_a_law_that_gives_no_derivative():
+    """A law without its own derivative is differentiated in the kernel by central
+    differences with the steps ``contact_laws`` takes; one with it calls its own."""
+    text = generate.header([LinearSpring, CubicSpring], [ExponentialFriction], {})
+    assert "return _normal_derivative_0(penetration, rate, params[0])" in text
+    assert "_normal_1(penetration + step, rate, params[0], params[1])" in text
+    assert "_normal_1(penetration, rate - step, params[0], params[1])" in text
+    assert "return _friction_derivative_0(slip_speed, params[0], params[1], params[2])" \
+        in text
+    compile(text, "header", "exec")
 
 
 def test_the_header_dispatches_on_each_law_class_with_its_parameters():
