@@ -26,8 +26,8 @@ def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
 
     Open interfaces carry nothing; stuck ones carry N and no sliding friction (their static
     friction comes from ``static_friction``). Exact laws slip with f = σ μ(σv) N, σ = ±1 by
-    the sign of the mode (paper eqs. 5–6), continued past the mode's end (σv < 0) by the
-    tangent line μ(0) + μ'(0) σv, as the compiled loop does (``sliding_coefficient``);
+    the sign of the mode (paper eqs. 5–6), continued past the mode's end (σv < 0) by
+    μ(|v|) + 2 μ'(|v|) σv, as the compiled loop does (``sliding_coefficient``);
     regularised ones with f = μ(|v|) N tanh(v/v_ε).
     This is the plain-Python evaluation of the laws; it calls each law object.
     """
@@ -47,7 +47,7 @@ def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
         sign = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
         speed = sign * slip_velocity[e]
         mu = friction_law(speed) if speed >= 0.0 else (
-            friction_law(0.0) + friction_law.slope(0.0) * speed)
+            friction_law(speed) + 2.0 * friction_law.slope(speed) * speed)
         friction[e] = sign * mu * normal[e]
     return normal, friction
 

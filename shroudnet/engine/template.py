@@ -76,15 +76,19 @@ FRICTION_SLACK = 1e-9
 def sliding_coefficient(kind, params, speed):
     """μ and dμ/ds of an exact law at the slip speed s = ±u̇ cos α signed by the slip mode:
     μ(s) for s ≥ 0; for s < 0, a state past the end of its mode (within the event
-    tolerance past a located switch, or a Runge–Kutta stage just beyond it), the tangent
-    line μ(0) + μ'(0) s. The mode's vector field thus continues across the switching
+    tolerance past a located switch, or a Runge–Kutta stage just beyond it),
+    μ(|s|) + 2 μ'(|s|) s, which leaves s = 0 with the slope μ'(0⁺) that the slip side
+    arrives with (its own slope, μ'(|s|) − 2 μ''(|s|) s, is taken as μ'(|s|): s is within
+    a tolerance of 0). The mode's vector field thus continues across the switching
     surface with a continuous slope, where μ(|s|) would have a kink: stages beyond the
-    kink made the tangent flow converge at first order only."""
+    kink made the tangent flow converge at first order only. A law whose μ jumps at 0
+    (μ(0⁺) ≠ μ_s) is continued from μ(0⁺), the value the slip side has."""
+    size = abs(speed)
+    mu = friction_coefficient(kind, params, size)
+    slope = friction_slope(kind, params, size)
     if speed >= 0.0:
-        return (friction_coefficient(kind, params, speed),
-                friction_slope(kind, params, speed))
-    slope = friction_slope(kind, params, 0.0)
-    return friction_coefficient(kind, params, 0.0) + slope * speed, slope
+        return mu, slope
+    return mu + 2.0 * slope * speed, slope
 
 
 @njit_step
