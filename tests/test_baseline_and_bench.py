@@ -29,6 +29,7 @@ def test_plain_solve_ivp_and_the_compiled_loop_follow_the_same_trajectory(scene)
     assert plain.switches == sum(compiled.events.counts.values()) > 10
 
 
+@pytest.mark.timeout(1500)  # compiles in fresh processes, then every kind of kernel
 def test_the_benchmark_runs_and_prints_every_section(capsys):
     bench_main(["--quick"])
     out = capsys.readouterr().out
