@@ -42,6 +42,9 @@ from .blade import Blade as Blade
 from .blade import ConstantFrequency as ConstantFrequency
 from .blade import FrequencyTable as FrequencyTable
 from .blade import Southwell as Southwell
+from .continuation import Bifurcation as Bifurcation
+from .continuation import Branch as Branch
+from .continuation import continuation as continuation
 from .engine.clusters import stick_clusters as stick_clusters
 from .engine.assembly import Assembly as Assembly
 from .engine.assembly import assemble as assemble
@@ -57,6 +60,9 @@ from .methods import Adaptive as Adaptive
 from .methods import FixedStep as FixedStep
 from .methods import ZenoGuard as ZenoGuard
 from .engine.codes import Mode as Mode
+from .orbits import ConvergenceError as ConvergenceError
+from .orbits import PeriodicOrbit as PeriodicOrbit
+from .orbits import periodic_orbit as periodic_orbit
 from .scene import Scene as Scene
 from .scene import SceneArrays as SceneArrays
 from .simulate import simulate as simulate

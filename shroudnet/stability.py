@@ -63,14 +63,56 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
         not differentiable there.
     """
     periods = check_int("monodromy", "periods", periods, low=1)
+    step = stroboscopic_step(scene, periods, initial, method=method,
+                             event_tolerance=event_tolerance)
+    if step.singular:
+        raise SimulationError(step.singular_reason("the monodromy matrix"))
+    return step.jacobian
+
+
+@dataclass(frozen=True)
+class StroboscopicStep:
+    """One application of the ``periods``-period stroboscopic map y ↦ φ(y), y = (x, ẋ):
+    ``end`` = φ(start), its Jacobian ``jacobian`` (the monodromy matrix; see
+    ``monodromy``), and ``singular``, the switches on the way where φ is not
+    differentiable (grazing, or several interfaces at once), with the first one's
+    ``singular_time`` [s] and ``singular_interface``."""
+
+    scene: Scene
+    end: np.ndarray
+    jacobian: np.ndarray
+    singular: int
+    singular_time: float
+    singular_interface: int
+
+    def singular_reason(self, what: str) -> str:
+        """Why ``what`` is not defined at this start."""
+        left, right, _ = self.scene.group.interfaces[self.singular_interface]
+        t = self.singular_time
+        return (f"{what} is not defined: at t = {t:.9g} s (period "
+                f"{t / self.scene.excitation_period:.6f}) interface "
+                f"{self.singular_interface} ({left!r}, {right!r}) switches grazing its "
+                f"switching surface, or together with another interface, and the "
+                f"trajectory does not depend differentiably on its start there "
+                f"({self.singular} such switches). Move the start or the parameter "
+                f"slightly.")
+
+
+def stroboscopic_step(scene: Scene, periods: int, initial=None, *,
+                      method: Adaptive | Accuracy = TANGENT_METHOD,
+                      event_tolerance: float = 1e-10) -> StroboscopicStep:
+    """φ and its Jacobian from ``initial`` = (x0, v0) (default at rest), in one run of the
+    state with the 2N × 2N tangent flow. Arguments as ``monodromy``."""
     n = len(scene.blades)
-    done = integrate(scene, periods, method=method, samples_per_period=1,
-                     event_tolerance=event_tolerance, initial=initial, event_capacity=0,
-                     tangent=np.eye(2 * n))
-    tangent = done.run.tangent
-    if tangent.singular[0] > 0:
-        raise SimulationError(_singular_message(scene, tangent, "the monodromy matrix"))
-    return tangent.matrix.copy()
+    run = integrate(scene, periods, method=method, samples_per_period=1,
+                    event_tolerance=event_tolerance, initial=initial, event_capacity=0,
+                    tangent=np.eye(2 * n)).run
+    tangent = run.tangent
+    return StroboscopicStep(scene=scene,
+                            end=np.concatenate([run.output.x[-1], run.output.v[-1]]),
+                            jacobian=tangent.matrix.copy(), singular=int(tangent.singular[0]),
+                            singular_time=float(tangent.singular_time[0]),
+                            singular_interface=int(tangent.singular_interface[0]))
 
 
 @dataclass(frozen=True)
@@ -162,14 +204,3 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = 300, exponents: int
                              periods=periods, transient=transient,
                              singular_switches=int(tangent.singular[0]))
 
-
-def _singular_message(scene, tangent, what):
-    e = int(tangent.singular_interface[0])
-    left, right, _ = scene.group.interfaces[e]
-    t = float(tangent.singular_time[0])
-    return (f"{what} is not defined: at t = {t:.9g} s (period "
-            f"{t / scene.excitation_period:.6f}) interface {e} ({left!r}, {right!r}) "
-            f"switches grazing its switching surface, or together with another interface, "
-            f"and the trajectory does not depend differentiably on its start there "
-            f"({int(tangent.singular[0])} such switches). Move the start or the parameter "
-            f"slightly.")

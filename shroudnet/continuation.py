@@ -1,0 +1,497 @@
+"""Families of periodic orbits in one parameter: pseudo-arclength continuation.
+
+The unknowns are u = (y, p): the orbit's start y = (x, ẋ) at t = 0 mod T_e and the
+parameter p. Each step predicts along the branch's tangent τ (the kernel of
+[M − I, ∂φ/∂p], DESIGN §6) and corrects by Newton on
+
+    φ(y, p) − y = 0,    τ · (u − u_predicted) = 0,
+
+in scaled coordinates (displacements over the first orbit's state scale, velocities over
+that times l Ω, p over |stop − start|), so that a step of the arclength weighs the
+orbit's change and the parameter's alike. Along the branch the Floquet multipliers are
+watched: a real one through +1 (where the parameter turns back) is a fold, one through −1
+a period doubling, a complex pair through the unit circle a torus (Neimark–Sacker)
+bifurcation; each is located on the branch by the secant method on its test function. A
+change of the orbit's switch sequence is a nonsmooth bifurcation ("grazing" for contact
+closing or opening, "stick-slip" for stick phases), reported at the first orbit beyond it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from contact_laws import check_int, check_real
+
+from .methods import Accuracy, Adaptive
+from .orbits import (ORBIT_TOLERANCE, UNIT_CIRCLE, ConvergenceError, PeriodicOrbit,
+                     least_squares, orbit_at, periodic_orbit, state_weights)
+from .scene import Scene
+from .simulate import integrate
+from .simulation import SimulationError
+from .stability import TANGENT_METHOD, stroboscopic_step
+
+#: Bifurcation kinds.
+KINDS = ("fold", "period-doubling", "torus", "grazing", "stick-slip")
+
+#: Arclength steps (scaled units, see the module's docstring): the first by default, the
+#: largest and the smallest before the branch is given up.
+FIRST_STEP = 0.01
+LARGEST_STEP = 1.0
+SMALLEST_STEP = 1e-7
+#: Corrector iterations before a step is halved; a step that converged in at most
+#: ``EASY_ITERATIONS`` grows by ``GROWTH``.
+CORRECTOR_ITERATIONS = 7
+EASY_ITERATIONS = 3
+GROWTH = 1.5
+#: The least cosine between consecutive tangents; a sharper turn halves the step.
+TURN = 0.95
+#: Relative step of the central difference ∂φ/∂p (of max(|p|, |stop − start|)).
+PARAMETER_DIFFERENCE = 1e-6
+#: Steps locating a bifurcation, and the bracket (of the arclength between the two
+#: points around it) that is close enough.
+LOCATING_STEPS = 16
+LOCATED = 1e-6
+#: |Im μ| / |μ| below which a multiplier is taken as real.
+REAL = 1e-8
+
+
+@dataclass(frozen=True)
+class Bifurcation:
+    """A point of a branch where the orbit changes its kind or its stability.
+
+    ``kind``: one of ``KINDS``. ``parameter``: where it is (located to the accuracy of
+    the orbits for "fold", "period-doubling" and "torus"; the first orbit past the
+    change for "grazing" and "stick-slip", with the change inside ``bracket``).
+    ``orbit``: the orbit there; ``multiplier``: the critical Floquet multiplier (nan for
+    a nonsmooth one); ``index``: the change lies between branch points ``index`` and
+    ``index + 1``.
+    """
+
+    kind: str
+    parameter: float
+    orbit: PeriodicOrbit
+    multiplier: complex
+    index: int
+    bracket: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Branch:
+    """A family of periodic orbits of ``periods`` excitation periods along a parameter.
+
+    ``parameter[i]`` and ``orbits[i]`` are its points, in the order continued (the
+    parameter turns back at a fold); ``bifurcations`` the changes met between them;
+    ``name`` the parameter's name; ``ended`` why the continuation stopped.
+    """
+
+    parameter: np.ndarray
+    orbits: tuple[PeriodicOrbit, ...]
+    bifurcations: tuple[Bifurcation, ...]
+    periods: int
+    name: str
+    ended: str
+
+    def __len__(self) -> int:
+        return len(self.orbits)
+
+    @property
+    def stable(self) -> np.ndarray:
+        """Whether each orbit is stable (every multiplier inside the unit circle)."""
+        return np.array([orbit.stable for orbit in self.orbits])
+
+    @property
+    def peak(self) -> np.ndarray:
+        """max |x| [m] over each orbit, by point and blade position."""
+        return np.array([orbit.peak for orbit in self.orbits])
+
+    def amplitude(self, blade) -> np.ndarray:
+        """max |x| [m] of ``blade`` (a name or a position) over each orbit."""
+        return np.array([orbit.amplitude(blade) for orbit in self.orbits])
+
+    def energy_density(self, blade) -> np.ndarray:
+        """E_ρ = ∫x² dt / (k T_e) [m²] of ``blade`` over each orbit (paper §3.2)."""
+        return np.array([orbit.energy_density(blade) for orbit in self.orbits])
+
+    def worst_blade(self) -> np.ndarray:
+        """Per point, the position of the blade with the largest peak."""
+        return np.argmax(self.peak, axis=1)
+
+    def multipliers(self) -> np.ndarray:
+        """Per point, the Floquet multipliers by descending modulus (complex)."""
+        return np.array([orbit.multipliers for orbit in self.orbits])
+
+
+def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, *,
+                 periods: int = 1, guess=None, step: float | None = None,
+                 max_step: float = LARGEST_STEP, max_points: int = 1000,
+                 method: Adaptive | Accuracy = TANGENT_METHOD,
+                 tolerance: float = ORBIT_TOLERANCE, event_tolerance: float = 1e-10,
+                 transient: int = 100, from_bifurcation: Bifurcation | None = None,
+                 parameter: str = "value", progress: Callable | None = None) -> Branch:
+    """The branch of periodic orbits of ``scene_at(p)`` from p = ``start`` towards ``stop``.
+
+    Pseudo-arclength continuation (see the module's docstring): it follows the branch
+    through folds, where the parameter turns back, and ends where the parameter leaves
+    [start, stop] (the last point on ``stop`` exactly when it gets there), after
+    ``max_points`` points, or where no step as small as ``SMALLEST_STEP`` converges.
+
+    Parameters
+    ----------
+    scene_at : callable
+        p ↦ Scene, as for ``sweep``; any number of a scene may be the parameter.
+    start, stop : float
+        The parameter range; the branch starts at ``start`` (or at ``from_bifurcation``).
+    periods : int
+        k ≥ 1: orbits of period k T_e.
+    guess : (x0, v0), optional
+        Near the orbit at ``start``; default the state after ``transient`` periods.
+    step, max_step : float, optional
+        The first and the largest arclength step, in the scaled units: about the
+        fraction of [start, stop] a step crosses where the orbit changes little. Default
+        ``FIRST_STEP`` and ``LARGEST_STEP``.
+    max_points : int
+        The most points of the branch.
+    method, tolerance, event_tolerance, transient
+        As ``periodic_orbit``.
+    from_bifurcation : Bifurcation, optional
+        A "period-doubling" point of another branch: continue the doubled branch (period
+        2k T_e) born there, away from it, within [start, stop].
+    parameter : str
+        The parameter's name, for the record and for plots.
+    progress : callable, optional
+        ``progress(points, p)`` after each point.
+
+    Raises
+    ------
+    ValueError
+        Bad arguments: ``start`` equal to ``stop``, a ``scene_at`` whose scene does not
+        change with p, a guess of the wrong shape, a ``from_bifurcation`` that is not a
+        period doubling.
+    ConvergenceError
+        No periodic orbit converges at the branch's start.
+    """
+    start = check_real("continuation", "start", start)
+    stop = check_real("continuation", "stop", stop)
+    if start == stop:
+        raise ValueError(f"continuation: start and stop are both {start}: give a range")
+    if not callable(scene_at):
+        raise TypeError(f"continuation.scene_at must be a callable value -> Scene, got "
+                        f"{scene_at!r}")
+    periods = check_int("continuation", "periods", periods, low=1)
+    max_points = check_int("continuation", "max_points", max_points, low=2)
+    max_step = check_real("continuation", "max_step", max_step, low=SMALLEST_STEP,
+                          high=1.0)
+    step = max_step / 10 if step is None else check_real(
+        "continuation", "step", step, low=SMALLEST_STEP, high=max_step)
+    if from_bifurcation is not None and (not isinstance(from_bifurcation, Bifurcation)
+                                         or from_bifurcation.kind != "period-doubling"):
+        raise ValueError(f"continuation.from_bifurcation must be a 'period-doubling' "
+                         f"Bifurcation of a branch, got {from_bifurcation!r}")
+    span = abs(stop - start)
+    solver = Solver(scene_at=_checked(scene_at, start, span), span=span,
+                    low=min(start, stop), high=max(start, stop), method=method,
+                    tolerance=tolerance, event_tolerance=event_tolerance)
+    if from_bifurcation is None:
+        first = periodic_orbit(solver.scene_at(start), periods, guess, method=method,
+                               transient=transient, tolerance=tolerance,
+                               event_tolerance=event_tolerance)
+        solver.weights = state_weights(first.scene, first.state)
+        point = solver.point(first.state, start, periods)
+        direction = np.zeros(len(point.u))
+        direction[-1] = math.copysign(1.0, stop - start)
+    else:
+        point, direction = solver.doubled(from_bifurcation)
+        periods = point.periods
+    point = point.with_tangent(solver.tangent(point, direction))
+    return solver.follow(point, step, max_step, max_points, parameter, progress)
+
+
+@dataclass(frozen=True)
+class Point:
+    """A converged point of the branch: u = (W y, p / span), its map and ∂φ/∂p, and its
+    unit tangent (scaled)."""
+
+    u: np.ndarray
+    parameter: float
+    periods: int
+    step: object          # the StroboscopicStep at the point
+    rate: np.ndarray      # ∂φ/∂p
+    tangent: np.ndarray | None = None
+
+    def with_tangent(self, tangent):
+        return Point(self.u, self.parameter, self.periods, self.step, self.rate, tangent)
+
+
+@dataclass
+class Solver:
+    """The continuation's maps and steps; ``weights`` W scale the state (set at the
+    branch's first orbit)."""
+
+    scene_at: Callable
+    span: float
+    low: float
+    high: float
+    method: object
+    tolerance: float
+    event_tolerance: float
+    weights: np.ndarray | None = None
+
+    # ---- the map and its derivatives -------------------------------------------------------
+
+    def state(self, u):
+        return u[:-1] / self.weights
+
+    def evaluate(self, y, p, periods):
+        """The map with its Jacobian at (y, p), and ∂φ/∂p by central differences."""
+        scene = self.scene_at(p)
+        step = stroboscopic_step(scene, periods, np.split(y, 2), method=self.method,
+                                 event_tolerance=self.event_tolerance)
+        h = PARAMETER_DIFFERENCE * max(abs(p), self.span)
+        rate = (self.end(y, p + h, periods) - self.end(y, p - h, periods)) / (2.0 * h)
+        return step, rate
+
+    def end(self, y, p, periods):
+        run = integrate(self.scene_at(p), periods, method=self.method, samples_per_period=1,
+                        event_tolerance=self.event_tolerance, initial=np.split(y, 2),
+                        event_capacity=0).run.output
+        return np.concatenate([run.x[-1], run.v[-1]])
+
+    def jacobian(self, step, rate):
+        """∂(W(φ − y))/∂u in the scaled coordinates: 2N × (2N + 1)."""
+        w = self.weights
+        square = w[:, None] * (step.jacobian - np.eye(len(w))) / w[None, :]
+        return np.column_stack([square, w * rate * self.span])
+
+    def point(self, y, p, periods):
+        step, rate = self.evaluate(y, p, periods)
+        return Point(np.append(self.weights * y, p / self.span), p, periods, step, rate)
+
+    def tangent(self, point, reference):
+        """The unit kernel vector of the scaled Jacobian, oriented along ``reference``."""
+        bordered = np.vstack([self.jacobian(point.step, point.rate), reference])
+        right = np.zeros(len(reference))
+        right[-1] = 1.0
+        tangent = least_squares(bordered, right)
+        tangent /= np.linalg.norm(tangent)
+        return tangent if tangent @ reference >= 0.0 else -tangent
+
+    # ---- corrector -------------------------------------------------------------------------
+
+    def correct(self, predicted, normal, offset, periods):
+        """Newton on W(φ(y, p) − y) = 0, normal · u = offset, from u = ``predicted``.
+
+        Returns the converged ``Point`` and the iterations it took, or raises
+        ``ConvergenceError``.
+        """
+        u = predicted.copy()
+        for iteration in range(CORRECTOR_ITERATIONS):
+            p = u[-1] * self.span
+            y = self.state(u)
+            step, rate = self.evaluate(y, p, periods)
+            residual = self.weights * (step.end - y)
+            constraint = normal @ u - offset
+            if np.abs(residual).max() <= self.tolerance and abs(constraint) <= 1e-12:
+                return Point(u, p, periods, step, rate), iteration
+            system = np.vstack([self.jacobian(step, rate), normal])
+            u = u - least_squares(system, np.append(residual, constraint))
+        raise ConvergenceError(f"no convergence in {CORRECTOR_ITERATIONS} corrector steps "
+                               f"(residual {np.abs(residual).max():.3g})")
+
+    def advance(self, point, sigma):
+        """The point at arclength ``sigma`` along ``point``'s tangent."""
+        predicted = point.u + sigma * point.tangent
+        return self.correct(predicted, point.tangent, point.tangent @ predicted,
+                            point.periods)
+
+    def at_parameter(self, point, target, sigma):
+        """The point of the branch at p = ``target``, from a prediction ``sigma`` along."""
+        predicted = point.u + sigma * point.tangent
+        predicted[-1] = target / self.span
+        normal = np.zeros(len(predicted))
+        normal[-1] = 1.0
+        return self.correct(predicted, normal, target / self.span, point.periods)[0]
+
+    # ---- the branch --------------------------------------------------------------------------
+
+    def follow(self, point, step, max_step, max_points, name, progress) -> Branch:
+        points = [point]
+        orbits = [self.orbit(point, 0)]
+        bifurcations = []
+        ended = f"reached max_points = {max_points}"
+        sigma = step
+        while len(points) < max_points:
+            try:
+                new, iterations = self.advance(point, sigma)
+                new = new.with_tangent(self.tangent(new, point.tangent))
+                if new.tangent @ point.tangent < TURN:
+                    raise ConvergenceError("the branch turns too sharply")
+            except SimulationError as error:
+                sigma /= 2.0
+                if sigma < SMALLEST_STEP:
+                    ended = (f"no step converged at p = {point.parameter:.9g} (the last "
+                             f"try: {error})")
+                    break
+                continue
+            if not self.low <= new.parameter <= self.high:
+                target = self.high if new.parameter > self.high else self.low
+                if target != point.parameter:
+                    fraction = (target - point.parameter) / (new.parameter - point.parameter)
+                    end = self.at_parameter(point, target, fraction * sigma)
+                    new = end.with_tangent(self.tangent(end, point.tangent))
+                    self.record(points, orbits, bifurcations, new)
+                ended = f"reached p = {target:.9g}"
+                break
+            self.record(points, orbits, bifurcations, new)
+            point = new
+            if progress is not None:
+                progress(len(points), point.parameter)
+            if iterations <= EASY_ITERATIONS:
+                sigma = min(sigma * GROWTH, max_step)
+        return Branch(parameter=np.array([p.parameter for p in points]), orbits=tuple(orbits),
+                      bifurcations=tuple(bifurcations), periods=points[0].periods, name=name,
+                      ended=ended)
+
+    def orbit(self, point, iterations):
+        y = self.state(point.u)
+        residual = np.abs(self.weights * (point.step.end - y)).max()
+        return orbit_at(point.step.scene, point.periods, y, point.step, residual,
+                        1.0 / self.weights[0], iterations, self.method,
+                        self.event_tolerance, 100, False)
+
+    def record(self, points, orbits, bifurcations, new):
+        """Append ``new`` and what changed since the last point."""
+        last, before = points[-1], orbits[-1]
+        orbit = self.orbit(new, 0)
+        index = len(points) - 1
+        for kind, test in smooth_changes(last, before, new, orbit):
+            bifurcations.append(self.locate(kind, test, last, new, index))
+        if orbit.switches != before.switches:
+            kind = "stick-slip" if _stick_phases(orbit) != _stick_phases(before) else "grazing"
+            bifurcations.append(Bifurcation(kind, new.parameter, orbit, complex(math.nan), index,
+                                            (last.parameter, new.parameter)))
+        points.append(new)
+        orbits.append(orbit)
+
+    def locate(self, kind, test, a, b, index) -> Bifurcation:
+        """The zero of ``test`` between points a and b: the Illinois (modified regula
+        falsi) method on the arclength from a, to ``LOCATED`` of the arclength from a to
+        b."""
+        width = float(a.tangent @ (b.u - a.u))
+        low, high = (0.0, test(a)), (width, test(b))
+        best, best_value, kept = b, abs(high[1]), None
+        for _ in range(LOCATING_STEPS):
+            sigma = low[0] - low[1] * (high[0] - low[0]) / (high[1] - low[1])
+            try:
+                trial = self.advance(a, sigma)[0]
+                trial = trial.with_tangent(self.tangent(trial, a.tangent))
+            except SimulationError:
+                break
+            value = test(trial)
+            if abs(value) < best_value:
+                best, best_value = trial, abs(value)
+            if value == 0.0 or abs(high[0] - low[0]) <= LOCATED * abs(width):
+                break
+            if math.copysign(1.0, value) == math.copysign(1.0, low[1]):
+                low = (sigma, value)
+                if kept == "low":
+                    high = (high[0], high[1] / 2.0)
+                kept = "low"
+            else:
+                high = (sigma, value)
+                if kept == "high":
+                    low = (low[0], low[1] / 2.0)
+                kept = "high"
+        orbit = self.orbit(best, 0)
+        return Bifurcation(kind, best.parameter, orbit, critical(kind, orbit.multipliers),
+                           index, (a.parameter, b.parameter))
+
+    # ---- from a period doubling --------------------------------------------------------------
+
+    def doubled(self, bifurcation):
+        """The first point of the period-2k branch born at a period doubling, and the
+        direction away from it."""
+        orbit = bifurcation.orbit
+        self.weights = state_weights(orbit.scene, orbit.state)
+        values, vectors = np.linalg.eig(orbit.monodromy)
+        k = np.argmin(np.abs(values + 1.0))
+        w = self.weights
+        away = np.append(w * np.real(vectors[:, k]), 0.0)
+        away /= np.linalg.norm(away)
+        periods = 2 * orbit.periods
+        base = np.append(w * orbit.state, bifurcation.parameter / self.span)
+        size = 1e-3
+        point, _ = self.correct(base + size * away, away, away @ base + size, periods)
+        return point, point.u - base
+
+
+def _checked(scene_at, start, span):
+    """``scene_at``, once it is seen to change its scene with the parameter."""
+    first = scene_at(start)
+    if not isinstance(first, Scene):
+        raise TypeError(f"continuation.scene_at must return a shroudnet.Scene, got "
+                        f"{type(first).__name__}")
+    moved = scene_at(start + 1e-3 * span)
+    same = all(np.array_equal(getattr(first.arrays, f.name), getattr(moved.arrays, f.name))
+               for f in fields(first.arrays))
+    if same:
+        raise ValueError("continuation: scene_at returns the same scene for different "
+                         "values: its value must change the scene (the speed, an "
+                         "amplitude, a gap, a law's parameter, …)")
+    return scene_at
+
+
+def _stick_phases(orbit):
+    return {switch: count for switch, count in orbit.switches.items()
+            if switch[1] in ("sticking", "breakaway")}
+
+
+def critical(kind, multipliers):
+    """The multiplier that crosses the unit circle at a bifurcation of ``kind``."""
+    real = np.abs(multipliers.imag) <= REAL * np.maximum(np.abs(multipliers), 1e-300)
+    if kind == "fold":
+        pool = multipliers[real]
+        return complex(pool[np.argmin(np.abs(pool - 1.0))]) if len(pool) else complex(1.0)
+    if kind == "period-doubling":
+        pool = multipliers[real]
+        return complex(pool[np.argmin(np.abs(pool + 1.0))])
+    pool = multipliers[~real]
+    return complex(pool[np.argmin(np.abs(np.abs(pool) - 1.0))])
+
+
+def _counts(multipliers):
+    """(real > 1, real < −1, complex outside the unit circle)."""
+    real = np.abs(multipliers.imag) <= REAL * np.maximum(np.abs(multipliers), 1e-300)
+    outside = np.abs(multipliers) > UNIT_CIRCLE
+    return (int(np.sum(real & outside & (multipliers.real > 0))),
+            int(np.sum(real & outside & (multipliers.real < 0))),
+            int(np.sum(~real & outside)))
+
+
+def smooth_changes(a, orbit_a, b, orbit_b):
+    """(kind, test function of a point) of each smooth bifurcation between a and b. The
+    test functions are continuous along the branch and change sign at the bifurcation:
+    the tangent's parameter component (fold), det(M + I) (period doubling) and
+    Π_{i<j} (μ_i μ_j − 1), the bialternate product (torus)."""
+    changes = []
+    if a.tangent[-1] * b.tangent[-1] < 0.0:
+        changes.append(("fold", lambda point: point.tangent[-1]))
+    before, after = _counts(orbit_a.multipliers), _counts(orbit_b.multipliers)
+    if before[1] != after[1]:
+        changes.append(("period-doubling", _doubling_test))
+    if before[2] != after[2]:
+        changes.append(("torus", _torus_test))
+    return changes
+
+
+def _doubling_test(point):
+    return float(np.real(np.prod(np.linalg.eigvals(point.step.jacobian) + 1.0)))
+
+
+def _torus_test(point):
+    values = np.linalg.eigvals(point.step.jacobian)
+    i, j = np.triu_indices(len(values), k=1)
+    return float(np.real(np.prod(values[i] * values[j] - 1.0)))

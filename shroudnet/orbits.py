@@ -1,0 +1,302 @@
+"""Periodic orbits by shooting: Newton on the stroboscopic map with its exact Jacobian.
+
+A forced orbit of period k T_e is a fixed point of the k-period stroboscopic map φ:
+F(y) = φ(y) − y = 0 with y = (x, ẋ) at t = 0 mod T_e (DESIGN §6). Newton's step solves
+(M − I) Δy = −F, with M = ∂φ/∂y the monodromy matrix that the tangent flow gives through
+every switch (``stability``); the Floquet multipliers are M's eigenvalues at the orbit.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from contact_laws import check_int, check_real
+
+from .engine.codes import EventKind
+from .methods import Accuracy, Adaptive
+from .scene import Scene
+from .simulate import simulate
+from .simulation import EventLog, Simulation, SimulationError
+from .stability import TANGENT_METHOD, StroboscopicStep, stroboscopic_step
+
+
+class ConvergenceError(SimulationError):
+    """Newton's iteration for a periodic orbit (or a continuation step) did not converge."""
+
+
+#: The residual a periodic orbit is solved to: max |φ(y) − y| over the state scale.
+ORBIT_TOLERANCE = 1e-10
+#: Newton steps before giving up, and the halvings of one step while it does not lower
+#: the residual.
+NEWTON_ITERATIONS = 30
+HALVINGS = 12
+#: Switches this close to an orbit's start or end [periods] do not count in its
+#: ``switches``.
+EDGE = 1e-8
+#: Modulus above which a multiplier makes an orbit unstable: 1 beyond the accuracy of M.
+UNIT_CIRCLE = 1.0 + 1e-7
+
+
+@dataclass(frozen=True)
+class PeriodicOrbit:
+    """A periodic orbit of a forced scene, of ``periods`` excitation periods.
+
+    ``initial``: (x0 [m], ẋ0 [m/s]) at t = 0 mod T_e, by blade position. ``multipliers``:
+    the Floquet multipliers (eigenvalues of ``monodromy``), complex, by descending modulus;
+    a stick phase gives zeros. ``residual``: max |φ(y) − y| over ``scale``, the state scale
+    [m] (velocities count divided by l Ω). ``events``: the switches over one orbit, in
+    order. ``peak``: each blade's max |x| [m] over the orbit; ``mean_square``: each blade's
+    E_ρ = ∫x² dt / (k T_e) [m²] (paper §3.2). ``singular``: switches on the orbit where the
+    map is not differentiable (grazing, several interfaces at once): its multipliers are
+    then those of the side the orbit's own switch sequence takes. ``history``: one orbit's
+    ``Simulation``, when asked for.
+    """
+
+    scene: Scene
+    initial: tuple[np.ndarray, np.ndarray]
+    periods: int
+    multipliers: np.ndarray
+    monodromy: np.ndarray
+    residual: float
+    scale: float
+    iterations: int
+    events: EventLog
+    peak: np.ndarray
+    mean_square: np.ndarray
+    singular: int
+    history: Simulation | None = None
+
+    @property
+    def stable(self) -> bool:
+        """Whether every multiplier lies inside the unit circle."""
+        return bool(np.abs(self.multipliers[0]) < UNIT_CIRCLE)
+
+    @property
+    def state(self) -> np.ndarray:
+        """y = (x0, ẋ0) as one array."""
+        return np.concatenate(self.initial)
+
+    @property
+    def event_sequence(self) -> tuple[tuple[int, str], ...]:
+        """(interface, kind) of each switch over one orbit, in order."""
+        return event_sequence(self.events)
+
+    @property
+    def switches(self) -> dict[tuple[int, str], int]:
+        """How many switches of each (interface, kind) one orbit makes; a switch within
+        ``EDGE`` periods of the orbit's start or end (where rounding of the start may put
+        it on either side) is left out."""
+        period = self.scene.excitation_period
+        edge = EDGE * period
+        end = self.periods * period
+        counts: dict[tuple[int, str], int] = {}
+        for t, switch in zip(self.events.time, self.event_sequence):
+            if edge < t < end - edge:
+                counts[switch] = counts.get(switch, 0) + 1
+        return counts
+
+    def amplitude(self, blade) -> float:
+        """max |x| [m] of ``blade`` (a name or a position) over the orbit."""
+        return float(self.peak[self.scene.blade_position(blade)])
+
+    def energy_density(self, blade) -> float:
+        """E_ρ [m²] of ``blade`` over the orbit."""
+        return float(self.mean_square[self.scene.blade_position(blade)])
+
+
+def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
+                   method: Adaptive | Accuracy = TANGENT_METHOD, transient: int = 100,
+                   tolerance: float = ORBIT_TOLERANCE, event_tolerance: float = 1e-10,
+                   samples_per_period: int = 100, history: bool = False) -> PeriodicOrbit:
+    """The periodic orbit of ``periods`` excitation periods nearest ``guess``, by Newton.
+
+    Each Newton step integrates the state with its tangent flow over ``periods`` periods
+    (``stroboscopic_step``) and solves (M − I) Δy = −(φ(y) − y); a step that does not
+    lower the residual is halved. The orbit may be unstable: Newton finds it all the same.
+
+    Parameters
+    ----------
+    scene : Scene
+    periods : int
+        k ≥ 1: the orbit's period is k T_e.
+    guess : (x0, v0), optional
+        A start near the orbit [m, m/s]. Default: the state after ``transient`` periods
+        from rest.
+    method : Adaptive or Accuracy
+        The accuracy of the map; the orbit is as good as the map.
+    transient : int
+        Periods run from rest for the default guess, ≥ 0.
+    tolerance : float
+        The residual max |φ(y) − y| / scale to reach, in (0, 1e-3]. The scale is the
+        largest of the guess's max |x|, its max |ẋ| / (l Ω) and the static deflection.
+    event_tolerance : float
+        As ``simulate``.
+    samples_per_period : int
+        Samples of the orbit for ``peak``, ``mean_square`` and ``history``.
+    history : bool
+        Keep the orbit's ``Simulation`` (``PeriodicOrbit.history``).
+
+    Raises
+    ------
+    ConvergenceError
+        Newton did not reach ``tolerance``: the message gives the residual and the last
+        step.
+    SimulationError
+        As ``simulate``.
+    """
+    periods = check_int("periodic_orbit", "periods", periods, low=1)
+    transient = check_int("periodic_orbit", "transient", transient, low=0)
+    check_real("periodic_orbit", "tolerance", tolerance, low=0.0, low_open=True, high=1e-3)
+    starts = start_states(scene, periods, guess, transient, method, event_tolerance)
+    for attempt, y in enumerate(starts):
+        weights = state_weights(scene, y)
+        try:
+            solve = newton(lambda z: stroboscopic_step(scene, periods, np.split(z, 2),
+                                                       method=method,
+                                                       event_tolerance=event_tolerance),
+                           y, weights, tolerance)
+        except ConvergenceError:
+            if attempt == len(starts) - 1:
+                raise
+            continue
+        return orbit_at(scene, periods, solve.state, solve.step, solve.residual,
+                        1.0 / weights[0], solve.iterations, method, event_tolerance,
+                        samples_per_period, history)
+
+
+#: Starts taken from a transient: its closest returns after ``periods`` periods.
+STARTS = 4
+
+
+def start_states(scene, periods, guess, transient, method, event_tolerance) -> list:
+    """Where Newton starts: ``guess`` (checked); or the ``STARTS`` stroboscopic states of
+    the second half of a ``transient`` from rest that come closest to themselves after
+    ``periods`` periods (near-returns lie near an orbit), closest first."""
+    n = len(scene.blades)
+    if guess is not None:
+        parts = [np.asarray(part, dtype=float) for part in guess] \
+            if isinstance(guess, tuple | list) and len(guess) == 2 else [np.asarray(guess)]
+        y = np.concatenate([part.ravel() for part in parts]) if all(
+            part.shape == (n,) for part in parts) and len(parts) == 2 else None
+        if y is None:
+            shapes = " and ".join(str(np.shape(part)) for part in parts)
+            raise ValueError(f"periodic_orbit.guess must be (x0, v0), two arrays of "
+                             f"{n} values (one per blade), got shape {shapes}")
+        if not np.all(np.isfinite(y)):
+            raise ValueError("periodic_orbit.guess must be finite")
+        return [y]
+    if transient == 0:
+        return [np.zeros(2 * n)]
+    run = simulate(scene, transient + periods, method=method, samples_per_period=1,
+                   event_tolerance=event_tolerance, event_capacity=0)
+    states = np.hstack([run.x, run.v])
+    weights = state_weights(scene, states[-1])
+    half = transient // 2
+    returns = np.abs(weights * (states[half + periods:] - states[half:-periods])).max(axis=1)
+    return [states[half + j] for j in np.argsort(returns, kind="stable")[:STARTS]]
+
+
+def state_weights(scene: Scene, y: np.ndarray) -> np.ndarray:
+    """Per component of y, 1/scale: displacements over the state scale x̂ [m], velocities
+    over x̂ l Ω; x̂ is the largest of max |x|, max |ẋ| / (l Ω) and the static deflection."""
+    n = len(y) // 2
+    frequency = scene.arrays.excitation_frequency
+    scale = max(np.abs(y[:n]).max(), np.abs(y[n:]).max() / frequency,
+                scene.arrays.static_deflection, 1e-12)
+    return np.concatenate([np.full(n, 1.0 / scale), np.full(n, 1.0 / (scale * frequency))])
+
+
+@dataclass(frozen=True)
+class NewtonResult:
+    state: np.ndarray
+    step: StroboscopicStep
+    residual: float
+    iterations: int
+
+
+def newton(step_at, y, weights, tolerance) -> NewtonResult:
+    """Safeguarded Newton on F(y) = φ(y) − y, with ``step_at(y)`` a ``StroboscopicStep``.
+
+    Residuals are max |w ⊙ F|. A full step that does not lower the residual is halved up
+    to ``HALVINGS`` times.
+    """
+    step = step_at(y)
+    residual = np.abs(weights * (step.end - y)).max()
+    last = 0.0
+    for iteration in range(NEWTON_ITERATIONS + 1):
+        if residual <= tolerance:
+            return NewtonResult(y, step, float(residual), iteration)
+        if iteration == NEWTON_ITERATIONS:
+            break
+        change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)
+        fraction = 1.0
+        for _ in range(HALVINGS + 1):
+            trial = y + fraction * change
+            trial_step = step_at(trial)
+            trial_residual = np.abs(weights * (trial_step.end - trial)).max()
+            if trial_residual < residual:
+                break
+            fraction /= 2.0
+        else:
+            last = np.abs(weights * change).max()
+            raise ConvergenceError(
+                f"periodic orbit: Newton's step does not lower the residual "
+                f"{residual:.3g} (of the state scale) even when halved {HALVINGS} times; "
+                f"the last full step was {last:.3g} of the state scale. Start nearer the "
+                f"orbit (guess=), or from a longer transient.")
+        last = fraction * np.abs(weights * change).max()
+        y, step, residual = trial, trial_step, trial_residual
+    raise ConvergenceError(
+        f"periodic orbit: Newton did not converge in {NEWTON_ITERATIONS} steps: the "
+        f"residual is {residual:.3g} of the state scale (asked: {tolerance:.3g}), the last "
+        f"step {last:.3g}. Start nearer the orbit (guess=), or loosen the tolerance.")
+
+
+def least_squares(matrix, right):
+    """The least-norm solution of ``matrix`` z = ``right``: where the orbit is one of a
+    family (a blade stuck to a fixed node may stick anywhere within its friction limit, a
+    multiplier +1), Newton moves across the family as little as it can."""
+    return np.linalg.lstsq(matrix, right, rcond=None)[0]
+
+
+def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event_tolerance,
+             samples_per_period, history) -> PeriodicOrbit:
+    """The ``PeriodicOrbit`` through y, whose map was ``step``: its multipliers, and what
+    one sampled run of the orbit shows."""
+    multipliers = np.linalg.eigvals(step.jacobian).astype(complex)
+    multipliers = multipliers[np.argsort(-np.abs(multipliers), kind="stable")]
+    n = len(y) // 2
+    run = simulate(scene, periods, method=method, samples_per_period=samples_per_period,
+                   event_tolerance=event_tolerance, initial=(y[:n], y[n:]))
+    return PeriodicOrbit(scene=scene, initial=(y[:n].copy(), y[n:].copy()), periods=periods,
+                         multipliers=multipliers, monodromy=step.jacobian,
+                         residual=float(residual), scale=float(scale),
+                         iterations=iterations, events=run.events,
+                         peak=periodic_peak(run.x[:-1]),
+                         mean_square=np.mean(run.x[:-1] ** 2, axis=0),
+                         singular=step.singular, history=run if history else None)
+
+
+def periodic_peak(x: np.ndarray) -> np.ndarray:
+    """Per column, max |x| of a periodic signal sampled evenly over whole periods (the
+    last sample left out), refined by the parabola through the largest sample and its
+    neighbours (wrapping around): exact to O(h⁴) for a smooth peak."""
+    magnitude = np.abs(x)
+    top = np.argmax(magnitude, axis=0)
+    columns = np.arange(x.shape[1])
+    before = magnitude[(top - 1) % len(x), columns]
+    at = magnitude[top, columns]
+    after = magnitude[(top + 1) % len(x), columns]
+    curvature = before - 2.0 * at + after
+    with np.errstate(divide="ignore", invalid="ignore"):
+        shift = np.where(curvature < 0.0, 0.5 * (before - after) / curvature, 0.0)
+    shift = np.clip(shift, -0.5, 0.5)
+    return at - 0.25 * (before - after) * shift
+
+
+def event_sequence(events: EventLog) -> tuple[tuple[int, str], ...]:
+    """(interface, kind) of each logged switch, in order."""
+    return tuple((int(e), EventKind(k).name.lower())
+                 for e, k in zip(events.interface, events.kind))
