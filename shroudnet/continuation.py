@@ -47,9 +47,11 @@ SMALLEST_STEP = 1e-7
 CORRECTOR_ITERATIONS = 7
 EASY_ITERATIONS = 3
 GROWTH = 1.5
+#: How much larger than the state scale an orbit grows before the scale follows it.
+RESCALE = 2.0
 #: The least cosine between consecutive tangents; a sharper turn halves the step.
 TURN = 0.95
-#: Relative step of the central difference ∂φ/∂p (of max(|p|, |stop − start|)).
+#: Relative step of the forward difference ∂φ/∂p (of max(|p|, |stop − start|)).
 PARAMETER_DIFFERENCE = 1e-6
 #: Steps locating a bifurcation, and the bracket (of the arclength between the two
 #: points around it) that is close enough.
@@ -245,20 +247,19 @@ class Solver:
     def state(self, u):
         return u[:-1] / self.weights
 
-    def evaluate(self, y, p, periods):
-        """The map with its Jacobian at (y, p), and ∂φ/∂p by central differences."""
+    def evaluate(self, y, p, periods, rate=None):
+        """The map with its Jacobian at (y, p), and ∂φ/∂p (by a forward difference unless
+        ``rate`` is given)."""
         scene = self.scene_at(p)
         step = stroboscopic_step(scene, periods, np.split(y, 2), method=self.method,
                                  event_tolerance=self.event_tolerance)
-        h = PARAMETER_DIFFERENCE * max(abs(p), self.span)
-        rate = (self.end(y, p + h, periods) - self.end(y, p - h, periods)) / (2.0 * h)
+        if rate is None:
+            h = PARAMETER_DIFFERENCE * max(abs(p), self.span)
+            run = integrate(self.scene_at(p + h), periods, method=self.method,
+                            samples_per_period=1, event_tolerance=self.event_tolerance,
+                            initial=np.split(y, 2), event_capacity=0).run.output
+            rate = (np.concatenate([run.x[-1], run.v[-1]]) - step.end) / h
         return step, rate
-
-    def end(self, y, p, periods):
-        run = integrate(self.scene_at(p), periods, method=self.method, samples_per_period=1,
-                        event_tolerance=self.event_tolerance, initial=np.split(y, 2),
-                        event_capacity=0).run.output
-        return np.concatenate([run.x[-1], run.v[-1]])
 
     def jacobian(self, step, rate):
         """∂(W(φ − y))/∂u in the scaled coordinates: 2N × (2N + 1)."""
@@ -281,23 +282,33 @@ class Solver:
 
     # ---- corrector -------------------------------------------------------------------------
 
-    def correct(self, predicted, normal, offset, periods):
+    def correct(self, predicted, normal, offset, periods, reach, fixed=None):
         """Newton on W(φ(y, p) − y) = 0, normal · u = offset, from u = ``predicted``.
 
         Returns the converged ``Point`` and the iterations it took, or raises
-        ``ConvergenceError``.
+        ``ConvergenceError``, also when an update is longer than ``reach`` (the
+        corrector is leaving for another branch).
         """
         u = predicted.copy()
+        rate = None  # ∂φ/∂p at the prediction serves every iteration (a chord method)
         for iteration in range(CORRECTOR_ITERATIONS):
-            p = u[-1] * self.span
+            p = u[-1] * self.span if fixed is None else fixed
             y = self.state(u)
-            step, rate = self.evaluate(y, p, periods)
+            try:
+                step, rate = self.evaluate(y, p, periods, rate)
+            except ValueError as error:  # scene_at refuses p: the corrector went astray
+                raise ConvergenceError(f"the corrector reached p = {p:.9g}, where "
+                                       f"scene_at says: {error}") from error
             residual = self.weights * (step.end - y)
             constraint = normal @ u - offset
             if np.abs(residual).max() <= self.tolerance and abs(constraint) <= 1e-12:
                 return Point(u, p, periods, step, rate), iteration
             system = np.vstack([self.jacobian(step, rate), normal])
-            u = u - least_squares(system, np.append(residual, constraint))
+            change = least_squares(system, np.append(residual, constraint))
+            if np.linalg.norm(change) > reach:
+                raise ConvergenceError(f"a corrector step of {np.linalg.norm(change):.3g} "
+                                       f"leaves the prediction's reach {reach:.3g}")
+            u = u - change
         raise ConvergenceError(f"no convergence in {CORRECTOR_ITERATIONS} corrector steps "
                                f"(residual {np.abs(residual).max():.3g})")
 
@@ -305,7 +316,7 @@ class Solver:
         """The point at arclength ``sigma`` along ``point``'s tangent."""
         predicted = point.u + sigma * point.tangent
         return self.correct(predicted, point.tangent, point.tangent @ predicted,
-                            point.periods)
+                            point.periods, reach=abs(sigma))
 
     def at_parameter(self, point, target, sigma):
         """The point of the branch at p = ``target``, from a prediction ``sigma`` along."""
@@ -313,7 +324,8 @@ class Solver:
         predicted[-1] = target / self.span
         normal = np.zeros(len(predicted))
         normal[-1] = 1.0
-        return self.correct(predicted, normal, target / self.span, point.periods)[0]
+        return self.correct(predicted, normal, target / self.span, point.periods,
+                            reach=abs(sigma), fixed=target)[0]
 
     # ---- the branch --------------------------------------------------------------------------
 
@@ -346,7 +358,7 @@ class Solver:
                 ended = f"reached p = {target:.9g}"
                 break
             self.record(points, orbits, bifurcations, new)
-            point = new
+            point = points[-1] = self.rescaled(new)
             if progress is not None:
                 progress(len(points), point.parameter)
             if iterations <= EASY_ITERATIONS:
@@ -354,6 +366,19 @@ class Solver:
         return Branch(parameter=np.array([p.parameter for p in points]), orbits=tuple(orbits),
                       bifurcations=tuple(bifurcations), periods=points[0].periods, name=name,
                       ended=ended)
+
+    def rescaled(self, point):
+        """``point`` in coordinates whose state scale has grown to its orbit's, once the
+        orbit is ``RESCALE`` times larger than the scale: steps stay a fraction of the
+        orbit, however far from the first one the branch has grown."""
+        weights = state_weights(point.step.scene, self.state(point.u))
+        if weights[0] * RESCALE > self.weights[0]:
+            return point
+        change = np.append(weights / self.weights, 1.0)
+        self.weights = weights
+        tangent = change * point.tangent
+        return Point(change * point.u, point.parameter, point.periods, point.step,
+                     point.rate, tangent / np.linalg.norm(tangent))
 
     def orbit(self, point, iterations):
         y = self.state(point.u)
@@ -424,7 +449,8 @@ class Solver:
         periods = 2 * orbit.periods
         base = np.append(w * orbit.state, bifurcation.parameter / self.span)
         size = 1e-3
-        point, _ = self.correct(base + size * away, away, away @ base + size, periods)
+        point, _ = self.correct(base + size * away, away, away @ base + size, periods,
+                                reach=1.0)
         return point, point.u - base
 
 

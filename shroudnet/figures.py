@@ -14,6 +14,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
 from .analysis import Campbell, classify, spectrum
+from .continuation import Branch
 from .precision import Study
 from .simulation import Simulation
 from .sweep import Sweep
@@ -148,3 +149,60 @@ def work_precision_diagram(study: Study, *, title: str = "What accuracy costs") 
     axes[0].legend(fontsize="small")
     figure.suptitle(title)
     return figure
+
+
+#: Markers of bifurcation points by kind.
+BIFURCATION_MARKERS = {"fold": ("o", "C3"), "period-doubling": ("s", "C2"),
+                       "torus": ("D", "C4"), "grazing": ("^", "0.4"),
+                       "stick-slip": ("v", "0.4")}
+
+
+def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
+                    sweeps: Mapping[str, Sweep] | None = None, xlabel: str = "",
+                    title: str = "", scale: float = 1e3, unit: str = "mm") -> Figure:
+    """Forced-response curves: the peak |x| of ``blade`` and its E_ρ along each branch,
+    stable orbits solid and unstable ones dashed, bifurcation points marked by kind; on
+    the E_ρ panel, the E_ρ of transient ``sweeps`` (e.g. up and down) as points."""
+    figure = Figure(figsize=(8, 7), layout="constrained")
+    peak_axes, energy_axes = figure.subplots(2, 1, sharex=True)
+    for k, (label, branch) in enumerate(branches.items()):
+        color = f"C{k}"
+        peak = branch.amplitude(blade) * scale
+        energy = branch.energy_density(blade) * scale**2
+        stable = branch.stable
+        for axes, values in ((peak_axes, peak), (energy_axes, energy)):
+            for start, stop, is_stable in _runs(stable):
+                piece = slice(start, min(stop + 1, len(stable)))
+                axes.plot(branch.parameter[piece], values[piece], color=color,
+                          ls="-" if is_stable else "--", lw=1.2,
+                          label=label if start == 0 and axes is peak_axes else None)
+        for bifurcation in branch.bifurcations:
+            marker, marker_color = BIFURCATION_MARKERS[bifurcation.kind]
+            orbit = bifurcation.orbit
+            for axes, value in ((peak_axes, orbit.amplitude(blade) * scale),
+                                (energy_axes, orbit.energy_density(blade) * scale**2)):
+                axes.plot(bifurcation.parameter, value, marker, color=marker_color, ms=5,
+                          mfc="none")
+    for k, (label, result) in enumerate((sweeps or {}).items()):
+        kept = [p for p in result.points if not p.failed]
+        energy_axes.plot([p.value for p in kept], [p.energy_density * scale**2 for p in kept],
+                         "^v<>"[k % 4], color="k", ms=3, mfc="none", lw=0, label=label)
+    for kind, (marker, color) in BIFURCATION_MARKERS.items():
+        if any(b.kind == kind for branch in branches.values() for b in branch.bifurcations):
+            peak_axes.plot([], [], marker, color=color, mfc="none", lw=0, label=kind)
+    peak_axes.plot([], [], "k--", lw=1.2, label="unstable")
+    peak_axes.set(ylabel=f"max |x| [{unit}]", title=title)
+    peak_axes.legend(fontsize="small")
+    energy_axes.set(xlabel=xlabel or next(iter(branches.values())).name,
+                    ylabel=f"E_ρ [{unit}²]")
+    if sweeps:
+        energy_axes.legend(fontsize="small")
+    return figure
+
+
+def _runs(flags):
+    """(start, stop, flag) of each run of equal ``flags``: stop is the run's last index + 1."""
+    edges = np.flatnonzero(np.diff(np.asarray(flags, dtype=int))) + 1
+    starts = np.concatenate([[0], edges])
+    stops = np.concatenate([edges, [len(flags)]])
+    return [(int(a), int(b), bool(flags[a])) for a, b in zip(starts, stops)]

@@ -241,11 +241,16 @@ def newton(step_at, y, weights, tolerance) -> NewtonResult:
             fraction /= 2.0
         else:
             last = np.abs(weights * change).max()
+            largest = np.abs(np.linalg.eigvals(step.jacobian)).max()
+            advice = (f"The largest multiplier there is {largest:.3g}: the map amplifies "
+                      f"its own integration error by that much, so a residual this small "
+                      f"asks for a tighter method (a smaller rtol) or a looser tolerance."
+                      if residual < 1e3 * tolerance else
+                      "Start nearer the orbit (guess=), or from a longer transient.")
             raise ConvergenceError(
                 f"periodic orbit: Newton's step does not lower the residual "
                 f"{residual:.3g} (of the state scale) even when halved {HALVINGS} times; "
-                f"the last full step was {last:.3g} of the state scale. Start nearer the "
-                f"orbit (guess=), or from a longer transient.")
+                f"the last full step was {last:.3g} of the state scale. {advice}")
         last = fraction * np.abs(weights * change).max()
         y, step, residual = trial, trial_step, trial_residual
     raise ConvergenceError(

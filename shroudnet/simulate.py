@@ -175,6 +175,8 @@ INITIAL_STEP = 1e-3
 
 #: A run may claim at most this fraction of the memory available when it starts.
 MEMORY_FRACTION = 0.5
+#: A record this small [bytes] is not checked against the available memory: 1 MiB.
+SMALL_RECORD = 2**20
 #: The bound [bytes] where the available memory cannot be read: 8 GiB.
 MEMORY_FALLBACK = 8 * 2**30
 
@@ -221,6 +223,8 @@ def output_bytes(scene: Scene, periods: int, samples_per_period: int,
 def _check_memory(scene, periods, samples_per_period, event_capacity):
     """Refuse, before any work, a run whose record would not fit in memory."""
     needed = output_bytes(scene, periods, samples_per_period, event_capacity)
+    if needed <= SMALL_RECORD:
+        return
     available = available_memory()
     bound = MEMORY_FALLBACK if available is None else int(MEMORY_FRACTION * available)
     if needed > bound:

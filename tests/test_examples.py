@@ -121,6 +121,26 @@ def check_work_precision(example, result, arguments):
         assert math.isfinite(measurement.error) and measurement.error >= 0.0
 
 
+def check_forced_response(example, result, arguments):
+    """Each branch runs from its start to its stop; where it is stable and alone, the
+    transient sweeps' E_ρ agree with its orbits; and the transients repeat with period 1
+    exactly where the branch says period 1 is stable: below the torus bifurcation of the
+    paper's gap (in speed) and above it (in q1) they do not."""
+    speed, q1 = result
+    for curves, stop in ((speed, 7200.0), (q1, 60.0)):
+        for curve in curves.values():
+            assert curve.branch.parameter[-1] == stop
+            assert curve.agreement() <= 1e-4
+            p, stable = curve.branch.parameter, curve.branch.stable
+            margin = 0.05 * abs(p[-1] - p[0])  # too near a bifurcation to tell
+            for point in (*curve.up.points, *curve.down.points):
+                if any(abs(b.parameter - point.value) < margin
+                       for b in curve.branch.bifurcations):
+                    continue
+                near = np.argmin(np.abs(p - point.value))
+                assert (point.classification.period == 1) == stable[near], point.value
+
+
 #: Each example: arguments small enough for a test, the figures it must save, its check.
 STUDY = {"transient": 20, "record": 10, "steady": 10}
 EXAMPLES = {
@@ -136,6 +156,9 @@ EXAMPLES = {
                                       ["fig16_bifurcation_q1.png", "fig19_q1_50.png"],
                                       check_paper_study),
     "fig20_campbell": ({}, ["fig20_campbell.png"], check_campbell),
+    "forced_response": ({"values": 5, "transient": 300, "record": 20, "max_step": 0.3},
+                        ["forced_response_speed.png", "forced_response_q1.png"],
+                        check_forced_response),
     "work_precision": ({"transient": 10, "record": 5, "chaotic_record": 10, "repeats": 1},
                        ["work_precision.png"], check_work_precision),
     "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
