@@ -2,6 +2,7 @@
 
     shroudnet run SCENE.toml                       simulate; summary, results and figure
     shroudnet sweep SCENE.toml --param PATH --values ...   a bifurcation diagram
+    shroudnet continue SCENE.toml --param PATH --from A --to B   a forced-response curve
     shroudnet plot RESULTS                         redraw a saved run or sweep
     shroudnet bench [--quick]                      the benchmark
 
@@ -30,6 +31,7 @@ import numpy as np
 
 from . import results, scenefile
 from .analysis import classify
+from .continuation import LARGEST_STEP, Branch, continuation
 from .engine.cache import cache_folder, cache_size, clear_cache
 from .progress import ProgressReporter, TerminalProgress
 from .simulate import simulate
@@ -161,11 +163,42 @@ def _parser() -> argparse.ArgumentParser:
     _negative_numbers_are_values(sweep_)
     sweep_.set_defaults(command=_sweep, name="sweep")
 
+    follow = commands.add_parser(
+        "continue", help="follow the periodic orbits of a scene file along one of its "
+        "numbers: forced-response curve with stability and bifurcations",
+        description="Continue the branch of periodic orbits of SCENE.toml in one of its "
+        "numbers from A to B (pseudo-arclength, through folds), with each orbit's Floquet "
+        "multipliers. Prints the bifurcations met (fold, period-doubling, torus, grazing, "
+        "stick-slip); writes the branch (.npz, loads back with shroudnet.results.load) and "
+        "its forced-response figure (.png) of the [run] blade.")
+    follow.add_argument("scene", type=Path, help="scene file (TOML)")
+    follow.add_argument("--param", required=True, metavar="PATH",
+                        help="the number to follow, as a dotted path into the file (as for "
+                        "'sweep')")
+    follow.add_argument("--from", dest="start", required=True, type=float, metavar="A",
+                        help="where the branch starts")
+    follow.add_argument("--to", dest="stop", required=True, type=float, metavar="B",
+                        help="where it ends")
+    follow.add_argument("--periods", type=_whole(1), default=1,
+                        help="orbits of this many excitation periods (default 1)")
+    follow.add_argument("--max-step", type=float, default=LARGEST_STEP, metavar="S",
+                        help="the largest arclength step, as a fraction of the range and "
+                        f"of the orbit's size (default {LARGEST_STEP:g}); smaller draws "
+                        "more points")
+    follow.add_argument("--max-points", type=_whole(2), default=1000,
+                        help="the most orbits (default 1000)")
+    follow.add_argument("--output", "-o", type=Path, default=Path("."),
+                        help="folder for SCENE-continue-PATH.npz and .png (default: here)")
+    _laws_option(follow)
+    _negative_numbers_are_values(follow)
+    follow.set_defaults(command=_continue, name="continue")
+
     plot = commands.add_parser(
-        "plot", help="redraw a saved run (.npz) or sweep (folder)",
-        description="Redraw RESULTS: the response figure of a saved run, or the bifurcation "
-        "diagram of a sweep folder.")
-    plot.add_argument("results", type=Path, help="a .npz file of 'run' or a folder of 'sweep'")
+        "plot", help="redraw a saved run (.npz), branch (.npz) or sweep (folder)",
+        description="Redraw RESULTS: the response figure of a saved run, the "
+        "forced-response figure of a branch, or the bifurcation diagram of a sweep folder.")
+    plot.add_argument("results", type=Path,
+                      help="a .npz file of 'run' or 'continue', or a folder of 'sweep'")
     plot.add_argument("--output", "-o", type=Path,
                       help="figure to write (default: beside RESULTS, .png)")
     _laws_option(plot)
@@ -442,9 +475,75 @@ def _save_diagram(result, path: Path) -> Path:
     return path
 
 
+def _continue(args) -> int:
+    laws = _import_laws(args.laws)
+    loaded = scenefile.load(args.scene, laws=laws)
+    scene_at = scenefile.SceneAt(loaded.document, args.param, laws=laws)
+    for value in (args.start, args.stop):  # a bad path or value fails before any work
+        if not np.isfinite(value):
+            raise UsageError(f"--from and --to must be finite, got {value}")
+        scene_at(value)
+    _check_folder(args.output, "--output")
+    stem = args.output / f"{args.scene.stem}-continue-{args.param}"
+    for suffix in (".npz", ".png"):
+        _check_file(stem.with_suffix(suffix), "--output")
+    blade = loaded.run.blade
+    start = time.perf_counter()
+    try:
+        branch = continuation(scene_at, args.start, args.stop, periods=args.periods,
+                              max_step=args.max_step, max_points=args.max_points,
+                              parameter=args.param, progress=_branch_progress(args.param))
+    except KeyboardInterrupt:
+        raise Interrupted("interrupted; nothing was saved") from None
+    finally:
+        if sys.stderr.isatty():
+            print(file=sys.stderr)
+    took = time.perf_counter() - start
+    amplitude = branch.amplitude(blade)
+    top = int(np.argmax(amplitude))
+    print(f"followed {args.param} from {args.start:g} to {branch.parameter[-1]:g}: "
+          f"{len(branch)} orbits of period {branch.periods}, {int(branch.stable.sum())} "
+          f"stable, in {took:.1f} s ({branch.ended})")
+    print(f"peak     max |x| of {blade} = {amplitude[top]:.4g} m at {args.param} = "
+          f"{branch.parameter[top]:.6g}")
+    for b in branch.bifurcations:
+        critical = (f", multiplier {b.multiplier.real:+.6f}{b.multiplier.imag:+.6f}j"
+                    if np.isfinite(b.multiplier) else "")
+        print(f"{b.kind:17s}at {args.param} = {b.parameter:.8g}{critical}")
+    saved = results.save_branch(stem.with_suffix(".npz"), branch, scene_at)
+    figure = _save_branch_figure(branch, blade, stem.with_suffix(".png"))
+    print(f"saved    {saved}, {figure}")
+    return 0
+
+
+def _branch_progress(name: str):
+    """``progress(points, p)`` on the terminal's standard error, else nothing."""
+    if not sys.stderr.isatty():
+        return None
+
+    def progress(points, value):
+        print(f"\rcontinue: {points} orbits, {name} = {value:.6g}   ", end="",
+              file=sys.stderr, flush=True)
+    return progress
+
+
+def _save_branch_figure(branch, blade, path: Path) -> Path:
+    from .figures import forced_response
+    forced_response({f"period {branch.periods}": branch}, blade,
+                    title=f"{branch.name}: {blade}").savefig(path, dpi=110)
+    return path
+
+
 def _plot(args) -> int:
     laws = _import_laws(args.laws)  # a saved scene names its laws as its scene file did
     saved = _load_results(args.results, laws)
+    if isinstance(saved, Branch):
+        path = args.output or args.results.with_suffix(".png")
+        _check_file(path, "--output")
+        blade = results.load_run_settings(args.results, laws=laws).blade
+        _save_branch_figure(saved, blade, path)
+        print(f"saved    {path}")
+        return 0
     if args.results.is_dir():
         path = args.output or args.results / "bifurcation.png"
         _check_file(path, "--output")

@@ -41,7 +41,9 @@ import numpy as np
 
 from . import scenefile
 from .analysis import Classification
+from .continuation import Bifurcation, Branch
 from .engine.codes import EventKind
+from .orbits import PeriodicOrbit
 from .progress import SweepWarning
 from .simulation import EnergyLedger, EventLog, Simulation, Sweep, SweepPoint
 
@@ -399,7 +401,13 @@ def _own_law_names(document) -> list[str]:
 
 
 def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefile.RunSettings:
-    """The run settings saved with a simulation (the defaults if none were)."""
+    """The run settings saved with a simulation or a branch (the defaults if none were)."""
+    path = Path(path)
+    meta = _load_npz(path)[0]
+    if meta.get("kind") == "branch":
+        _checked(path, meta, _BRANCH_HEADER)
+        scenes = meta["scenes"]
+        return _scene(path, scenes if isinstance(scenes, dict) else scenes[0], laws).run
     data = load_arrays(path)
     return _scene(data.path, data.document, laws).run
 
@@ -660,8 +668,117 @@ def load_sweep(folder: str | Path) -> Sweep:
                  points=tuple(points[i] for i in range(count)), settings=manifest["settings"])
 
 
-def load(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation | Sweep:
-    """A simulation file or a sweep folder, whichever ``path`` is (``laws`` as for
-    ``load_simulation``)."""
+# ---- a branch of periodic orbits ----------------------------------------------------------
+
+_BRANCH_HEADER = (
+    _Field("scenes", "a scene document, or one per orbit",
+           lambda v: isinstance(v, dict) or (isinstance(v, list)
+                                             and all(isinstance(d, dict) for d in v))),
+    _Field("parameter_path", "null or a dotted path", lambda v: v is None or isinstance(v, str)),
+    _Field("name", "a string", lambda v: isinstance(v, str)),
+    _Field("ended", "a string", lambda v: isinstance(v, str)),
+    _Field("periods", "an int >= 1", lambda v: _is_count(v) and v >= 1),
+    _Field("points", "an int >= 1", lambda v: _is_count(v) and v >= 1),
+    _Field("kinds", "a list of bifurcation kinds",
+           lambda v: isinstance(v, list) and all(isinstance(k, str) for k in v)),
+)
+
+
+def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
+    """Write ``branch`` to ``path`` (.npz): every orbit (its branch points, then the
+    orbits of its bifurcations) with its multipliers, monodromy matrix and switches.
+
+    Each orbit's scene is kept as the scene document of ``scene_at`` (a
+    ``scenefile.SceneAt``) with the parameter's path, or else as one document per orbit.
+    """
+    orbits = [*branch.orbits, *(b.orbit for b in branch.bifurcations)]
+    values = [*branch.parameter, *(b.parameter for b in branch.bifurcations)]
+    if isinstance(scene_at, scenefile.SceneAt):
+        scenes, parameter_path = scene_at.document, scene_at.path
+    else:
+        scenes, parameter_path = [scenefile.document(o.scene) for o in orbits], None
+    counts = np.array([len(o.events.time) for o in orbits])
+    meta = {"format": FORMAT, "kind": "branch", "scenes": scenes,
+            "parameter_path": parameter_path, "name": branch.name, "ended": branch.ended,
+            "periods": branch.periods, "points": len(branch), "kinds":
+                [b.kind for b in branch.bifurcations],
+            "event_counts": [o.events.counts for o in orbits]}
+    arrays = {"parameter": np.array(values, dtype=float),
+              "initial": np.array([o.state for o in orbits]),
+              "multipliers": np.array([o.multipliers for o in orbits]),
+              "monodromy": np.array([o.monodromy for o in orbits]),
+              "residual": np.array([o.residual for o in orbits]),
+              "scale": np.array([o.scale for o in orbits]),
+              "iterations": np.array([o.iterations for o in orbits]),
+              "singular": np.array([o.singular for o in orbits]),
+              "peak": np.array([o.peak for o in orbits]),
+              "mean_square": np.array([o.mean_square for o in orbits]),
+              "event_offsets": np.concatenate([[0], np.cumsum(counts)]),
+              "event_time": np.concatenate([o.events.time for o in orbits]),
+              "event_interface": np.concatenate([o.events.interface for o in orbits]),
+              "event_kind": np.concatenate([o.events.kind for o in orbits]),
+              "bifurcation_multiplier": np.array([b.multiplier for b in branch.bifurcations],
+                                                 dtype=complex),
+              "bifurcation_index": np.array([b.index for b in branch.bifurcations], dtype=int),
+              "bifurcation_bracket": np.array([b.bracket for b in branch.bifurcations],
+                                              dtype=float).reshape(-1, 2)}
+    return _save_npz(path, meta, arrays)
+
+
+def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
+    """Read a file written by ``save_branch`` back into an equal ``Branch``; ``laws`` as
+    for ``load_simulation``."""
     path = Path(path)
-    return load_sweep(path) if path.is_dir() else load_simulation(path, laws=laws)
+    meta, arrays = _load_npz(path, kind="branch")
+    _checked(path, meta, _BRANCH_HEADER)
+    points, kinds = meta["points"], meta["kinds"]
+    total = points + len(kinds)
+    values = _shape(path, arrays, "parameter", (total,), f"{total} orbits")
+    if meta["parameter_path"] is not None:
+        document = _scene(path, meta["scenes"], laws).document
+        scene_at = scenefile.SceneAt(document, meta["parameter_path"], laws=laws)
+        try:
+            scenes = [scene_at(value) for value in values]
+        except ValueError as error:
+            raise ResultsError(f"{path}: its scene at a saved parameter value cannot be "
+                               f"rebuilt ({_reason(error)})") from None
+    else:
+        if len(meta["scenes"]) != total:
+            raise ResultsError(f"{path}: {len(meta['scenes'])} scene documents for {total} "
+                               "orbits")
+        scenes = [_scene(path, document, laws).scene for document in meta["scenes"]]
+    n = len(scenes[0].blades)
+    initial = _shape(path, arrays, "initial", (total, 2 * n), f"{total} orbits × 2 n_blades")
+    offsets = _shape(path, arrays, "event_offsets", (total + 1,), "orbit starts in the log")
+    orbits = []
+    for k, scene in enumerate(scenes):
+        run = slice(int(offsets[k]), int(offsets[k + 1]))
+        events = EventLog(time=arrays["event_time"][run], interface=arrays["event_interface"][run],
+                          kind=arrays["event_kind"][run], counts=meta["event_counts"][k])
+        orbits.append(PeriodicOrbit(
+            scene=scene, initial=(initial[k, :n].copy(), initial[k, n:].copy()),
+            periods=meta["periods"], multipliers=arrays["multipliers"][k],
+            monodromy=arrays["monodromy"][k], residual=float(arrays["residual"][k]),
+            scale=float(arrays["scale"][k]), iterations=int(arrays["iterations"][k]),
+            events=events, peak=arrays["peak"][k], mean_square=arrays["mean_square"][k],
+            singular=int(arrays["singular"][k])))
+    bifurcations = tuple(
+        Bifurcation(kind=kind, parameter=float(values[points + j]), orbit=orbits[points + j],
+                    multiplier=complex(arrays["bifurcation_multiplier"][j]),
+                    index=int(arrays["bifurcation_index"][j]),
+                    bracket=tuple(float(b) for b in arrays["bifurcation_bracket"][j]))
+        for j, kind in enumerate(kinds))
+    return Branch(parameter=values[:points].copy(), orbits=tuple(orbits[:points]),
+                  bifurcations=bifurcations, periods=meta["periods"], name=meta["name"],
+                  ended=meta["ended"])
+
+
+def load(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation | Sweep | Branch:
+    """A simulation file, a branch file or a sweep folder, whichever ``path`` is (``laws``
+    as for ``load_simulation``)."""
+    path = Path(path)
+    if path.is_dir():
+        return load_sweep(path)
+    if _load_npz(path)[0].get("kind") == "branch":
+        return load_branch(path, laws=laws)
+    return load_simulation(path, laws=laws)

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shroudnet import results, scenefile, simulate, sweep
+from shroudnet import continuation, results, scenefile, simulate, sweep
 from shroudnet.cli import main
 from shroudnet.scenes import three_blade_paper
 
@@ -178,6 +178,49 @@ def test_command_line_run_sweep_and_plot(tmp_path, capsys):
     assert (folder / "bifurcation.png").exists() and (tmp_path / "out" / "paper.png").exists()
 
 
+def test_command_line_continue_saves_a_branch_that_loads_back_equal_and_redraws(tmp_path,
+                                                                               capsys):
+    """The forced response of the paper's scene file over 6000–6300 rpm, through the
+    torus bifurcation where period 1 becomes stable; the saved branch loads back with
+    every orbit, multiplier and switch it had, and its scene at each value."""
+    assert main(["continue", str(PAPER), "--param", "speed_rpm", "--from", "6000",
+                 "--to", "6300", "-o", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "followed speed_rpm from 6000 to 6300" in out and "torus" in out
+    saved = tmp_path / "paper_three_blade-continue-speed_rpm.npz"
+    figure = saved.with_suffix(".png")
+    assert figure.stat().st_size > 10_000
+    branch = results.load(saved)
+    document = scenefile.load(PAPER).document
+    expected = continuation(scenefile.SceneAt(document, "speed_rpm"), 6000.0, 6300.0,
+                            parameter="speed_rpm")
+    assert branch.parameter.tolist() == expected.parameter.tolist()
+    assert [b.kind for b in branch.bifurcations] == ["torus"]
+    for a, b in zip([*branch.orbits, *(x.orbit for x in branch.bifurcations)],
+                    [*expected.orbits, *(x.orbit for x in expected.bifurcations)]):
+        assert scenefile.document(a.scene) == scenefile.document(b.scene)
+        for name in ("multipliers", "monodromy", "peak", "mean_square", "state"):
+            np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+        assert a.event_sequence == b.event_sequence and a.events.counts == b.events.counts
+        assert (a.residual, a.scale, a.periods, a.singular) == \
+            (b.residual, b.scale, b.periods, b.singular)
+    assert (branch.name, branch.ended, branch.periods) == \
+        (expected.name, expected.ended, expected.periods)
+    assert branch.bifurcations[0].multiplier == expected.bifurcations[0].multiplier
+    figure.unlink()
+    assert main(["plot", str(saved)]) == 0
+    assert figure.stat().st_size > 10_000
+
+
+def test_a_branch_of_a_scene_made_in_python_saves_its_scenes_one_by_one(tmp_path):
+    branch = continuation(lambda q1: three_blade_paper(q1=q1, gap=1.0), 10.0, 20.0,
+                          max_points=4)
+    loaded = results.load(results.save_branch(tmp_path / "b.npz", branch))
+    assert [scenefile.document(o.scene) for o in loaded.orbits] == \
+        [scenefile.document(o.scene) for o in branch.orbits]
+    np.testing.assert_array_equal(loaded.amplitude("blade2"), branch.amplitude("blade2"))
+
+
 def test_command_line_errors_are_one_clear_line(tmp_path, capsys):
     name, path, message = next(broken_files(tmp_path))
     assert main(["run", str(path)]) == 2
@@ -187,7 +230,10 @@ def test_command_line_errors_are_one_clear_line(tmp_path, capsys):
     assert "nothing at interfaces.5; keys there: indices 0 to 1" in capsys.readouterr().err
     assert main(["sweep", str(scene), "--param", "speed_rpm", "--values", "fast"]) == 2
     assert "'fast' is neither a number nor START:STOP:COUNT" in capsys.readouterr().err
-    for command in ("run", "sweep", "plot", "bench"):
+    assert main(["continue", str(scene), "--param", "speed_rpm", "--from", "6000",
+                 "--to", "-1"]) == 2
+    assert "speed_rpm" in capsys.readouterr().err
+    for command in ("run", "sweep", "continue", "plot", "bench"):
         with pytest.raises(SystemExit) as done:
             main([command, "--help"])
         assert done.value.code == 0
