@@ -14,6 +14,10 @@
    all 2N (``monodromy``) against the plain run, for the paper's group and the 24-blade
    ring of ``examples/scenes``; and the time ``lyapunov`` takes to give the paper's
    chaotic exponent (γ1 = 8.8) to two digits.
+6. Steady states: milliseconds per periodic orbit (``periodic_orbit``) for the paper's
+   group and the 24-blade ring; the seconds a forced-response curve of about 300 orbits
+   across the paper's l = 2 resonance takes (``continuation``), against transient sweeps
+   up and down the same speeds.
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
 the kernel); nothing here is asserted, because timings depend on the machine.
@@ -36,13 +40,16 @@ from pathlib import Path
 import numpy as np
 
 from .baseline import solve_ivp_baseline
+from .continuation import continuation
 from .group import BladeGroup
 from .methods import Adaptive, FixedStep
+from .orbits import periodic_orbit
 from .progress import progress_callback
 from .scene import Scene
 from .scenes import three_blade_paper
 from . import scenefile
 from .simulate import simulate
+from .simulation import SimulationError
 from .stability import lyapunov
 from .sweep import default_workers, sweep
 
@@ -207,6 +214,36 @@ def chaotic_exponent(periods: int, repeats: int) -> tuple[float, object]:
                                         transient=300), repeats)
 
 
+def orbit_cost(scene, periods: int, repeats: int, **options) -> tuple[float, object]:
+    """Seconds for ``periodic_orbit`` from the state after 100 periods (median), and the
+    orbit."""
+    settled = simulate(scene, 100, samples_per_period=1, event_capacity=0)
+    guess = (settled.x[-1], settled.v[-1])
+    return median_time(lambda: periodic_orbit(scene, periods, guess=guess, **options),
+                       repeats)
+
+
+def speed_at(speed_rpm):
+    return three_blade_paper(speed_rpm=speed_rpm)
+
+
+def response_curve(max_step: float, max_points: int, repeats: int) -> tuple[float, object]:
+    """Seconds for the paper's forced response over 5800–7200 rpm (median), and the branch."""
+    return median_time(lambda: continuation(speed_at, 5800.0, 7200.0, max_step=max_step,
+                                            max_points=max_points), repeats)
+
+
+def transient_sweeps(values, transient: int, record: int) -> float:
+    """Seconds for sweeps of transients up and down ``values`` on one core, each point
+    starting from the last."""
+    options = {"transient": transient, "record": record, "continuation": True,
+               "workers": 1, "progress": False}
+    start = time.perf_counter()
+    sweep(speed_at, values, **options)
+    sweep(speed_at, values[::-1], **options)
+    return time.perf_counter() - start
+
+
 def worker_counts(cores: int) -> list[int]:
     counts = [1]
     while counts[-1] * 2 <= cores:
@@ -314,6 +351,37 @@ def main(argv=None) -> None:
         seconds, result = chaotic_exponent(periods, repeats)
         print(f"   γ1 = 8.8: λ_max = {result.largest:.3f} ± {result.error[0]:.3f} per period "
               f"from {periods} periods, {seconds:.2f} s")
+
+    print("\n6. Steady states, one core: ms per periodic orbit from a settled guess "
+          "(Newton steps)")
+    cases = {"paper group, γ1 = 1, period 1": (three_blade_paper(gamma1=1.0), 1, {}),
+             "paper group, γ1 = 3.5, period 3": (three_blade_paper(gamma1=3.5), 3, {})}
+    if RING.exists() and not args.quick:
+        cases["ring of 24 blades, period 1, to 1e-8"] = (scenefile.load(RING).scene, 1,
+                                                         {"tolerance": 1e-8})
+    for label, (scene, orbit_periods, options) in cases.items():
+        try:
+            seconds, orbit = orbit_cost(scene, orbit_periods, repeats, **options)
+        except SimulationError as error:
+            print(f"   {label}: no orbit ({error})")
+            continue
+        print(f"   {label}: {seconds * 1e3:.1f} ms ({orbit.iterations} steps), "
+              f"|μ|max = {abs(orbit.multipliers[0]):.4f}"
+              + (f", {orbit.singular} switches where the map is not differentiable"
+                 if orbit.singular else ""))
+    target = 30 if args.quick else 300
+    max_step = 0.0185 * 453 / target  # about ``target`` orbits over the range
+    response_curve(0.3, 20, 1)  # compile or load the kernels
+    seconds, branch = response_curve(max_step, 2 * target, repeats)
+    print(f"   forced response of the paper's group, 5800–7200 rpm: {len(branch)} orbits in "
+          f"{seconds:.2f} s ({seconds / len(branch) * 1e3:.1f} ms per orbit), "
+          f"bifurcations: " + ", ".join(f"{b.kind} at {b.parameter:.1f} rpm"
+                                        for b in branch.bifurcations))
+    values = np.linspace(5800.0, 7200.0, len(branch))
+    swept = transient_sweeps(values, args.transient, 50)
+    print(f"   transient sweeps up and down the same {len(values)} speeds ({args.transient} + "
+          f"50 periods a point): {swept:.2f} s, {swept / seconds:.1f}x the continuation's "
+          "time, for the stable orbits only")
     print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 

@@ -122,6 +122,13 @@ class Branch:
         """Per point, the position of the blade with the largest peak."""
         return np.argmax(self.peak, axis=1)
 
+    def amplification(self, tuned: Branch | float) -> np.ndarray:
+        """Per point, the worst blade's peak over the tuned group's peak [m] (``tuned``: a
+        number, or the tuned group's branch, whose largest peak is taken): the
+        amplification factor of a mistuned group."""
+        reference = tuned.peak.max() if isinstance(tuned, Branch) else float(tuned)
+        return self.peak.max(axis=1) / reference
+
     def multipliers(self) -> np.ndarray:
         """Per point, the Floquet multipliers by descending modulus (complex)."""
         return np.array([orbit.multipliers for orbit in self.orbits])

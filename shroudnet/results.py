@@ -446,7 +446,7 @@ def _save_point(path: Path, point: SweepPoint, fingerprint: str | None = None) -
             "friction_loss_per_cycle": point.friction_loss_per_cycle,
             "classification": asdict(point.classification), **tag}
     arrays = {"poincare": point.poincare, "final_x": point.final_state[0],
-              "final_v": point.final_state[1]}
+              "final_v": point.final_state[1], "peak": point.peak}
     return _save_npz(path, meta, arrays)
 
 
@@ -471,6 +471,8 @@ def _read_point(path: Path) -> tuple[SweepPoint, str | None]:
     poincare = _shape(path, arrays, "poincare", (None, 2), "(x, v) per recorded period")
     final_x = _shape(path, arrays, "final_x", (None,), "one value per blade")
     final_v = _shape(path, arrays, "final_v", final_x.shape, "one value per blade")
+    peak = _shape(path, arrays, "peak", final_x.shape, "one value per blade") \
+        if "peak" in arrays else np.empty(0)  # files written before peaks were kept
     try:
         classification = Classification(**meta["classification"])
     except (TypeError, ValueError) as error:
@@ -479,7 +481,7 @@ def _read_point(path: Path) -> tuple[SweepPoint, str | None]:
                       energy_density=float(meta["energy_density"]),
                       friction_loss_per_cycle=float(meta["friction_loss_per_cycle"]),
                       classification=classification,
-                      final_state=(final_x, final_v)), fingerprint
+                      final_state=(final_x, final_v), peak=peak), fingerprint
 
 
 _MANIFEST_FIELDS = (

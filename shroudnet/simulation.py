@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Hashable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -143,6 +143,13 @@ class SweepPoint:
     classification: Classification
     final_state: tuple[np.ndarray, np.ndarray]  # (x, ẋ) at the end, to continue from
     error: str | None = None             # why the point failed; None for a computed point
+    #: max |x| [m] of each blade over the recorded periods (empty: failed, or not kept)
+    peak: np.ndarray = field(default_factory=lambda: np.empty(0))
+
+    @property
+    def worst_blade(self) -> int | None:
+        """The position of the blade with the largest peak (None where none is kept)."""
+        return int(np.argmax(self.peak)) if len(self.peak) else None
 
     @property
     def failed(self) -> bool:
@@ -204,6 +211,18 @@ class Sweep:
         return tuple(SweepFailure(parameter=self.parameter, index=index, value=point.value,
                                   message=point.error)
                      for index, point in enumerate(self.points) if point.failed)
+
+    def peaks(self) -> np.ndarray:
+        """max |x| [m] of every blade at every point (points × blades; NaN where a point
+        failed or kept none)."""
+        width = max((len(p.peak) for p in self.points), default=0)
+        return np.array([p.peak if len(p.peak) == width else np.full(width, np.nan)
+                         for p in self.points]).reshape(len(self.points), width)
+
+    def amplification(self, tuned: float) -> np.ndarray:
+        """Per point, the worst blade's peak over ``tuned`` [m], the tuned group's peak:
+        the amplification factor of a mistuned group."""
+        return np.nanmax(self.peaks(), axis=1) / tuned
 
     def diagram(self, coordinate: int = 0) -> tuple[np.ndarray, np.ndarray]:
         """(parameter values, Poincaré coordinates) flattened for a scatter plot.

@@ -99,7 +99,8 @@ def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient
                       friction_loss_per_cycle=friction_loss_per_cycle(sim, skip=0),
                       classification=classify(sim, blade, skip=0, tolerance=tolerance,
                                               exponent=exponent),
-                      final_state=(sim.x[-1].copy(), sim.v[-1].copy()))
+                      final_state=(sim.x[-1].copy(), sim.v[-1].copy()),
+                      peak=np.abs(sim.x).max(axis=0))
 
 
 def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,

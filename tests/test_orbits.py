@@ -246,3 +246,27 @@ def test_continuation_refuses_a_bifurcation_it_cannot_start_from():
     with pytest.raises(ValueError, match="period-doubling"):
         continuation(lambda q: three_blade_paper(q1=q), 10.0, 20.0,
                      from_bifurcation=branch)
+
+
+def test_sweeps_and_branches_give_every_blades_peak_and_the_worst_blade():
+    """Without contact, the linear forced response: each blade's peak q1/|k − mω² + icω|,
+    from the orbits exactly and from a transient's samples to their spacing."""
+    def at(rpm):
+        return three_blade_paper(speed_rpm=rpm, gap=1.0)
+    branch = continuation(at, 6000.0, 6100.0, max_points=3)
+    values = branch.parameter
+    points = sweep(at, values, transient=300, record=20, workers=1, progress=False).points
+    for value, orbit, point in zip(values, branch.orbits, points):
+        a = orbit.scene.arrays
+        omega = a.excitation_frequency
+        exact = 50.0 / np.abs(a.stiffness - a.mass * omega**2 + 1j * a.damping * omega)
+        np.testing.assert_allclose(orbit.peak, exact, rtol=1e-6)
+        sampled = 1.0 - math.cos(math.pi / 50)  # 50 samples a period
+        assert np.all(point.peak <= exact * (1 + 1e-7))
+        assert np.all(point.peak >= exact * (1 - sampled))
+        assert point.worst_blade in (0, 1, 2)
+    np.testing.assert_array_equal(branch.worst_blade(), np.argmax(branch.peak, axis=1))
+    assert branch.amplification(branch).max() == pytest.approx(1.0)
+    result = sweep(at, values, transient=300, record=20, workers=1, progress=False)
+    np.testing.assert_allclose(result.amplification(branch.peak.max()),
+                               result.peaks().max(axis=1) / branch.peak.max())
