@@ -26,7 +26,7 @@ from shroudnet import (Adaptive, Blade, BladeGroup, Excitation, Interface, Scene
 from shroudnet.engine.generate import kernel_scene, load_kernel
 from shroudnet.scenes import three_blade_paper
 from tests.groups import states
-from tests.test_physics_references import BLADE, IDLE, facing_pads
+from tests.test_physics_references import BLADE, IDLE, IDLE_BLADE, facing_pads
 
 #: The trajectories the differences are taken of: as exact as the integrator goes.
 EXACT = Adaptive(rtol=1e-12)
@@ -274,6 +274,79 @@ def test_monodromy_agrees_with_differences_of_the_trajectory(case):
     matrix = monodromy(scene, 1, initial=(y[:n], y[n:]), method=EXACT)
     reference = differenced_monodromy(scene, 1, y, scale)
     assert scaled_error(matrix, reference, scale) <= AGREEMENT
+
+
+def gripped_ring(preload):
+    """Four blades in a ring (stiffnesses 1, 1.1, 1.2, 1.3 × 10⁵ N/m), each interface pressed
+    by ``preload`` [N] with Stribeck friction, forced with phases 0, 0.5, 1, 1.5 rad; then
+    the ``IDLE`` blades of the shared kernel."""
+    grip = Interface(gap=0.0, angle=0.5, normal=ConstantLoad(force=preload),
+                     friction=Stribeck(mu_static=0.6, mu_kinetic=0.4, stribeck_velocity=0.05))
+    names = [f"b{k}" for k in range(4)]
+    group = BladeGroup()
+    for k, name in enumerate(names):
+        group.add_blade(name, Blade(mass=0.1, damping=2.0, stiffness=1e5 * (1 + 0.1 * k)))
+    for left, right in zip(names, names[1:] + names[:1]):
+        group.connect(left, right, grip)
+    for k, interface in enumerate(IDLE):
+        group.add_blade(f"idle{k}", IDLE_BLADE).add_fixed(f"pad{k}")
+        group.connect(f"idle{k}", f"pad{k}", interface)
+    phases = [0.5 * k for k in range(4)] + [0.0] * len(IDLE)
+    return Scene(group=group, excitation=Excitation(engine_order=1, amplitudes=(0.0, 20.0),
+                                                    phases=phases), speed_rpm=6000.0)
+
+
+def stick_manifold(scene, y):
+    """Directions of the state space a start y may move in and keep its stuck interfaces
+    stuck: every displacement, and the common velocity of each stick cluster of the ring
+    (interfaces whose two blades move alike). The idle blades' velocities are left out:
+    one is stuck to its pad."""
+    a = scene.arrays
+    n = len(y) // 2
+    v = y[n:]
+    cluster = list(range(4))
+    for e in range(4):
+        if v[a.left[e]] == v[a.right[e]]:
+            low, high = sorted((cluster[a.left[e]], cluster[a.right[e]]))
+            cluster = [low if c == high else c for c in cluster]
+    directions = list(np.eye(2 * n)[:n])
+    for c in sorted(set(cluster)):
+        d = np.zeros(2 * n)
+        d[[n + i for i in range(4) if cluster[i] == c]] = 1.0
+        directions.append(d)
+    return directions
+
+
+@pytest.mark.parametrize(("preload", "stuck", "together"), [
+    (400.0, [0, 1, 2, 3], 0),   # the ring stuck all period: one cluster closing on itself
+    (20.0, [0, 1, 2, 3], 0),    # stuck at the start; it breaks open and sticks again
+    (12.0, [0, 2], 2),          # two clusters; interfaces 1 and 3 join them and reverse together
+])
+def test_monodromy_of_a_stuck_ring_agrees_with_differences_along_its_stick_clusters(
+        preload, stuck, together):
+    """A stuck start depends on its start only along its stick clusters (the relative
+    velocities of stuck interfaces are projected away), so the differences are taken in
+    those directions only. Interfaces that join the same two clusters switch at the same
+    instant by construction: one switching surface, one saltation, not a refusal."""
+    scene = gripped_ring(preload)
+    y = settled_state(scene, 60)
+    n = len(y) // 2
+    assert [e for e in range(4) if y[n + scene.arrays.left[e]] == y[n + scene.arrays.right[e]]] \
+        == stuck
+    times = simulate(scene, 1, method=EXACT, samples_per_period=1,
+                     initial=np.split(y, 2)).events.time
+    assert np.sum(np.diff(times) == 0.0) == together
+    matrix = monodromy(scene, 1, initial=np.split(y, 2), method=EXACT)
+    scale = state_scale(y)
+    scale[scale == 0.0] = 1.0
+    for direction in stick_manifold(scene, y):
+        step = DIFFERENCE * np.abs(scale * direction).max()
+        values = {k: stroboscopic_map(scene, 1, y + k * step * direction)
+                  for k in (-2, -1, 1, 2)}
+        differenced = (8.0 * (values[1] - values[-1]) - (values[2] - values[-2])) / (12.0 * step)
+        exact = matrix @ direction
+        assert np.abs((exact - differenced) / scale).max() \
+            <= AGREEMENT * np.abs(exact / scale).max()
 
 
 def test_interfaces_switching_at_the_same_instant_are_reported():

@@ -31,7 +31,9 @@ the relative velocity, so S kills that direction: a stick phase gives a zero Flo
 multiplier. Where nᵀ f⁻ + ∂g/∂t vanishes (a grazing switch, the flow tangent to the
 surface) S is unbounded; such a switch, and one where several guards cross at once (where
 the trajectory does not depend differentiably on its start), are counted as singular,
-never silently multiplied in.
+never silently multiplied in. Several guards that are one surface on the stick clusters
+(two interfaces joining the same two clusters reverse together) make one switch, with one
+saltation matrix.
 """
 
 import math
@@ -214,6 +216,43 @@ def project_rates(values, s, topology, rows):
     for i in range(n):
         c = topology.labels[i]
         values[n + i] = 0.0 if topology.grounded[c] else rows[c] / topology.masses[c]
+
+
+@njit_step
+def reduce_to_clusters(normal, s, topology, rows):
+    """n ← Pᵀ n: a guard's gradient as it acts on tangents of the stick clusters of
+    ``topology`` (P as ``project_rates``): each velocity component becomes its cluster's
+    sum times the blade's share of the cluster's mass, 0 in a grounded cluster."""
+    n = len(s.mass)
+    for c in range(len(topology.grounded)):
+        rows[c] = 0.0
+    for i in range(n):
+        rows[topology.labels[i]] += normal[n + i]
+    for i in range(n):
+        c = topology.labels[i]
+        normal[n + i] = 0.0 if topology.grounded[c] else \
+            rows[c] * s.mass[i] / topology.masses[c]
+
+
+#: Two guards are one surface when their gradients (with ∂/∂t) are parallel to this
+#: relative tolerance.
+SAME_SURFACE = 1e-9
+
+
+@njit_step
+def same_surface(first, first_rate, second, second_rate):
+    """Whether (second, second_rate) = c (first, first_rate) for some c ≠ 0, to
+    ``SAME_SURFACE``: two guards that vanish together on one surface of (y, t)."""
+    dot = first_rate * second_rate
+    first_size = first_rate * first_rate
+    second_size = second_rate * second_rate
+    for r in range(len(first)):
+        dot += first[r] * second[r]
+        first_size += first[r] * first[r]
+        second_size += second[r] * second[r]
+    if first_size == 0.0 or second_size == 0.0:
+        return False
+    return dot * dot >= (1.0 - SAME_SURFACE) * first_size * second_size
 
 
 @njit_step

@@ -61,7 +61,8 @@ from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches
 from shroudnet.engine.tableau import DIP_POINTS, DP_A, DP_B, DP_C, DP_E, DP_STAGES
 from shroudnet.engine.tangent import (apply_saltation, breakaway_normal, candidate_tangent,
                                       commit_tangent, contact_normal, last_stage_tangent,
-                                      linearised_acceleration, project_tangent, slip_normal,
+                                      linearised_acceleration, project_tangent,
+                                      reduce_to_clusters, same_surface, slip_normal,
                                       stage_tangent, tangent_error)
 
 #: Relative slack on |f| ≤ μ_s N for an interface whose slip velocity has just reached zero,
@@ -410,6 +411,32 @@ def guard_gradient(t, e, state, topology, s, w):
     return breakaway_normal(e, sign, t, s, state.modes, topology, g)
 
 
+@njit_step_merged
+def crossings_coincide(t, crossing, time_rate, state, topology, s, w):
+    """Whether every guard crossed together with ``crossing``'s (gradient in
+    g.guard_normal, ∂/∂t ``time_rate``) is the same surface on the stick clusters, as for
+    two interfaces that join the same two clusters: then the switch is one. g.f_plus
+    holds the first gradient meanwhile (it is free until the switch is resolved);
+    g.guard_normal and g.f_minus are left as ``guard_gradient`` of ``crossing`` made them."""
+    g = state.tangent
+    first = g.f_plus
+    for r in range(len(first)):
+        first[r] = g.guard_normal[r]
+    reduce_to_clusters(first, s, topology, g.rows)
+    coincide = True
+    for e in range(len(state.modes)):
+        if e == crossing or not (crossed(state.contact_before[e], w.contact[e])
+                                 or crossed(state.motion_before[e], w.motion[e])):
+            continue
+        rate = guard_gradient(t, e, state, topology, s, w)
+        reduce_to_clusters(g.guard_normal, s, topology, g.rows)
+        if not same_surface(first, time_rate, g.guard_normal, rate):
+            coincide = False
+            break
+    guard_gradient(t, crossing, state, topology, s, w)
+    return coincide
+
+
 # ---- detect: switches hidden inside a step ------------------------------------------------
 
 @njit_step_merged
@@ -611,7 +638,8 @@ def switch(t, state, topology, s, w, events, controls):
     several = False
     if tangent:
         time_rate = guard_gradient(t, crossing, state, topology, s, w)
-        several = count_crossed(state, w) > 1
+        several = count_crossed(state, w) > 1 and not crossings_coincide(
+            t, crossing, time_rate, state, topology, s, w)
     status, lost, topology, culprit = resolve(t, state, topology, s, w)
     state.energy[PROJECTION] += lost
     last = log_switches(t, old, state.modes, events)
