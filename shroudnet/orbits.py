@@ -49,9 +49,9 @@ class PeriodicOrbit:
     [m] (velocities count divided by l Ω). ``events``: the switches over one orbit, in
     order. ``peak``: each blade's max |x| [m] over the orbit; ``mean_square``: each blade's
     E_ρ = ∫x² dt / (k T_e) [m²] (paper §3.2). ``singular``: switches on the orbit where the
-    map is not differentiable (grazing, several interfaces at once): its multipliers are
-    then those of the side the orbit's own switch sequence takes. ``history``: one orbit's
-    ``Simulation``, when asked for.
+    map is not differentiable (grazing, or several independent interfaces at once); where
+    there are any, the monodromy matrix and the multipliers are not to be trusted, and
+    neither is ``stable``. ``history``: one orbit's ``Simulation``, when asked for.
     """
 
     scene: Scene
@@ -70,7 +70,7 @@ class PeriodicOrbit:
 
     @property
     def stable(self) -> bool:
-        """Whether every multiplier lies inside the unit circle."""
+        """Whether every multiplier lies inside the unit circle (see ``singular``)."""
         return bool(np.abs(self.multipliers[0]) < UNIT_CIRCLE)
 
     @property
