@@ -37,11 +37,13 @@ from .stability import TANGENT_METHOD, stroboscopic_step
 #: Bifurcation kinds.
 KINDS = ("fold", "period-doubling", "torus", "grazing", "stick-slip")
 
-#: Arclength steps (scaled units, see the module's docstring): the first by default, the
-#: largest and the smallest before the branch is given up.
-FIRST_STEP = 0.01
+#: Arclength steps (scaled units, see the module's docstring): the largest by default,
+#: the first as a fraction of the largest, and the smallest before the branch is given up.
 LARGEST_STEP = 1.0
+FIRST_STEP = 0.1
 SMALLEST_STEP = 1e-7
+#: How far from a period doubling the doubled branch is first sought (scaled units).
+DOUBLED_OFFSET = 1e-3
 #: Corrector iterations before a step is halved; a step that converged in at most
 #: ``EASY_ITERATIONS`` grows by ``GROWTH``.
 CORRECTOR_ITERATIONS = 7
@@ -161,7 +163,7 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
     step, max_step : float, optional
         The first and the largest arclength step, in the scaled units: about the
         fraction of [start, stop] a step crosses where the orbit changes little. Default
-        ``FIRST_STEP`` and ``LARGEST_STEP``.
+        ``LARGEST_STEP``, and ``FIRST_STEP`` times it for the first.
     max_points : int
         The most points of the branch.
     method, tolerance, event_tolerance, transient
@@ -194,7 +196,7 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
     max_points = check_int("continuation", "max_points", max_points, low=2)
     max_step = check_real("continuation", "max_step", max_step, low=SMALLEST_STEP,
                           high=1.0)
-    step = max_step / 10 if step is None else check_real(
+    step = FIRST_STEP * max_step if step is None else check_real(
         "continuation", "step", step, low=SMALLEST_STEP, high=max_step)
     if from_bifurcation is not None and (not isinstance(from_bifurcation, Bifurcation)
                                          or from_bifurcation.kind != "period-doubling"):
@@ -359,7 +361,11 @@ class Solver:
                 target = self.high if new.parameter > self.high else self.low
                 if target != point.parameter:
                     fraction = (target - point.parameter) / (new.parameter - point.parameter)
-                    end = self.at_parameter(point, target, fraction * sigma)
+                    try:
+                        end = self.at_parameter(point, target, fraction * sigma)
+                    except SimulationError:
+                        sigma /= 2.0  # land on the end from nearer
+                        continue
                     new = end.with_tangent(self.tangent(end, point.tangent))
                     self.record(points, orbits, bifurcations, new)
                 ended = f"reached p = {target:.9g}"
@@ -455,7 +461,7 @@ class Solver:
         away /= np.linalg.norm(away)
         periods = 2 * orbit.periods
         base = np.append(w * orbit.state, bifurcation.parameter / self.span)
-        size = 1e-3
+        size = DOUBLED_OFFSET
         point, _ = self.correct(base + size * away, away, away @ base + size, periods,
                                 reach=1.0)
         return point, point.u - base

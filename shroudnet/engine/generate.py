@@ -39,9 +39,11 @@ _ENGINE = Path(__file__).parent
 _TEMPLATE = _ENGINE / "template.py"
 
 #: About how long compiling one driver of a kernel takes on a 2-core machine [s], with
-#: the engine's own compiled code in the cache, and without (the very first run).
-COMPILE_ESTIMATE = 40
-FIRST_COMPILE_ESTIMATE = 60
+#: the engine's own compiled code in the cache, and without (the very first run); and
+#: the driver with its tangent flow.
+COMPILE_ESTIMATE = 60
+FIRST_COMPILE_ESTIMATE = 70
+TANGENT_COMPILE_ESTIMATE = 80
 
 
 def announce(message: str) -> None:
@@ -264,7 +266,8 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
     if not driver.overloads:
         if not _cached(driver):
             module = sys.modules[driver.py_func.__module__]
-            seconds = COMPILE_ESTIMATE if _cached(regroup) else FIRST_COMPILE_ESTIMATE
+            seconds = TANGENT_COMPILE_ESTIMATE if module.TANGENT else \
+                COMPILE_ESTIMATE if _cached(regroup) else FIRST_COMPILE_ESTIMATE
             flow = " with its tangent flow" if module.TANGENT else ""
             announce(f"shroudnet: compiling the {driver.__name__.removeprefix('run_')} "
                      f"integrator{flow} for {' + '.join(module.LAWS) or 'no laws'} (once for "
