@@ -471,8 +471,9 @@ def _read_point(path: Path) -> tuple[SweepPoint, str | None]:
     poincare = _shape(path, arrays, "poincare", (None, 2), "(x, v) per recorded period")
     final_x = _shape(path, arrays, "final_x", (None,), "one value per blade")
     final_v = _shape(path, arrays, "final_v", final_x.shape, "one value per blade")
-    peak = _shape(path, arrays, "peak", final_x.shape, "one value per blade") \
-        if "peak" in arrays else np.empty(0)  # files written before peaks were kept
+    peak = np.empty(0)  # none kept, or a file written before peaks were kept
+    if "peak" in arrays and arrays["peak"].size:
+        peak = _shape(path, arrays, "peak", final_x.shape, "one value per blade")
     try:
         classification = Classification(**meta["classification"])
     except (TypeError, ValueError) as error:

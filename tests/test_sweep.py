@@ -51,6 +51,7 @@ def assert_same_points(sweep_a, sweep_b):
         np.testing.assert_equal(asdict(a.classification), asdict(b.classification))
         for state_a, state_b in zip(a.final_state, b.final_state):
             np.testing.assert_array_equal(state_a, state_b)
+        np.testing.assert_array_equal(a.peak, b.peak)
 
 
 @pytest.fixture(scope="module")
