@@ -488,25 +488,28 @@ def _stick_phases(orbit):
             if switch[1] in ("sticking", "breakaway")}
 
 
+def _real(multipliers):
+    """Which multipliers are real (to ``REAL`` of their modulus)."""
+    return np.abs(multipliers.imag) <= REAL * np.maximum(np.abs(multipliers), 1e-300)
+
+
 def critical(kind, multipliers):
-    """The multiplier that crosses the unit circle at a bifurcation of ``kind``."""
-    real = np.abs(multipliers.imag) <= REAL * np.maximum(np.abs(multipliers), 1e-300)
-    if kind == "fold":
-        pool = multipliers[real]
-        return complex(pool[np.argmin(np.abs(pool - 1.0))]) if len(pool) else complex(1.0)
-    if kind == "period-doubling":
-        pool = multipliers[real]
-        return complex(pool[np.argmin(np.abs(pool + 1.0))])
-    pool = multipliers[~real]
-    return complex(pool[np.argmin(np.abs(np.abs(pool) - 1.0))])
+    """The multiplier that crosses the unit circle at a bifurcation of ``kind``: the real
+    one nearest +1 (fold) or −1 (period doubling), or the complex one nearest the circle."""
+    real = _real(multipliers)
+    if kind == "torus":
+        pool = multipliers[~real]
+        return complex(pool[np.argmin(np.abs(np.abs(pool) - 1.0))])
+    target = 1.0 if kind == "fold" else -1.0
+    pool = multipliers[real]
+    return complex(pool[np.argmin(np.abs(pool - target))]) if len(pool) else complex(target)
 
 
 def _counts(multipliers):
-    """(real > 1, real < −1, complex outside the unit circle)."""
-    real = np.abs(multipliers.imag) <= REAL * np.maximum(np.abs(multipliers), 1e-300)
+    """(real multipliers below −1, complex ones outside the unit circle)."""
+    real = _real(multipliers)
     outside = np.abs(multipliers) > UNIT_CIRCLE
-    return (int(np.sum(real & outside & (multipliers.real > 0))),
-            int(np.sum(real & outside & (multipliers.real < 0))),
+    return (int(np.sum(real & outside & (multipliers.real < 0))),
             int(np.sum(~real & outside)))
 
 
@@ -518,10 +521,11 @@ def smooth_changes(a, orbit_a, b, orbit_b):
     changes = []
     if a.tangent[-1] * b.tangent[-1] < 0.0:
         changes.append(("fold", lambda point: point.tangent[-1]))
-    before, after = _counts(orbit_a.multipliers), _counts(orbit_b.multipliers)
-    if before[1] != after[1]:
+    (doubling_a, torus_a), (doubling_b, torus_b) = (_counts(orbit_a.multipliers),
+                                                    _counts(orbit_b.multipliers))
+    if doubling_a != doubling_b:
         changes.append(("period-doubling", _doubling_test))
-    if before[2] != after[2]:
+    if torus_a != torus_b:
         changes.append(("torus", _torus_test))
     return changes
 
