@@ -3,11 +3,14 @@
 Vocabulary, used the same way throughout:
 
 blade
-    A node of the group: a lumped mass m on a spring k(Ω) with damping c, displaced by x
-    in the tangential direction. A fixed node (disc, casing, damper platform) has x ≡ 0.
+    A node of the group: a lumped mass m on a spring k(Ω) ≥ 0 with damping c, displaced by
+    x in the tangential direction. A fixed node (disc, casing, damper platform) has x ≡ 0.
 interface
     An edge of the group: two shrouds that may touch, with a gap Δ, a contact angle α, a
     normal-contact law and a friction law (``contact_laws``).
+coupling
+    An edge of the group that is structure, not contact: a linear spring and damper between
+    two nodes (a disc sector, a blade's root and tip).
 gap, penetration
     Δ is the clearance at rest (negative: preload); penetration δ = (x_i − x_j − Δ) sin α.
 normal force, friction force
@@ -45,6 +48,7 @@ from .blade import Southwell as Southwell
 from .continuation import Bifurcation as Bifurcation
 from .continuation import Branch as Branch
 from .continuation import continuation as continuation
+from .coupling import Coupling as Coupling
 from .engine.clusters import stick_clusters as stick_clusters
 from .engine.assembly import Assembly as Assembly
 from .engine.assembly import assemble as assemble

@@ -49,6 +49,8 @@ class _Model:
             if a.right[e] >= 0:
                 self.incidence[e, a.right[e]] = -1.0
         self.harmonics = np.arange(1, len(a.amplitudes))
+        self.stiffness = a.stiffness_matrix()  # blades' springs and couplings
+        self.damping = a.damping_matrix()
         self.set_modes(np.zeros(m, dtype=np.int64))
 
     def set_modes(self, modes):
@@ -101,7 +103,7 @@ class _Model:
         # Q_i = s_i [q0 + Σ_n q_n sin(n (lΩ t + φ_i))]: harmonic n carries n φ_i.
         angle = self.harmonics[:, None] * (a.excitation_frequency * t + a.phases[None, :])
         q = a.excitation_scale * (a.amplitudes[0] + a.amplitudes[1:] @ np.sin(angle))
-        resultant = q - a.damping * v - a.stiffness * x - self.incidence.T @ load
+        resultant = q - self.damping @ v - self.stiffness @ x - self.incidence.T @ load
         acceleration = self.share.T @ (self.sums @ resultant)
         if len(self.stuck):
             imbalance = (resultant - a.mass * acceleration

@@ -113,7 +113,10 @@ class Blade:
     damping : float
         Viscous damping c ≥ 0 [N·s/m].
     stiffness : float, optional
-        k > 0 [N/m], independent of speed.
+        k ≥ 0 [N/m], independent of speed. k = 0 is a node with no spring to ground (an
+        under-platform damper, a blade held by a disc through couplings): the scene then
+        needs couplings or interfaces that hold it (``Scene`` refuses a group that could
+        drift away as a rigid body).
     frequency : float or frequency model, optional
         f_d1 [Hz] (a float is a constant frequency) or a model of f_d1(Ω):
         ``ConstantFrequency``, ``Southwell`` or ``FrequencyTable``; then k = m (2π f_d1)².
@@ -137,7 +140,7 @@ class Blade:
             raise ValueError("Blade needs exactly one of stiffness= [N/m] and frequency= "
                              "[Hz or a frequency model]")
         if self.stiffness is not None:
-            check_real("Blade", "stiffness", self.stiffness, low=0.0, low_open=True, unit="N/m")
+            check_real("Blade", "stiffness", self.stiffness, low=0.0, unit="N/m")
         elif not isinstance(self.frequency, ConstantFrequency | Southwell | FrequencyTable):
             check_real("Blade", "frequency", self.frequency, low=0.0, low_open=True, unit="Hz")
             object.__setattr__(self, "frequency", ConstantFrequency(hz=self.frequency))

@@ -1,10 +1,13 @@
-"""A blade group: blades are nodes, shroud interfaces are edges of a networkx graph.
+"""A blade group: blades are nodes, shroud interfaces and couplings are edges of a networkx
+graph.
 
 Every node carries the attribute ``blade`` (a ``Blade``, or None for a fixed node: the disc,
-the casing, a damper platform, whose displacement is x ≡ 0). Every edge carries
-``interface`` (an ``Interface``), ``left`` (the name of its left blade i, so that
-u = x_left − x_right; see ``shroudnet.interface``) and ``index`` (its position in the
-interface arrays: the order of ``connect`` calls).
+the casing, a damper platform, whose displacement is x ≡ 0). Every edge carries either
+``interface`` (an ``Interface``: a contact that opens, slips and sticks) or ``coupling`` (a
+``Coupling``: a linear spring and damper that never does), ``left`` (the name of its left
+node i, so that u = x_left − x_right; see ``shroudnet.interface``) and ``index`` (its
+position in the interface or the coupling arrays: the order of its kind's ``connect``
+calls).
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ import networkx as nx
 from contact_laws import check_int
 
 from .blade import Blade
+from .coupling import Coupling
 from .interface import Interface
 
 
@@ -50,11 +54,13 @@ class BladeGroup:
         self._add_node(name, None)
         return self
 
-    def connect(self, left: Hashable, right: Hashable, interface: Interface) -> BladeGroup:
-        """Add the interface between ``left`` (blade i) and ``right`` (blade j)."""
-        if not isinstance(interface, Interface):
-            raise TypeError(f"connect({left!r}, {right!r}, ...) needs a shroudnet.Interface, "
-                            f"got {interface!r}")
+    def connect(self, left: Hashable, right: Hashable,
+                edge: Interface | Coupling) -> BladeGroup:
+        """Join ``left`` (node i) and ``right`` (node j) by an ``Interface`` (a contact) or a
+        ``Coupling`` (a spring and damper); returns the group."""
+        if not isinstance(edge, Interface | Coupling):
+            raise TypeError(f"connect({left!r}, {right!r}, ...) needs a shroudnet.Interface "
+                            f"or a shroudnet.Coupling, got {edge!r}")
         for end in (left, right):
             if end not in self.graph:
                 raise ValueError(f"connect({left!r}, {right!r}): unknown node {end!r}; "
@@ -65,8 +71,9 @@ class BladeGroup:
             raise ValueError(f"connect({left!r}, {right!r}): these nodes are already connected")
         if self.graph.nodes[left]["blade"] is None and self.graph.nodes[right]["blade"] is None:
             raise ValueError(f"connect({left!r}, {right!r}): both nodes are fixed")
-        self.graph.add_edge(left, right, interface=interface, left=left,
-                            index=self.graph.number_of_edges())
+        kind = "interface" if isinstance(edge, Interface) else "coupling"
+        index = sum(1 for *_, data in self.graph.edges(data=True) if kind in data)
+        self.graph.add_edge(left, right, left=left, index=index, **{kind: edge})
         return self
 
     def _add_node(self, name: Hashable, blade: Blade | None) -> None:
@@ -77,9 +84,10 @@ class BladeGroup:
     # -- presets ----------------------------------------------------------------------------
 
     @classmethod
-    def chain(cls, n: int, blade: Blade | Sequence[Blade], interface: Interface,
+    def chain(cls, n: int, blade: Blade | Sequence[Blade], interface: Interface | Coupling,
               names: Sequence[Hashable] | None = None) -> BladeGroup:
-        """A packet of ``n ≥ 1`` blades in a row, each joined to the next by ``interface``.
+        """A packet of ``n ≥ 1`` blades in a row, each joined to the next by ``interface``
+        (or a ``Coupling``).
 
         The blades are named ``"blade1"`` … ``"bladen"`` as in the paper, unless ``names``
         gives n names; their positions are 0 … n−1 in that order. ``blade`` is one blade
@@ -94,14 +102,56 @@ class BladeGroup:
         return group
 
     @classmethod
-    def ring(cls, n: int, blade: Blade | Sequence[Blade], interface: Interface,
+    def ring(cls, n: int, blade: Blade | Sequence[Blade], interface: Interface | Coupling,
              names: Sequence[Hashable] | None = None) -> BladeGroup:
         """A full shrouded disc of ``n ≥ 3`` blades: a ``chain`` whose last blade is joined
-        to its first."""
+        to its first. Its ``sectors`` is n."""
         if check_int("BladeGroup.ring", "n", n) < 3:
             raise ValueError(f"ring needs n >= 3 blades, got {n!r}")
         group = cls.chain(n, blade, interface, names)
         group.connect(group.blades[-1], group.blades[0], interface)
+        group.graph.graph["sectors"] = n
+        return group
+
+    @classmethod
+    def bladed_disc(cls, sectors: int, disc: Blade, disc_coupling: Coupling,
+                    blade: Sequence[Blade], blade_couplings: Sequence[Coupling],
+                    shroud: Interface | None = None) -> BladeGroup:
+        """A bladed disc of ``sectors ≥ 3`` identical sectors, each a disc node and a blade
+        of one or more nodes, root to tip::
+
+            ── disc_s ── disc_coupling ── disc_s+1 ──        (round the ring)
+                 │ blade_couplings[0]
+               blade_s_1 ── blade_couplings[1] ── blade_s_2 … (the tip: the last node)
+                 tip_s ═══ shroud ═══ tip_s+1                 (interfaces, if given)
+
+        ``blade`` gives the blade's nodes root to tip, typically with no spring to ground
+        (stiffness 0: they are held by the couplings), ``blade_couplings`` the couplings
+        disc–root and node to node (one per blade node). Nodes are named
+        ``disc{s}`` and ``blade{s}_{k}`` (s from 1, k root = 1) and added sector by
+        sector, so that ``sectors`` reads the positions (``linear_modes``).
+        """
+        sectors = check_int("BladeGroup.bladed_disc", "sectors", sectors, low=3)
+        blade, blade_couplings = list(blade), list(blade_couplings)
+        if not blade or len(blade_couplings) != len(blade):
+            raise ValueError(f"bladed_disc needs one coupling per blade node (disc–root, "
+                             f"then node to node): got {len(blade)} nodes and "
+                             f"{len(blade_couplings)} couplings")
+        group = cls()
+        tips = []
+        for s in range(1, sectors + 1):
+            chain = [f"disc{s}"] + [f"blade{s}_{k}" for k in range(1, len(blade) + 1)]
+            group.add_blade(chain[0], disc)
+            for name, node in zip(chain[1:], blade):
+                group.add_blade(name, node)
+            for (inner, outer), coupling in zip(zip(chain, chain[1:]), blade_couplings):
+                group.connect(inner, outer, coupling)
+            tips.append(chain[-1])
+        for s in range(sectors):
+            group.connect(f"disc{s + 1}", f"disc{(s + 1) % sectors + 1}", disc_coupling)
+            if shroud is not None:
+                group.connect(tips[s], tips[(s + 1) % sectors], shroud)
+        group.graph.graph["sectors"] = sectors
         return group
 
     # -- reading ----------------------------------------------------------------------------
@@ -118,9 +168,18 @@ class BladeGroup:
 
     @property
     def interfaces(self) -> list[tuple[Hashable, Hashable, Interface]]:
-        """(left, right, interface) for every edge, in the order they were connected."""
-        edges = sorted(self.graph.edges(data=True), key=lambda edge: edge[2]["index"])
-        return [(data["left"], b if data["left"] == a else a, data["interface"])
+        """(left, right, interface) for every interface, in the order they were connected."""
+        return self._edges("interface")
+
+    @property
+    def couplings(self) -> list[tuple[Hashable, Hashable, Coupling]]:
+        """(left, right, coupling) for every coupling, in the order they were connected."""
+        return self._edges("coupling")
+
+    def _edges(self, kind):
+        edges = sorted((edge for edge in self.graph.edges(data=True) if kind in edge[2]),
+                       key=lambda edge: edge[2]["index"])
+        return [(data["left"], b if data["left"] == a else a, data[kind])
                 for a, b, data in edges]
 
     def blade(self, name: Hashable) -> Blade:
@@ -131,8 +190,9 @@ class BladeGroup:
         return blade
 
     def __repr__(self) -> str:
+        couplings = f", {len(self.couplings)} couplings" if self.couplings else ""
         return (f"BladeGroup({len(self.blades)} blades, {len(self.fixed)} fixed nodes, "
-                f"{self.graph.number_of_edges()} interfaces)")
+                f"{len(self.interfaces)} interfaces{couplings})")
 
 
 def _names(n, names, preset):

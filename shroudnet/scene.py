@@ -51,6 +51,10 @@ class SceneArrays:
     excitation_scale: np.ndarray   # s_i [-], the factor on Q(t) of each blade
     harmonic_amplitudes: np.ndarray  # s_i q_n [N]: row n (0 … n_harmonics), column i
     harmonic_phases: np.ndarray      # n φ_i [rad]: row n, column i (paper §2, see excitation)
+    coupling_left: np.ndarray       # node i of each coupling (int64, −1 = fixed)
+    coupling_right: np.ndarray      # node j of each coupling (int64, −1 = fixed)
+    coupling_stiffness: np.ndarray  # k_c [N/m]
+    coupling_damping: np.ndarray    # c_c [N·s/m]
 
     @property
     def n_blades(self) -> int:
@@ -61,10 +65,42 @@ class SceneArrays:
         return len(self.gap)
 
     @property
+    def n_couplings(self) -> int:
+        return len(self.coupling_stiffness)
+
+    def stiffness_matrix(self) -> np.ndarray:
+        """K [N/m] of M ẍ + C ẋ + K x: the blades' own springs k_i on the diagonal, plus
+        each coupling's k_c on the rows and columns of its two nodes (a coupling to a fixed
+        node adds to the diagonal only). Interfaces are not in it."""
+        return _linear_matrix(self.stiffness, self.coupling_left, self.coupling_right,
+                              self.coupling_stiffness)
+
+    def damping_matrix(self) -> np.ndarray:
+        """C [N·s/m]: the blades' c_i and the couplings' c_c, as ``stiffness_matrix``."""
+        return _linear_matrix(self.damping, self.coupling_left, self.coupling_right,
+                              self.coupling_damping)
+
+    @property
     def static_deflection(self) -> float:
-        """x_s = max_i s_i Σ|q_n| / k_i [m]: the largest blade deflection under the whole
-        excitation applied statically."""
-        return float((np.abs(self.harmonic_amplitudes).sum(axis=0) / self.stiffness).max())
+        """x_s = max_i |x_i| with K x = s Σ|q_n| [m]: the largest blade deflection under the
+        whole excitation applied statically, interfaces open (the least-squares solution
+        where a node is held by interfaces alone). Without couplings x_i = s_i Σ|q_n| / k_i."""
+        load = np.abs(self.harmonic_amplitudes).sum(axis=0)
+        stiffness = self.stiffness_matrix()
+        if self.n_couplings == 0 and np.all(self.stiffness > 0.0):
+            return float((load / self.stiffness).max())
+        return float(np.abs(np.linalg.lstsq(stiffness, load, rcond=None)[0]).max())
+
+
+def _linear_matrix(own, left, right, values):
+    matrix = np.diag(np.asarray(own, dtype=float))
+    for i, j, value in zip(left, right, values):
+        for a, b in ((i, j), (j, i)):
+            if a >= 0:
+                matrix[a, a] += value
+                if b >= 0:
+                    matrix[a, b] -= value
+    return matrix
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -108,6 +144,7 @@ class Scene:
         self.excitation.blade_phases(n_blades)  # raises if the count or the ND is wrong
         for name in frozen.blades:
             frozen.blade(name).stiffness_at(self.speed_rpm)  # raises outside a table's range
+        check_held(frozen, self.speed_rpm)
         check_user_laws(self)
 
     @property
@@ -143,6 +180,7 @@ class Scene:
         position = {name: i for i, name in enumerate(names)}
         blades = [self.group.blade(name) for name in names]
         edges = self.group.interfaces
+        couplings = self.group.couplings
         interfaces = [interface for _, _, interface in edges]
         angle = np.array([i.angle for i in interfaces], dtype=float)
         cos_angle = np.where(angle == math.pi / 2, 0.0, np.cos(angle))
@@ -173,7 +211,35 @@ class Scene:
             harmonic_amplitudes=np.array(self.excitation.amplitudes, dtype=float)[:, None]
             * scale[None, :],
             harmonic_phases=self.excitation.harmonic_phases(len(names)).astype(float),
+            coupling_left=np.array([position.get(a, -1) for a, _, _ in couplings],
+                                   dtype=np.int64),
+            coupling_right=np.array([position.get(b, -1) for _, b, _ in couplings],
+                                    dtype=np.int64),
+            coupling_stiffness=np.array([c.stiffness for *_, c in couplings], dtype=float),
+            coupling_damping=np.array([c.damping for *_, c in couplings], dtype=float),
         )
+
+
+def check_held(group: BladeGroup, speed_rpm: float) -> None:
+    """Raise unless every blade is held against rigid-body drift.
+
+    A set of blades joined by interfaces and couplings is held when one of them has a
+    spring to ground (k > 0 at ``speed_rpm``) or one of its edges reaches a fixed node.
+    Blades with k = 0 are allowed where something holds them; a set that nothing holds
+    would drift away under a mean force, and has no static equilibrium.
+    """
+    moving = group.graph.subgraph(group.blades)
+    for part in nx.connected_components(moving):
+        held = any(group.blade(name).stiffness_at(speed_rpm) > 0.0 for name in part) or any(
+            group.graph.nodes[other]["blade"] is None
+            for name in part for other in group.graph.neighbors(name))
+        if not held:
+            names = sorted(map(str, part))
+            raise ValueError(
+                f"blades {names} float free: none has a spring to ground (stiffness > 0) and "
+                "none is joined to a fixed node, so they can drift away together as a rigid "
+                "body. Give one of them a stiffness, or connect one to a fixed node "
+                "(add_fixed) by a Coupling or an Interface.")
 
 
 # ---- the contract of user laws, probed --------------------------------------------------
@@ -212,9 +278,7 @@ def check_user_laws(scene: Scene) -> None:
     """
     group = scene.group
     excitation = scene.excitation
-    deflection = max(group.blade(name).excitation_scale * sum(map(abs, excitation.amplitudes))
-                     / group.blade(name).stiffness_at(scene.speed_rpm)
-                     for name in group.blades)
+    deflection = scene.arrays.static_deflection
     length = max([abs(interface.gap) for _, _, interface in group.interfaces] + [deflection])
     if not length > 0.0:
         length = PROBE_FALLBACK_LENGTH

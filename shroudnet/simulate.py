@@ -265,7 +265,7 @@ def _contact_energy(law, penetration):
 def _stored(scene, x, v, modes):
     a = scene.arrays
     kinetic = 0.5 * np.sum(a.mass * v * v)
-    strain = 0.5 * np.sum(a.stiffness * x * x)
+    strain = 0.5 * x @ a.stiffness_matrix() @ x
     penetration, rate, slip = (np.empty(a.n_interfaces) for _ in range(3))
     interface_kinematics(x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle,
                          penetration, rate, slip)

@@ -16,8 +16,8 @@ from ..scene import Scene, SceneArrays
 from .clusters import cluster_labels
 from .codes import OPEN, SLIP_POSITIVE, STICK, Mode
 from .detect import event_guards
-from .dynamics import (cluster_accelerations, excitation_forces, interface_kinematics,
-                       resultant_forces, static_friction)
+from .dynamics import (cluster_accelerations, coupling_forces, excitation_forces,
+                       interface_kinematics, resultant_forces, static_friction)
 from .regroup import cluster_mass, static_friction_operator
 
 
@@ -95,6 +95,8 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     resultant = np.empty(n)
     resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right, interface_force, stuck,
                      resultant)
+    coupling_forces(x, v, a.coupling_left, a.coupling_right, a.coupling_stiffness,
+                    a.coupling_damping, resultant)
     acceleration = np.empty(n)
     cluster_accelerations(resultant, labels, grounded,
                           cluster_mass(a.mass, labels, len(grounded)), np.empty(n), acceleration)

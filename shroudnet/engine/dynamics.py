@@ -5,6 +5,10 @@ right blade j) and the interface forces F_e = N_e sin α_e + f_e cos α_e,
 
     M ẍ + C ẋ + K x = Q(t) − Bᵀ F.                                   (paper eq. 7)
 
+K and C hold the blades' own springs and dampers (diagonal) and the couplings' (between
+nodes; ``coupling_forces``); a coupling inside a stick cluster cancels in its sum, as a stuck
+interface does, and loads the static friction like any other force on a blade.
+
 Open interfaces carry no force. A slipping interface carries its normal law's N and
 f = μ(|v|) N sgn(v) (eqs. 2–6). Stuck interfaces join their blades into stick clusters that
 move as one body: a cluster's acceleration is the sum of the forces on its blades (stuck
@@ -105,6 +109,23 @@ def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, 
             resultant[left[e]] -= interface_force[e]
         if right[e] >= 0:
             resultant[right[e]] += interface_force[e]
+
+
+@njit_step_callable
+def coupling_forces(x, v, left, right, stiffness, damping, resultant):
+    """Subtract each coupling's F = k_c (x_i − x_j) + c_c (ẋ_i − ẋ_j) from node i's resultant
+    and add it to node j's [N]; returns the power its dampers dissipate, Σ c_c (ẋ_i − ẋ_j)²
+    [W]. A fixed node (−1) has x = 0."""
+    power = 0.0
+    for c in range(len(left)):
+        u, du = relative_motion(x, v, left, right, c)
+        force = stiffness[c] * u + damping[c] * du
+        power += damping[c] * du * du
+        if left[c] >= 0:
+            resultant[left[c]] -= force
+        if right[c] >= 0:
+            resultant[right[c]] += force
+    return power
 
 
 @njit_step_callable

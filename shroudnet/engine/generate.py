@@ -68,7 +68,7 @@ def _law_classes(arrays) -> tuple[list[type], list[type]]:
 
 def flags(arrays, tangent: bool = False) -> dict[str, bool]:
     """The effects a kernel keeps, from the law classes alone (never from their values),
-    and whether it integrates the tangent flow.
+    whether the scene has couplings, and whether it integrates the tangent flow.
 
     Contact events need a normal law that opens; stick needs an exact friction law;
     regularisation a smoothed one.
@@ -79,6 +79,7 @@ def flags(arrays, tangent: bool = False) -> dict[str, bool]:
         "HAS_STICK": any(f.exact is f for f in frictions),
         "HAS_FRICTION": bool(frictions),
         "HAS_REGULARISED": any(f.exact is not f for f in frictions),
+        "HAS_COUPLINGS": arrays.n_couplings > 0,
         "HAS_TANGENT": tangent,
     }
 
@@ -302,7 +303,9 @@ def kernel_scene(scene: Scene) -> KernelScene:
         friction_params=_rows(a.friction_laws),
         amplitudes=a.harmonic_amplitudes, cos_phase=np.cos(a.harmonic_phases),
         sin_phase=np.sin(a.harmonic_phases),
-        excitation_frequency=float(a.excitation_frequency))
+        excitation_frequency=float(a.excitation_frequency),
+        coupling_left=a.coupling_left, coupling_right=a.coupling_right,
+        coupling_stiffness=a.coupling_stiffness, coupling_damping=a.coupling_damping)
 
 
 def _rows(laws) -> np.ndarray:

@@ -16,12 +16,14 @@ from .tableau import DP_STAGES
 #: A scene as the compiled loop sees it: the ``SceneArrays`` fields that are numbers, plus
 #: each interface's law index (into the kernel's list of law classes, −1 for none) and its
 #: parameters, padded into one row per interface; the excitation as tables with one row per
-#: harmonic n and one column per blade: amplitudes s_i q_n, and cos n φ_i and sin n φ_i.
+#: harmonic n and one column per blade: amplitudes s_i q_n, and cos n φ_i and sin n φ_i;
+#: and the couplings' nodes, stiffnesses and dampers.
 KernelScene = namedtuple("KernelScene", [
     "mass", "damping", "stiffness", "left", "right", "gap", "sin_angle", "cos_angle",
     "opens", "can_stick", "static_mu", "regularisation", "normal_kind", "normal_params",
     "friction_kind", "friction_params", "amplitudes", "cos_phase", "sin_phase",
-    "excitation_frequency",
+    "excitation_frequency", "coupling_left", "coupling_right", "coupling_stiffness",
+    "coupling_damping",
 ])
 
 #: What a run is asked for, in seconds: the first sample time, the sample spacing and the

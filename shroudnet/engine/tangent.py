@@ -59,6 +59,19 @@ def linearised_acceleration(direction, s, modes, topology, g):
     change = g.resultant_change
     for i in range(n):
         change[i] = -s.stiffness[i] * direction[i] - s.damping[i] * direction[n + i]
+    for c in range(len(s.coupling_left)):
+        left, right = s.coupling_left[c], s.coupling_right[c]
+        force = 0.0
+        if left >= 0:
+            force += s.coupling_stiffness[c] * direction[left] \
+                + s.coupling_damping[c] * direction[n + left]
+        if right >= 0:
+            force -= s.coupling_stiffness[c] * direction[right] \
+                + s.coupling_damping[c] * direction[n + right]
+        if left >= 0:
+            change[left] -= force
+        if right >= 0:
+            change[right] += force
     for e in range(len(modes)):
         if modes[e] == OPEN or topology.stuck[e]:
             continue

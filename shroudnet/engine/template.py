@@ -11,8 +11,9 @@ The header defines, for the law classes of a scene:
   central differences of the law where it gives none;
 - the effect flags ``HAS_CONTACT_EVENTS``, ``HAS_STICK``, ``HAS_FRICTION`` and
   ``HAS_REGULARISED``, compile-time constants that remove the code of effects the laws
-  rule out, and ``HAS_TANGENT``, set only in the kernels of runs that integrate the
-  tangent flow (``tangent``), so that other runs carry none of its code.
+  rule out, ``HAS_COUPLINGS``, set only for scenes with couplings, and ``HAS_TANGENT``,
+  set only in the kernels of runs that integrate the tangent flow (``tangent``), so that
+  other runs carry none of its code.
 
 A step reads as five phases, each with a module of its own for what does not need the
 laws: advance (one Runge–Kutta step with fixed modes; ``advance``), detect (a guard
@@ -49,9 +50,9 @@ from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guar
                                      count_crossed, crossed, event_guards, first_crossed,
                                      graze_dense, kinematic_dip, mark_grazing, predicted_low,
                                      stuck_crossed)
-from shroudnet.engine.dynamics import (cluster_accelerations, excitation_forces,
-                                       interface_kinematics, resultant_forces,
-                                       static_friction)
+from shroudnet.engine.dynamics import (cluster_accelerations, coupling_forces,
+                                       excitation_forces, interface_kinematics,
+                                       resultant_forces, static_friction)
 from shroudnet.engine.locate import bracket_after, bracket_start, next_trial
 from shroudnet.engine.records import (finish, last_sample, new_events, new_output, new_state,
                                       new_tangent, new_work)
@@ -130,6 +131,8 @@ def forces_at(s, modes, w):
 def derivative(t, x, v, modes, topology, s, w, acceleration):
     """ẍ into ``acceleration``; returns the powers (excitation, damping, friction, contact) [W].
 
+    Damping power is the blades' dampers' and the couplings'.
+
     Contact power is Σ N δ̇, friction power Σ f v over sliding interfaces: with stuck
     interfaces carrying no relative motion, d(kinetic + spring energy)/dt is
     excitation − damping − friction − contact.
@@ -143,10 +146,13 @@ def derivative(t, x, v, modes, topology, s, w, acceleration):
                       w.q)
     resultant_forces(x, v, w.q, s.damping, s.stiffness, s.left, s.right, w.force,
                      topology.stuck, w.resultant)
+    damping = 0.0
+    if HAS_COUPLINGS:
+        damping = coupling_forces(x, v, s.coupling_left, s.coupling_right,
+                                  s.coupling_stiffness, s.coupling_damping, w.resultant)
     cluster_accelerations(w.resultant, topology.labels, topology.grounded, topology.masses,
                           w.scratch, acceleration)
     excitation = 0.0
-    damping = 0.0
     for i in range(len(x)):
         excitation += w.q[i] * v[i]
         damping += s.damping[i] * v[i] * v[i]
