@@ -59,6 +59,10 @@ from .excitation import ExplicitPhases as ExplicitPhases
 from .excitation import TravellingWave as TravellingWave
 from .group import BladeGroup as BladeGroup
 from .interface import Interface as Interface
+from .linear import GroupCampbell as GroupCampbell
+from .linear import LinearModes as LinearModes
+from .linear import group_campbell as group_campbell
+from .linear import linear_modes as linear_modes
 from .methods import Accuracy as Accuracy
 from .methods import Adaptive as Adaptive
 from .methods import FixedStep as FixedStep

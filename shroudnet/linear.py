@@ -1,0 +1,254 @@
+"""The group's linear modes, in the two limits of its interfaces, and by nodal diameter.
+
+Before any nonlinear run a designer reads the natural frequencies of the group with its
+interfaces in the two limits the friction moves between:
+
+- ``contacts="open"``: every interface carries nothing; the blades' own springs and the
+  couplings hold the group (``SceneArrays.stiffness_matrix``);
+- ``contacts="stuck"``: every interface that can stick (an exact friction law and a face
+  with a component along x, α < π/2) is stuck, as the loop's stick clusters are: its two
+  nodes move as one body, and a node stuck to a fixed node does not move. An interface
+  that cannot stick but is closed at rest (penetration −Δ sin α > 0, or a law that never
+  opens) slides freely and pushes by its normal law only: a spring of its contact
+  stiffness ∂N/∂δ sin²α along x, the law's gradient at the rest penetration.
+
+The modes solve K φ = ω² M φ (``scipy.linalg.eigh``), mass-normalised (φᵀ M φ = 1).
+
+A ring of N identical sectors (``BladeGroup.ring``, ``BladeGroup.bladed_disc``, or
+``sectors=N`` for a group whose nodes were added sector by sector) has modes that are
+travelling or standing waves round the ring: mode φ has nodal diameter ND when its
+sectors' amplitudes vary round the ring as cos(2π ND s/N + θ). ND is read from each
+shape by a discrete Fourier transform over the sectors (harmonics k and N − k are one
+ND), so that mistuned rings are labelled by their dominant diameter. An engine order l
+excites the diameter ND = min(l mod N, N − l mod N) only (``excited_diameter``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.linalg
+from scipy.optimize import brentq
+
+from contact_laws import check_int
+
+from .engine.clusters import cluster_labels
+from .scene import Scene
+
+CONTACTS = ("open", "stuck")
+
+
+@dataclass(frozen=True, eq=False)
+class LinearModes:
+    """Natural frequencies and mode shapes of a scene's linearised group.
+
+    ``frequencies`` [Hz] ascending; ``shapes`` one mass-normalised column per mode, rows
+    by blade position [1/√kg]; ``nodal_diameters`` the ND of each mode for a group of
+    ``sectors`` identical sectors, else None.
+    """
+
+    frequencies: np.ndarray
+    shapes: np.ndarray
+    nodal_diameters: np.ndarray | None
+    contacts: str
+    sectors: int | None
+    speed_rpm: float
+
+    def of_diameter(self, nodal_diameter: int) -> np.ndarray:
+        """The frequencies [Hz] of the modes of one nodal diameter, ascending."""
+        if self.nodal_diameters is None:
+            raise ValueError("these modes are not sorted by nodal diameter: the group has "
+                             "no sectors (give linear_modes(..., sectors=N))")
+        return self.frequencies[self.nodal_diameters == nodal_diameter]
+
+    def families(self) -> np.ndarray:
+        """Frequencies [Hz] as a table: row = nodal diameter 0 … N//2, column = family
+        (the k-th lowest mode of that diameter); NaN where a diameter has fewer modes.
+
+        A diameter 0 < ND < N/2 has its modes in pairs (two standing waves, or a forward
+        and a backward travelling one, of one frequency when tuned): each pair is one
+        entry, at its mean frequency.
+        """
+        if not self.sectors:
+            raise ValueError("these modes are not sorted by nodal diameter: the group has "
+                             "no sectors (give linear_modes(..., sectors=N))")
+        rows = []
+        for nd in range(self.sectors // 2 + 1):
+            row = self.of_diameter(nd)
+            if 0 < nd < self.sectors / 2:
+                row = row[: len(row) // 2 * 2].reshape(-1, 2).mean(axis=1)
+            rows.append(row)
+        width = max((len(r) for r in rows), default=0)
+        table = np.full((len(rows), width), np.nan)
+        for nd, row in enumerate(rows):
+            table[nd, :len(row)] = row
+        return table
+
+
+def linear_modes(scene: Scene, contacts: str = "open", *,
+                 sectors: int | None = None) -> LinearModes:
+    """The natural frequencies and mode shapes of ``scene``'s group at its speed.
+
+    Parameters
+    ----------
+    scene : Scene
+    contacts : "open" or "stuck"
+        The limit of the interfaces (module docstring).
+    sectors : int, optional
+        N, for a ring of N identical sectors whose nodes are numbered sector by sector
+        (position p in sector p // (n_blades/N)); taken from the group where it was built
+        as a ring or a bladed disc.
+
+    Examples
+    --------
+    >>> from shroudnet import (AntiPhase, Blade, BladeGroup, Coupling, Excitation, Scene,
+    ...                        linear_modes)
+    >>> ring = BladeGroup.ring(6, Blade(mass=0.1, damping=0.0, stiffness=1e5),
+    ...                        Coupling(stiffness=2e4))
+    >>> scene = Scene(group=ring, excitation=Excitation(engine_order=1,
+    ...               amplitudes=(0.0, 1.0), phases=AntiPhase()), speed_rpm=6000.0)
+    >>> modes = linear_modes(scene)
+    >>> [int(nd) for nd in modes.nodal_diameters]
+    [0, 1, 1, 2, 2, 3]
+    """
+    if contacts not in CONTACTS:
+        raise ValueError(f"linear_modes: contacts must be one of {CONTACTS}, got {contacts!r}")
+    a = scene.arrays
+    n = a.n_blades
+    if sectors is None:
+        sectors = scene.group.graph.graph.get("sectors")
+    if sectors is not None:
+        sectors = check_int("linear_modes", "sectors", sectors, low=1)
+        if n % sectors:
+            raise ValueError(f"linear_modes: sectors = {sectors} does not divide the "
+                             f"{n} blades into equal sectors")
+    stiffness = a.stiffness_matrix()
+    stuck = np.zeros(a.n_interfaces, dtype=bool)
+    if contacts == "stuck":
+        stuck = a.can_stick.copy()
+        stiffness = stiffness + _sliding_contacts(a, ~stuck)
+    basis = _cluster_basis(n, a.left, a.right, stuck)
+    mass = basis.T @ np.diag(a.mass) @ basis
+    if basis.shape[1] == 0:
+        raise ValueError("linear_modes: with every interface stuck nothing moves: every "
+                         "blade is stuck to a fixed node")
+    eigenvalues, vectors = scipy.linalg.eigh(basis.T @ stiffness @ basis, mass)
+    frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
+    shapes = basis @ vectors
+    diameters = None if sectors is None else nodal_diameters(shapes, sectors)
+    return LinearModes(frequencies=frequencies, shapes=shapes, nodal_diameters=diameters,
+                       contacts=contacts, sectors=sectors, speed_rpm=scene.speed_rpm)
+
+
+def _sliding_contacts(a, candidates) -> np.ndarray:
+    """The stiffness ∂N/∂δ sin²α [N/m] along x of each interface in ``candidates`` that is
+    closed at rest, on the rows and columns of its nodes."""
+    springs = np.zeros(a.n_interfaces)
+    for e in np.flatnonzero(candidates):
+        penetration = -a.gap[e] * a.sin_angle[e]
+        if penetration > 0.0 or not a.opens[e]:
+            gradient = a.normal_laws[e].gradient(max(penetration, 0.0), 0.0)[0]
+            springs[e] = gradient * a.sin_angle[e] ** 2
+    matrix = np.zeros((a.n_blades, a.n_blades))
+    for i, j, k in zip(a.left, a.right, springs):
+        for p, q in ((i, j), (j, i)):
+            if p >= 0:
+                matrix[p, p] += k
+                if q >= 0:
+                    matrix[p, q] -= k
+    return matrix
+
+
+def _cluster_basis(n, left, right, stuck) -> np.ndarray:
+    """T (n × free clusters): x = T z moves each stick cluster as one body; clusters stuck
+    to a fixed node have no column."""
+    labels, grounded = cluster_labels(n, left, right, stuck)
+    free = np.flatnonzero(~grounded)
+    return (labels[:, None] == free[None, :]).astype(float)
+
+
+def nodal_diameters(shapes, sectors: int) -> np.ndarray:
+    """The nodal diameter of each column of ``shapes`` (rows by position, sector-major):
+    the harmonic k of the sector-to-sector DFT holding most of the shape's square, with k
+    and N − k one diameter min(k, N − k)."""
+    n, count = shapes.shape
+    per_sector = n // sectors
+    grid = shapes.reshape(sectors, per_sector, count)
+    power = (np.abs(np.fft.fft(grid, axis=0)) ** 2).sum(axis=1)  # (harmonic, mode)
+    folded = np.zeros((sectors // 2 + 1, count))
+    for k in range(sectors):
+        folded[min(k, sectors - k)] += power[k]
+    return np.argmax(folded, axis=0)
+
+
+def excited_diameter(engine_order: int, sectors: int) -> int:
+    """The one nodal diameter an engine order l excites on N sectors: l mod N, folded to
+    min(r, N − r)."""
+    remainder = engine_order % sectors
+    return min(remainder, sectors - remainder)
+
+
+@dataclass(frozen=True, eq=False)
+class GroupCampbell:
+    """The group's natural frequencies over speed and the engine orders that cross them.
+
+    ``frequencies[k, m]`` [Hz] is mode m (ascending) at ``speeds_rpm[k]``, and
+    ``nodal_diameters[k, m]`` its ND (None without sectors). ``crossings`` lists
+    (engine order, mode number, speed [rpm], frequency [Hz]) where f_m = l Ω/60 on a mode
+    the engine order excites (its ND, for a ring).
+    """
+
+    speeds_rpm: np.ndarray
+    frequencies: np.ndarray
+    nodal_diameters: np.ndarray | None
+    engine_orders: tuple[int, ...]
+    crossings: tuple[tuple[int, int, float, float], ...]
+    contacts: str
+
+    def line(self, engine_order: int) -> np.ndarray:
+        """The excitation frequency l Ω/60 [Hz] of an engine order at each speed."""
+        return engine_order * self.speeds_rpm / 60.0
+
+
+def group_campbell(scene: Scene, speeds_rpm: Sequence[float],
+                   engine_orders: Sequence[int] = (1, 2, 3, 4), *, contacts: str = "open",
+                   sectors: int | None = None) -> GroupCampbell:
+    """The Campbell diagram of the group: ``linear_modes`` at each of the increasing
+    ``speeds_rpm``, with the crossings of the engine-order lines located by Brent's method
+    on the modes each order excites."""
+    speeds = np.asarray(speeds_rpm, dtype=float)
+    if speeds.ndim != 1 or len(speeds) < 2 or np.any(np.diff(speeds) <= 0):
+        raise ValueError("group_campbell needs at least two increasing speeds_rpm")
+    orders = tuple(check_int("group_campbell", "engine_orders", order, low=1)
+                   for order in engine_orders)
+
+    def modes_at(speed):
+        return linear_modes(replace(scene, speed_rpm=float(speed)), contacts,
+                            sectors=sectors)
+
+    table = [modes_at(speed) for speed in speeds]
+    frequencies = np.array([m.frequencies for m in table])
+    ring = table[0].sectors
+    diameters = None if ring is None else np.array([m.nodal_diameters for m in table])
+    crossings = []
+    for order in orders:
+        for mode in range(frequencies.shape[1]):
+            if ring is not None and excited_diameter(order, ring) not in diameters[:, mode]:
+                continue
+            gap = frequencies[:, mode] - order * speeds / 60.0
+            for k in range(len(speeds) - 1):
+                if gap[k] * gap[k + 1] > 0.0 or gap[k + 1] == 0.0:
+                    continue
+
+                def detuning(speed, mode=mode, order=order):
+                    return modes_at(speed).frequencies[mode] - order * speed / 60.0
+
+                speed = speeds[k] if gap[k] == 0.0 else brentq(
+                    detuning, speeds[k], speeds[k + 1], xtol=1e-6)
+                if ring is not None and modes_at(speed).nodal_diameters[mode] \
+                        != excited_diameter(order, ring):
+                    continue
+                crossings.append((order, mode, float(speed), float(order * speed / 60.0)))
+    return GroupCampbell(speeds, frequencies, diameters, orders, tuple(crossings), contacts)
