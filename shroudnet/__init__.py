@@ -64,6 +64,8 @@ from .linear import LinearModes as LinearModes
 from .linear import group_campbell as group_campbell
 from .linear import linear_modes as linear_modes
 from .methods import Accuracy as Accuracy
+from .mistuning import MistuningStudy as MistuningStudy
+from .mistuning import mistuning_study as mistuning_study
 from .methods import Adaptive as Adaptive
 from .methods import FixedStep as FixedStep
 from .methods import ZenoGuard as ZenoGuard
