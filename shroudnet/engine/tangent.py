@@ -38,8 +38,10 @@ saltation matrix.
 
 import math
 
+import numpy as np
+
 from .codes import OPEN
-from .compiled import njit_inlined, njit_step
+from .compiled import njit_inlined, njit_internal, njit_step
 from .dynamics import cluster_accelerations, excitation_rate
 from .tableau import DP_A, DP_B, DP_E, DP_STAGES
 
@@ -391,6 +393,90 @@ def apply_saltation(t, e, time_rate, several, s, topology, g):
         project_rates(g.f_minus, s, topology, g.rows)
         for r in range(2 * n):
             matrix[r, column] = g.f_minus[r] + jump[r] * along * along_scale
+
+
+#: Relative size of n_jᵀ Δf_k against n_jᵀ f⁻ below which the saltations of two
+#: interfaces that switch at the same instant commute (``apply_saltations``).
+COMMUTING = 1e-9
+
+
+@njit_internal
+def apply_saltations(t, crossings, normals, rates, s, topology, g):
+    """Φ ← S Φ for switches of several interfaces at one instant, where that is well
+    defined; returns whether it was (else nothing is changed).
+
+    Interface k's switch changes the vector field on its support only: the blades of the
+    clusters (those after the switch) its two ends belong to. Where the supports are
+    disjoint, the jump f⁺ − P f⁻ vanishes outside them, and no guard sees another's jump
+    (|n_jᵀ Δf_k| ≤ ``COMMUTING`` |n_jᵀ f⁻ + ∂g_j/∂t| for j ≠ k), the saltation matrices
+    S_k = P + Δf_k n_kᵀ / ġ_k commute: in whichever order a perturbation makes the
+    interfaces switch, S Φ = P Φ + Σ_k Δf_k (n_kᵀ Φ) / ġ_k. Such are interfaces far apart
+    on a ring, which its symmetry makes switch together. ``normals[k]`` and ``rates[k]``
+    are n_k and ġ_k of ``crossings[k]``; g.f_minus and g.f_plus hold f⁻ and f⁺. A grazing
+    one (``GRAZING_GAIN``) is counted in g.singular, as ``apply_saltation`` counts it.
+    """
+    n = len(s.mass)
+    count = len(crossings)
+    jump = g.direction
+    for r in range(2 * n):
+        jump[r] = g.f_minus[r]
+    project_rates(jump, s, topology, g.rows)
+    largest = 0.0
+    for r in range(2 * n):
+        jump[r] = g.f_plus[r] - jump[r]
+        largest = max(largest, abs(jump[r]))
+    owner = np.full(n, -1, dtype=np.int64)
+    for k in range(count):
+        e = crossings[k]
+        for i in range(n):
+            label = topology.labels[i]
+            if (s.left[e] >= 0 and topology.labels[s.left[e]] == label) or (
+                    s.right[e] >= 0 and topology.labels[s.right[e]] == label):
+                if owner[i] >= 0 and owner[i] != k:
+                    return False
+                owner[i] = k
+    for i in range(n):
+        if owner[i] < 0 and max(abs(jump[i]), abs(jump[n + i])) > 1e-12 * largest:
+            return False
+    for j in range(count):
+        for k in range(count):
+            if j == k:
+                continue
+            cross = 0.0
+            for i in range(n):
+                if owner[i] == k:
+                    cross += normals[j, i] * jump[i] + normals[j, n + i] * jump[n + i]
+            if abs(cross) > COMMUTING * abs(rates[j]):
+                return False
+    for k in range(count):
+        size = 0.0
+        by_position = 0.0
+        by_velocity = 0.0
+        for i in range(n):
+            if owner[i] == k:
+                size = max(size, abs(jump[n + i]))
+            by_position = max(by_position, abs(normals[k, i]))
+            by_velocity = max(by_velocity, abs(normals[k, n + i]))
+        if size * (by_position * time_scale(s) + by_velocity) > GRAZING_GAIN * abs(rates[k]):
+            if g.singular[0] == 0:
+                g.singular_time[0] = t
+                g.singular_interface[0] = crossings[k]
+            g.singular[0] += 1
+    along = np.zeros(count)
+    matrix = g.matrix
+    for column in range(matrix.shape[1]):
+        for k in range(count):
+            value = 0.0
+            for r in range(2 * n):
+                value += normals[k, r] * matrix[r, column]
+            along[k] = value / rates[k] if rates[k] != 0.0 else 0.0
+        for r in range(2 * n):
+            g.f_minus[r] = matrix[r, column]  # f⁻ is no longer needed: column scratch
+        project_rates(g.f_minus, s, topology, g.rows)
+        for r in range(2 * n):
+            k = owner[r % n]
+            matrix[r, column] = g.f_minus[r] + (jump[r] * along[k] if k >= 0 else 0.0)
+    return True
 
 
 @njit_step

@@ -44,8 +44,8 @@ from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N
                                     NO_PROGRESS, NOT_FINITE, OPEN, PROJECTION,
                                     SLIP_NEGATIVE, SLIP_POSITIVE, STALL_SIZE, STALL_STEPS,
                                     STALLED, STEP_TOO_SMALL, STICK, ZENO)
-from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_merged,
-                                       njit_step, njit_step_merged)
+from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_internal,
+                                       njit_merged, njit_step, njit_step_merged)
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard,
                                      count_crossed, crossed, event_guards, first_crossed,
                                      graze_dense, kinematic_dip, mark_grazing, predicted_low,
@@ -60,11 +60,11 @@ from shroudnet.engine.regroup import project_velocities, regroup, same_stuck
 from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches, piling_up,
                                       relative_acceleration)
 from shroudnet.engine.tableau import DIP_POINTS, DP_A, DP_B, DP_C, DP_E, DP_STAGES
-from shroudnet.engine.tangent import (apply_saltation, breakaway_normal, candidate_tangent,
-                                      commit_tangent, contact_normal, last_stage_tangent,
-                                      linearised_acceleration, project_tangent,
-                                      reduce_to_clusters, same_surface, slip_normal,
-                                      stage_tangent, tangent_error)
+from shroudnet.engine.tangent import (apply_saltation, apply_saltations, breakaway_normal,
+                                      candidate_tangent, commit_tangent, contact_normal,
+                                      last_stage_tangent, linearised_acceleration,
+                                      project_tangent, reduce_to_clusters, same_surface,
+                                      slip_normal, stage_tangent, tangent_error)
 
 #: Relative slack on |f| ≤ μ_s N for an interface whose slip velocity has just reached zero,
 #: so that rounding in its static friction does not release it at once. An interface
@@ -443,6 +443,30 @@ def crossings_coincide(t, crossing, time_rate, state, topology, s, w):
     return coincide
 
 
+@njit_internal
+def crossed_gradients(t, state, topology, s, w):
+    """Every interface whose guard crossed at t, the gradient n of its guard (one row
+    each) and its rate nᵀ f⁻ + ∂g/∂t (``guard_gradient``), for ``apply_saltations``."""
+    g = state.tangent
+    count = count_crossed(state, w)
+    crossings = np.empty(count, dtype=np.int64)
+    normals = np.empty((count, len(g.guard_normal)))
+    rates = np.empty(count)
+    k = 0
+    for e in range(len(state.modes)):
+        if not (crossed(state.contact_before[e], w.contact[e])
+                or crossed(state.motion_before[e], w.motion[e])):
+            continue
+        rate = guard_gradient(t, e, state, topology, s, w)
+        for r in range(len(g.guard_normal)):
+            normals[k, r] = g.guard_normal[r]
+            rate += g.guard_normal[r] * g.f_minus[r]
+        crossings[k] = e
+        rates[k] = rate
+        k += 1
+    return crossings, normals, rates
+
+
 # ---- detect: switches hidden inside a step ------------------------------------------------
 
 @njit_step_merged
@@ -642,10 +666,16 @@ def switch(t, state, topology, s, w, events, controls):
     tangent = HAS_TANGENT and state.tangent.matrix.shape[1] > 0 and crossing >= 0
     time_rate = 0.0
     several = False
+    crossings = np.empty(0, dtype=np.int64)
+    normals = np.empty((0, 0))
+    rates = np.empty(0)
     if tangent:
         time_rate = guard_gradient(t, crossing, state, topology, s, w)
         several = count_crossed(state, w) > 1 and not crossings_coincide(
             t, crossing, time_rate, state, topology, s, w)
+        if several:
+            crossings, normals, rates = crossed_gradients(t, state, topology, s, w)
+            guard_gradient(t, crossing, state, topology, s, w)
     status, lost, topology, culprit = resolve(t, state, topology, s, w)
     state.energy[PROJECTION] += lost
     last = log_switches(t, old, state.modes, events)
@@ -665,7 +695,8 @@ def switch(t, state, topology, s, w, events, controls):
         for i in range(len(state.x)):
             g.f_plus[i] = state.v[i]
             g.f_plus[len(state.x) + i] = w.a_start[i]
-        apply_saltation(t, crossing, time_rate, several, s, topology, g)
+        if not (several and apply_saltations(t, crossings, normals, rates, s, topology, g)):
+            apply_saltation(t, crossing, time_rate, several, s, topology, g)
     if status == FINISHED and not is_finite(state):
         status = NOT_FINITE
     return status, stop_interface, topology
