@@ -16,7 +16,7 @@ import numpy as np
 
 from contact_laws import FrictionLaw, NormalLaw, check_real
 
-from .excitation import EngineOrderWave, Excitation
+from .excitation import EngineOrderWave, Excitation, ExplicitPhases
 from .group import BladeGroup
 
 #: Below this |cos α| friction has no component along x: such an interface never sticks.
@@ -109,8 +109,10 @@ class Scene:
 
     The group is copied and frozen, so editing the original later does not change the scene.
     An ``EngineOrderWave`` phase pattern is replaced by the ``TravellingWave`` it stands for
-    on this group (ND = l mod N). Laws that are not built into ``contact_laws`` are probed
-    at construction (``check_user_laws``): a sampled check of their contract, not a proof.
+    on this group (ND = l mod N), or, on a group of N sectors of several nodes each
+    (``BladeGroup.bladed_disc``), by the phases 2π (l mod N) s/N of each node's sector s.
+    Laws that are not built into ``contact_laws`` are probed at construction
+    (``check_user_laws``): a sampled check of their contract, not a proof.
 
     Parameters
     ----------
@@ -138,7 +140,11 @@ class Scene:
         object.__setattr__(self, "group", frozen)
         n_blades = len(frozen.blades)
         if isinstance(self.excitation.phases, EngineOrderWave):
-            wave = self.excitation.phases.wave(n_blades, self.excitation.engine_order)
+            sectors = frozen.graph.graph.get("sectors", n_blades)
+            wave = self.excitation.phases.wave(sectors, self.excitation.engine_order)
+            if sectors != n_blades:  # every node of a sector meets the pattern together
+                wave = ExplicitPhases(tuple(np.repeat(wave.phases(sectors),
+                                                      n_blades // sectors)))
             object.__setattr__(self, "excitation",
                                dataclasses.replace(self.excitation, phases=wave))
         self.excitation.blade_phases(n_blades)  # raises if the count or the ND is wrong

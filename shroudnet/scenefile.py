@@ -17,6 +17,7 @@ A scene file holds one document (SI units; speeds in rev/min)::
     frequency = 210.0                 # f_d1 [Hz]; or {f0 = …, coefficient = …} (Southwell);
                                       # or {speeds_rpm = […], frequencies = […]}; or
                                       # stiffness = … [N/m] instead of a frequency
+                                      # (0: a node held by couplings or interfaces)
     excitation_scale = 1.0            # s_i ≥ 0, its share of Q(t); optional (0: unforced)
 
     fixed = ["disc"]                  # fixed nodes (x ≡ 0), optional
@@ -29,6 +30,15 @@ A scene file holds one document (SI units; speeds in rev/min)::
     normal = {law = "LinearSpring", stiffness = 3.3e5}
     friction = {law = "ExponentialFriction", mu_static = 0.5, mu_kinetic = 0.3, beta = 5.0}
 
+    [[couplings]]                     # springs and dampers between nodes, optional
+    left = "disc"
+    right = "blade1"
+    stiffness = 2e5                   # k_c ≥ 0 [N/m]
+    damping = 1.0                     # c_c ≥ 0 [N·s/m], optional
+
+    sectors = 24                      # optional: a ring of identical sectors, nodes given
+                                      # sector by sector (``linear_modes``)
+
     [run]                             # optional: how ``shroudnet run`` integrates it
     method = "adaptive"               # or "fixed" (steps_per_period) or "accuracy" (target)
     periods = 400
@@ -36,7 +46,11 @@ A scene file holds one document (SI units; speeds in rev/min)::
     blade = "blade2"                  # the blade they are about
 
 Identical blades may be given once instead, as ``[group]`` with ``shape = "ring"`` or
-``"chain"``, ``count``, ``blade = {…}`` and ``interface = {…}``. A law is named by its
+``"chain"``, ``count``, ``blade = {…}`` and ``interface = {…}``; a bladed disc of
+identical sectors (``BladeGroup.bladed_disc``) as ``shape = "bladed_disc"``, ``count``
+(sectors), ``disc = {…}`` (a blade table), ``disc_coupling = {stiffness, damping}``,
+``blade = [{…}, …]`` (its nodes, root to tip), ``blade_couplings = [{…}, …]`` (one per
+blade node) and, optionally, ``interface = {…}`` between neighbouring tips. A law is named by its
 class in ``contact_laws``; its other keys are the law's fields. ``Regularised`` takes
 ``law = {…}`` and ``velocity``.
 
@@ -69,6 +83,7 @@ from typing import Any
 import contact_laws
 
 from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
+from .coupling import Coupling
 from .excitation import AntiPhase, EngineOrderWave, Excitation, ExplicitPhases, TravellingWave
 from .group import BladeGroup
 from .interface import Interface
@@ -206,7 +221,8 @@ class _KeyError(Exception):
         self.key, self.message = key, message
 
 
-_TOP = {"speed_rpm", "excitation", "blades", "fixed", "interfaces", "group", "run"}
+_TOP = {"speed_rpm", "excitation", "blades", "fixed", "interfaces", "couplings", "sectors",
+        "group", "run"}
 
 
 def _scene(document: dict, own: dict[str, type]) -> Scene:
@@ -214,8 +230,17 @@ def _scene(document: dict, own: dict[str, type]) -> Scene:
     if "group" in document and ("blades" in document or "interfaces" in document):
         raise _KeyError("group", "give either [group] or [[blades]] and [[interfaces]], "
                                  "not both")
+    if "group" in document and "couplings" in document:
+        raise _KeyError("couplings", "give couplings with [[blades]], not with [group]")
     group = _shorthand(document["group"], own) if "group" in document \
         else _explicit(document, own)
+    if "sectors" in document:
+        sectors = document["sectors"]
+        if isinstance(sectors, bool) or not isinstance(sectors, int) or sectors < 1 \
+                or len(group.blades) % sectors:
+            raise _KeyError("sectors", f"must be a whole number >= 1 that divides the "
+                                       f"{len(group.blades)} blades, got {sectors!r}")
+        group.graph.graph["sectors"] = sectors
     excitation = _excitation(_table(document, "excitation", "excitation"))
     speed = _number(document, "speed_rpm", "speed_rpm", low=0.0)
     return _build("the scene", lambda: Scene(group=group, excitation=excitation,
@@ -249,15 +274,26 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
         interface = _interface({k: v for k, v in entry.items() if k not in ("left", "right")},
                                key, own)
         _build(key, lambda: group.connect(left, right, interface))
+    for i, entry in enumerate(_list(document, "couplings", "couplings")):
+        key = f"couplings[{i}]"
+        entry = _as_table(entry, key)
+        _only(entry, {"left", "right", "stiffness", "damping"}, key)
+        left, right = (_node(entry, end, f"{key}.{end}") for end in ("left", "right"))
+        coupling = _coupling({k: v for k, v in entry.items() if k not in ("left", "right")},
+                             key)
+        _build(key, lambda: group.connect(left, right, coupling))
     return group
 
 
 def _shorthand(table, own: dict[str, type]) -> BladeGroup:
     table = _as_table(table, "group")
-    _only(table, {"shape", "count", "blade", "interface"}, "group")
     shape = table.get("shape")
+    if shape == "bladed_disc":
+        return _bladed_disc(table, own)
+    _only(table, {"shape", "count", "blade", "interface"}, "group")
     if shape not in ("ring", "chain"):
-        raise _KeyError("group.shape", f'must be "ring" or "chain", got {shape!r}')
+        raise _KeyError("group.shape", f'must be "ring", "chain" or "bladed_disc", got '
+                                       f'{shape!r}')
     count = table.get("count")
     if isinstance(count, bool) or not isinstance(count, int) or count < (3 if shape == "ring"
                                                                           else 1):
@@ -268,6 +304,37 @@ def _shorthand(table, own: dict[str, type]) -> BladeGroup:
                            own)
     build = BladeGroup.ring if shape == "ring" else BladeGroup.chain
     return _build("group", lambda: build(count, blade, interface))
+
+
+def _bladed_disc(table, own: dict[str, type]) -> BladeGroup:
+    """``BladeGroup.bladed_disc`` from [group] with shape = "bladed_disc"."""
+    _only(table, {"shape", "count", "disc", "disc_coupling", "blade", "blade_couplings",
+                  "interface"}, "group")
+    count = table.get("count")
+    if isinstance(count, bool) or not isinstance(count, int) or count < 3:
+        raise _KeyError("group.count", f"must be an integer >= 3 sectors, got {count!r}")
+    disc = _blade(_table(table, "disc", "group.disc"), "group.disc")
+    blade = [_blade(_as_table(entry, f"group.blade[{k}]"), f"group.blade[{k}]")
+             for k, entry in enumerate(_list(table, "blade", "group.blade"))]
+    couplings = [_coupling(_as_table(entry, f"group.blade_couplings[{k}]"),
+                           f"group.blade_couplings[{k}]")
+                 for k, entry in enumerate(_list(table, "blade_couplings",
+                                                 "group.blade_couplings"))]
+    disc_coupling = _coupling(_table(table, "disc_coupling", "group.disc_coupling"),
+                              "group.disc_coupling")
+    shroud = None
+    if "interface" in table:
+        shroud = _interface(_table(table, "interface", "group.interface"), "group.interface",
+                            own)
+    return _build("group", lambda: BladeGroup.bladed_disc(count, disc, disc_coupling, blade,
+                                                         couplings, shroud))
+
+
+def _coupling(table: dict, key: str) -> Coupling:
+    _only(table, {"stiffness", "damping"}, key)
+    stiffness = _number(table, "stiffness", f"{key}.stiffness")
+    damping = _number(table, "damping", f"{key}.damping") if "damping" in table else 0.0
+    return _build(key, lambda: Coupling(stiffness=stiffness, damping=damping))
 
 
 _BLADE_KEYS = {"mass", "damping", "frequency", "stiffness", "excitation_scale"}
@@ -511,6 +578,12 @@ def document(scene: Scene, run: RunSettings | None = None) -> dict:
                              **({"friction": _law_document(i.friction)}
                                 if i.friction is not None else {})}
                             for left, right, i in group.interfaces]
+    if group.couplings:
+        result["couplings"] = [{"left": left, "right": right, "stiffness": float(c.stiffness),
+                                "damping": float(c.damping)}
+                               for left, right, c in group.couplings]
+    if "sectors" in group.graph.graph:
+        result["sectors"] = int(group.graph.graph["sectors"])
     if run is not None:
         result["run"] = _run_document(run)
     return result

@@ -176,3 +176,38 @@ def test_a_group_that_could_drift_away_is_refused():
     # both loads through disc–a, then bs own through a–b: x_b = 2/1e4 + 1/1e4
     assert held.arrays.static_deflection == pytest.approx(3e-4)
     assert "2 couplings" in repr(held.group)
+
+
+def test_a_bladed_disc_goes_through_a_scene_file_and_back():
+    from shroudnet import scenefile
+    from shroudnet.scenes import bladed_disc_24
+    scene = bladed_disc_24(sectors=4)
+    text = scenefile.document(scene)
+    assert text["sectors"] == 4 and len(text["couplings"]) == 4 * 3
+    again = scenefile.read(json_round_trip(text)).scene
+    assert scenefile.document(again) == text
+    assert np.array_equal(again.arrays.stiffness_matrix(), scene.arrays.stiffness_matrix())
+    assert again.group.graph.graph["sectors"] == 4
+
+
+def json_round_trip(value):
+    import json
+    return json.loads(json.dumps(value))
+
+
+@pytest.mark.parametrize("change, match", [
+    (lambda d: d["couplings"][0].update(stiffness=-5.0),
+     r"couplings\[0\]: Coupling\.stiffness must be in \[0, inf\) N/m, got -5"),
+    (lambda d: d["couplings"][0].update(right="ghost"), r"couplings\[0\]: .*unknown node"),
+    (lambda d: d["couplings"][0].update(spring=1.0), r"couplings\[0\]\.spring: unknown key"),
+    (lambda d: d.update(sectors=5), r"sectors: must be a whole number >= 1 that divides"),
+    (lambda d: [b.update(stiffness=0.0) for b in d["blades"] if b["name"].startswith("disc")],
+     r"the scene: blades \[.*\] float free"),
+])
+def test_a_bad_coupling_in_a_scene_file_is_named(change, match):
+    from shroudnet import scenefile
+    from shroudnet.scenes import bladed_disc_24
+    document = scenefile.document(bladed_disc_24(sectors=4))
+    change(document)
+    with pytest.raises(scenefile.SceneFileError, match=match):
+        scenefile.read(document)
