@@ -3,6 +3,8 @@
     shroudnet run SCENE.toml                       simulate; summary, results and figure
     shroudnet sweep SCENE.toml --param PATH --values ...   a bifurcation diagram
     shroudnet continue SCENE.toml --param PATH --from A --to B   a forced-response curve
+    shroudnet modes SCENE.toml                     linear modes, open and stuck, by ND
+    shroudnet mistuning SCENE.toml --spread S --samples K --speeds ...   mistuning
     shroudnet plot RESULTS                         redraw a saved run or sweep
     shroudnet bench [--quick]                      the benchmark
 
@@ -33,6 +35,8 @@ from . import results, scenefile
 from .analysis import classify
 from .continuation import LARGEST_STEP, Branch, continuation
 from .engine.cache import cache_folder, cache_size, clear_cache
+from .linear import CONTACTS, linear_modes
+from .mistuning import mistuning_study
 from .progress import ProgressReporter, TerminalProgress
 from .simulate import simulate
 from .simulation import SimulationError
@@ -192,6 +196,49 @@ def _parser() -> argparse.ArgumentParser:
     _laws_option(follow)
     _negative_numbers_are_values(follow)
     follow.set_defaults(command=_continue, name="continue")
+
+    modes = commands.add_parser(
+        "modes", help="the group's linear modes with its interfaces open and stuck, by "
+        "nodal diameter for a ring",
+        description="Natural frequencies of SCENE.toml's group at its speed, with every "
+        "interface open and with every interface that can stick stuck. For a ring of "
+        "sectors (a [group] ring, or 'sectors' in the file) the table is by nodal diameter, "
+        "and the frequency-nodal-diameter (ZZENF) figure SCENE-modes.png is written with "
+        "the engine orders at the scene's speed.")
+    modes.add_argument("scene", type=Path, help="scene file (TOML)")
+    modes.add_argument("--families", type=_whole(1), default=3,
+                       help="mode families per nodal diameter shown (default 3)")
+    modes.add_argument("--output", "-o", type=Path, default=Path("."),
+                       help="folder for SCENE-modes.png (default: here)")
+    _laws_option(modes)
+    modes.set_defaults(command=_modes, name="modes")
+
+    mistuning = commands.add_parser(
+        "mistuning", help="Monte Carlo of the forced response over random blade frequency "
+        "patterns: amplification factors",
+        description="Run SCENE.toml's group, tuned and with SAMPLES random patterns of "
+        "blade frequency deviations (standard deviation SPREAD), at every speed of "
+        "--speeds, on every core. Prints the distribution of the amplification factor "
+        "(worst blade's peak over the tuned peak) against Whitehead's bound, and writes "
+        "its histogram SCENE-mistuning.png.")
+    mistuning.add_argument("scene", type=Path, help="scene file (TOML)")
+    mistuning.add_argument("--spread", required=True, type=float,
+                           help="standard deviation of the frequency deviations, e.g. 0.01")
+    mistuning.add_argument("--samples", required=True, type=_whole(1),
+                           help="number of random patterns")
+    mistuning.add_argument("--speeds", required=True, nargs="+", metavar="RPM",
+                           help="the speeds [rev/min] the peak is sought over: numbers, or "
+                           "START:STOP:COUNT")
+    mistuning.add_argument("--seed", type=_whole(0), default=0,
+                           help="of the random patterns (default 0)")
+    mistuning.add_argument("--transient", type=_whole(0), default=300,
+                           help="periods before the peak is read (default 300)")
+    mistuning.add_argument("--workers", type=_whole(1),
+                           help="worker processes (default: every core)")
+    mistuning.add_argument("--output", "-o", type=Path, default=Path("."),
+                           help="folder for SCENE-mistuning.png (default: here)")
+    _laws_option(mistuning)
+    mistuning.set_defaults(command=_mistuning, name="mistuning")
 
     plot = commands.add_parser(
         "plot", help="redraw a saved run (.npz), branch (.npz) or sweep (folder)",
@@ -431,40 +478,41 @@ def _kept(folder: Path, total: int) -> str:
             "the same command again to compute only the missing ones")
 
 
-def _values(tokens: list[str]) -> list[float]:
-    """The numbers of ``--values``: each token a number or START:STOP:COUNT."""
+def _values(tokens: list[str], option: str = "--values") -> list[float]:
+    """The numbers of ``option``: each token a number or START:STOP:COUNT."""
     values = []
     for token in tokens:
-        values.extend(_range(token) if ":" in token else [_number(token, token)])
+        values.extend(_range(token, option) if ":" in token
+                      else [_number(token, token, option)])
     if not values:
-        raise UsageError("--values: give at least one value")
+        raise UsageError(f"{option}: give at least one value")
     return values
 
 
-def _range(token: str) -> list[float]:
+def _range(token: str, option: str) -> list[float]:
     """COUNT evenly spaced values from START to STOP, both included."""
     parts = token.split(":")
     if len(parts) != 3:
-        raise UsageError(f"--values: {token!r} is neither a number nor START:STOP:COUNT")
-    start, stop = (_number(part, token) for part in parts[:2])
+        raise UsageError(f"{option}: {token!r} is neither a number nor START:STOP:COUNT")
+    start, stop = (_number(part, token, option) for part in parts[:2])
     try:
         count = int(parts[2])
     except ValueError:
         count = 0
     if count < 1:
-        raise UsageError(f"--values: in {token!r}, COUNT must be a whole number >= 1, got "
+        raise UsageError(f"{option}: in {token!r}, COUNT must be a whole number >= 1, got "
                          f"{parts[2]!r}")
     return np.linspace(start, stop, count).tolist()
 
 
-def _number(text: str, token: str) -> float:
+def _number(text: str, token: str, option: str) -> float:
     try:
         value = float(text)
     except ValueError:
-        raise UsageError(f"--values: {token!r} is neither a number nor "
+        raise UsageError(f"{option}: {token!r} is neither a number nor "
                          "START:STOP:COUNT") from None
     if not np.isfinite(value):
-        raise UsageError(f"--values: every value must be finite, got {text!r} in {token!r}")
+        raise UsageError(f"{option}: every value must be finite, got {text!r} in {token!r}")
     return value
 
 
@@ -513,6 +561,58 @@ def _continue(args) -> int:
     saved = results.save_branch(stem.with_suffix(".npz"), branch, scene_at)
     figure = _save_branch_figure(branch, blade, stem.with_suffix(".png"))
     print(f"saved    {saved}, {figure}")
+    return 0
+
+
+def _modes(args) -> int:
+    from .figures import zzenf_diagram
+    loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
+    scene = loaded.scene
+    _check_folder(args.output, "--output")
+    path = args.output / f"{args.scene.stem}-modes.png"
+    both = {contacts: linear_modes(scene, contacts) for contacts in CONTACTS}
+    if both["open"].sectors is None:
+        for contacts, found in both.items():
+            listed = ", ".join(f"{f:.2f}" for f in found.frequencies)
+            print(f"{contacts:6s}{len(found.frequencies)} modes [Hz]: {listed}")
+        return 0
+    families = args.families
+    print(f"{both['open'].sectors} sectors at {scene.speed_rpm:g} rpm; the first {families} "
+          "families [Hz], interfaces open | stuck")
+    tables = {contacts: found.families()[:, :families] for contacts, found in both.items()}
+    for nd in range(tables["open"].shape[0]):
+        cells = ["  ".join(f"{f:9.2f}" for f in tables[c][nd] if np.isfinite(f))
+                 for c in CONTACTS]
+        print(f"ND {nd:3d}  {cells[0]}  |  {cells[1]}")
+    sectors = both["open"].sectors
+    zzenf_diagram({f"interfaces {c}": both[c] for c in CONTACTS}, speed_rpm=scene.speed_rpm,
+                  engine_orders=range(1, sectors // 2 + 1), families=families,
+                  title=f"{args.scene.stem}: frequency against nodal diameter").savefig(
+        path, dpi=110)
+    print(f"saved    {path}")
+    return 0
+
+
+def _mistuning(args) -> int:
+    from .figures import mistuning_histogram
+    loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
+    speeds = _values(args.speeds, "--speeds")
+    _check_folder(args.output, "--output")
+    path = args.output / f"{args.scene.stem}-mistuning.png"
+    _check_file(path, "--output")
+    start = time.perf_counter()
+    study = mistuning_study(loaded.scene, spread=args.spread, samples=args.samples,
+                            speeds_rpm=speeds, seed=args.seed, transient=args.transient,
+                            workers=args.workers, progress="auto")
+    factors = study.amplification
+    print(f"{args.samples} patterns of spread {args.spread:g} at {len(speeds)} speeds in "
+          f"{time.perf_counter() - start:.1f} s; tuned peak {study.tuned_peak:.4g} m")
+    print(f"amplification  median {np.median(factors):.4f}, 95th percentile "
+          f"{np.percentile(factors, 95):.4f}, largest {factors.max():.4f} (pattern "
+          f"{study.worst}); Whitehead's bound ½(1 + √{study.sectors}) = "
+          f"{study.whitehead_bound:.4f}")
+    mistuning_histogram(study, title=f"{args.scene.stem}: mistuning").savefig(path, dpi=110)
+    print(f"saved    {path}")
     return 0
 
 

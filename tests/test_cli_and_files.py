@@ -233,7 +233,7 @@ def test_command_line_errors_are_one_clear_line(tmp_path, capsys):
     assert main(["continue", str(scene), "--param", "speed_rpm", "--from", "6000",
                  "--to", "-1"]) == 2
     assert "speed_rpm" in capsys.readouterr().err
-    for command in ("run", "sweep", "continue", "plot", "bench"):
+    for command in ("run", "sweep", "continue", "modes", "mistuning", "plot", "bench"):
         with pytest.raises(SystemExit) as done:
             main([command, "--help"])
         assert done.value.code == 0
@@ -329,3 +329,33 @@ def test_a_command_line_sweep_killed_while_writing_a_point_resumes(tmp_path, cap
     assert [p.stat().st_mtime_ns for p in kept] == stamps  # not computed again
     assert len(results.load(folder).points) == 6
     assert not list(folder.glob("points/.*"))  # no temporary file left
+
+
+DISC = SCENES / "bladed_disc_24.toml"
+
+
+def test_command_line_modes_prints_the_zzenf_table_of_the_disc(tmp_path, capsys):
+    from shroudnet import linear_modes
+    from shroudnet.scenes import bladed_disc_24
+    assert main(["modes", str(DISC), "-o", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "24 sectors at 3000 rpm" in out
+    expected = linear_modes(bladed_disc_24(), "open").families()
+    row = next(line for line in out.splitlines() if line.startswith("ND   6"))
+    assert f"{expected[6, 0]:9.2f}" in row and f"{expected[6, 1]:9.2f}" in row
+    assert (tmp_path / "bladed_disc_24-modes.png").stat().st_size > 10_000
+
+
+def test_command_line_mistuning_reports_the_distribution_and_the_bound(tmp_path, capsys):
+    small = tmp_path / "disc3.toml"
+    small.write_text(DISC.read_text().replace("count = 24", "count = 3"))
+    assert main(["mistuning", str(small), "--spread", "0.02", "--samples", "3", "--speeds",
+                 "2900:3100:2", "--transient", "30", "--workers", "1", "-o",
+                 str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "3 patterns of spread 0.02 at 2 speeds" in out
+    assert "Whitehead's bound ½(1 + √3) = 1.3660" in out
+    assert (tmp_path / "disc3-mistuning.png").stat().st_size > 10_000
+    assert main(["mistuning", str(small), "--spread", "-1", "--samples", "3", "--speeds",
+                 "3000"]) == 2
+    assert "mistuning_study.spread must be in [0, 0.3]" in capsys.readouterr().err
