@@ -15,6 +15,8 @@ from matplotlib.ticker import NullFormatter
 
 from .analysis import Campbell, classify, spectrum
 from .continuation import Branch
+from .linear import LinearModes, excited_diameter
+from .mistuning import MistuningStudy
 from .precision import Study
 from .simulation import Simulation
 from .sweep import Sweep
@@ -206,3 +208,53 @@ def _runs(flags):
     starts = np.concatenate([[0], edges])
     stops = np.concatenate([edges, [len(flags)]])
     return [(int(a), int(b), bool(flags[a])) for a, b in zip(starts, stops)]
+
+
+def zzenf_diagram(modes: Mapping[str, LinearModes], *, speed_rpm: float,
+                  engine_orders: Sequence[int] = (), families: int = 3,
+                  title: str = "Frequency against nodal diameter") -> Figure:
+    """The ZZENF (SAFE) diagram: each family's frequency against the nodal diameter, for
+    each set of modes (e.g. contacts open and stuck), and the zig-zag of the engine orders
+    at ``speed_rpm``: order l excites diameter ``excited_diameter(l, N)`` at l Ω/60."""
+    figure = Figure(figsize=(7, 5), layout="constrained")
+    axes = figure.add_subplot()
+    sectors = None
+    for k, (label, result) in enumerate(modes.items()):
+        table = result.families()[:, :families]
+        sectors = result.sectors
+        diameters = np.arange(table.shape[0])
+        # A family is a line only where every diameter has it: when stuck contacts remove
+        # a family from some diameters, the k-th mode is not one family across them.
+        style = "-" if np.isfinite(table).all() else ""
+        for family in range(table.shape[1]):
+            axes.plot(diameters, table[:, family], "os^"[k % 3] + style, color=f"C{k}",
+                      ms=4, lw=0.8, mfc="none", label=label if family == 0 else None)
+    orders = list(engine_orders)
+    if orders and sectors:
+        points = [(excited_diameter(order, sectors), order * speed_rpm / 60.0)
+                  for order in orders]
+        axes.plot(*zip(*points), "k:", lw=0.8, label=f"engine orders at {speed_rpm:g} rpm")
+        for order, (nd, frequency) in zip(orders, points):
+            axes.annotate(f"l = {order}", (nd, frequency), textcoords="offset points",
+                          xytext=(4, 4), fontsize="small")
+    axes.set(xlabel="nodal diameter", ylabel="frequency [Hz]", title=title)
+    axes.legend(fontsize="small")
+    return figure
+
+
+def mistuning_histogram(study: MistuningStudy, *,
+                        title: str = "Mistuning: amplification factor") -> Figure:
+    """The distribution of the amplification factors of a ``MistuningStudy``, with its
+    largest and Whitehead's bound ½(1 + √N) marked."""
+    figure = Figure(figsize=(7, 4.5), layout="constrained")
+    axes = figure.add_subplot()
+    factors = study.amplification
+    axes.hist(factors, bins=max(5, min(30, len(factors) // 2)), color="C0", alpha=0.8,
+              label=f"{len(factors)} patterns, spread {study.spread:g}")
+    axes.axvline(1.0, color="k", lw=0.8, ls=":", label="tuned")
+    axes.axvline(factors.max(), color="C3", lw=1.2, label=f"largest {factors.max():.3f}")
+    axes.axvline(study.whitehead_bound, color="C2", lw=1.2, ls="--",
+                 label=f"Whitehead ½(1 + √{study.sectors}) = {study.whitehead_bound:.3f}")
+    axes.set(xlabel="worst blade peak / tuned peak", ylabel="patterns", title=title)
+    axes.legend(fontsize="small")
+    return figure

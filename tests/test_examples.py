@@ -141,6 +141,21 @@ def check_forced_response(example, result, arguments):
                 assert (point.classification.period == 1) == stable[near], point.value
 
 
+def check_bladed_disc(example, result, arguments):
+    """The ZZENF table has every diameter 0…12 and stuck shrouds raise the first family
+    of every diameter but 0; the branch starts where asked and goes up in speed; every
+    mistuning sample has an amplification factor."""
+    assert result.open.families().shape[0] == result.stuck.families().shape[0] == 13
+    for nd in range(1, 13):
+        assert result.stuck.of_diameter(nd)[0] > result.open.of_diameter(nd)[0]
+    branch = result.branch
+    assert branch.parameter[0] == example.CURVE[0] and np.all(np.diff(branch.parameter) > 0)
+    assert len(branch) == arguments["max_points"]
+    factors = result.mistuning.amplification
+    assert factors.shape == (arguments["samples"],) and np.all(factors > 0.0)
+    assert result.mistuning.patterns.shape == (arguments["samples"], 24)
+
+
 #: Each example: arguments small enough for a test, the figures it must save, its check.
 STUDY = {"transient": 20, "record": 10, "steady": 10}
 EXAMPLES = {
@@ -156,6 +171,10 @@ EXAMPLES = {
                                       ["fig16_bifurcation_q1.png", "fig19_q1_50.png"],
                                       check_paper_study),
     "fig20_campbell": ({}, ["fig20_campbell.png"], check_campbell),
+    "bladed_disc": ({"max_points": 3, "samples": 2, "speeds": 2, "transient": 30,
+                     "record": 5},
+                    ["bladed_disc_zzenf.png", "bladed_disc_response.png",
+                     "bladed_disc_mistuning.png"], check_bladed_disc),
     "forced_response": ({"values": 5, "transient": 300, "record": 20, "max_step": 0.3},
                         ["forced_response_speed.png", "forced_response_q1.png"],
                         check_forced_response),
