@@ -15,7 +15,7 @@ from matplotlib.ticker import NullFormatter
 
 from .analysis import Campbell, classify, spectrum
 from .continuation import Branch
-from .linear import LinearModes, excited_diameter
+from .linear import GroupCampbell, LinearModes, excited_diameter
 from .mistuning import MistuningStudy
 from .precision import Study
 from .simulation import Simulation
@@ -123,6 +123,28 @@ def campbell_diagram(diagram: Campbell, *, title: str = "Campbell diagram") -> F
     top = 1.3 * diagram.frequency.max()
     axes.set(xlabel="Ω [rev/min]", ylabel="frequency [Hz]", ylim=(0, top), title=title)
     axes.legend(loc="upper left")
+    return figure
+
+
+def group_campbell_diagram(diagram: GroupCampbell, *, modes: int | None = None,
+                           title: str = "Campbell diagram of the group") -> Figure:
+    """The group's natural frequencies against speed (the lowest ``modes``; by default
+    all), the engine-order lines, and the crossings where an order meets a mode it
+    excites (its nodal diameter, on a ring)."""
+    figure = Figure(figsize=(7, 5), layout="constrained")
+    axes = figure.add_subplot()
+    shown = diagram.frequencies[:, :modes]
+    axes.plot(diagram.speeds_rpm, shown, color="C0", lw=1.0)
+    axes.plot([], [], color="C0", lw=1.0, label=f"modes, interfaces {diagram.contacts}")
+    for k, order in enumerate(diagram.engine_orders):
+        axes.plot(diagram.speeds_rpm, diagram.line(order), "--", lw=0.8, color=f"C{k + 1}",
+                  label=f"l = {order}")
+    for order, mode, speed, frequency in diagram.crossings:
+        if modes is None or mode < modes:
+            axes.plot(speed, frequency, "o", color="C3", ms=4)
+    axes.set(xlabel="Ω [rev/min]", ylabel="frequency [Hz]", ylim=(0, 1.1 * shown.max()),
+             title=title)
+    axes.legend(loc="upper left", fontsize="small")
     return figure
 
 

@@ -35,7 +35,7 @@ from scipy.optimize import brentq
 from contact_laws import check_int
 
 from .engine.clusters import cluster_labels
-from .scene import Scene
+from .scene import Scene, edge_matrix
 
 CONTACTS = ("open", "stuck")
 
@@ -151,14 +151,7 @@ def _sliding_contacts(a, candidates) -> np.ndarray:
         if penetration > 0.0 or not a.opens[e]:
             gradient = a.normal_laws[e].gradient(max(penetration, 0.0), 0.0)[0]
             springs[e] = gradient * a.sin_angle[e] ** 2
-    matrix = np.zeros((a.n_blades, a.n_blades))
-    for i, j, k in zip(a.left, a.right, springs):
-        for p, q in ((i, j), (j, i)):
-            if p >= 0:
-                matrix[p, p] += k
-                if q >= 0:
-                    matrix[p, q] -= k
-    return matrix
+    return edge_matrix(np.zeros(a.n_blades), a.left, a.right, springs)
 
 
 def _cluster_basis(n, left, right, stuck) -> np.ndarray:

@@ -72,12 +72,12 @@ class SceneArrays:
         """K [N/m] of M ẍ + C ẋ + K x: the blades' own springs k_i on the diagonal, plus
         each coupling's k_c on the rows and columns of its two nodes (a coupling to a fixed
         node adds to the diagonal only). Interfaces are not in it."""
-        return _linear_matrix(self.stiffness, self.coupling_left, self.coupling_right,
+        return edge_matrix(self.stiffness, self.coupling_left, self.coupling_right,
                               self.coupling_stiffness)
 
     def damping_matrix(self) -> np.ndarray:
         """C [N·s/m]: the blades' c_i and the couplings' c_c, as ``stiffness_matrix``."""
-        return _linear_matrix(self.damping, self.coupling_left, self.coupling_right,
+        return edge_matrix(self.damping, self.coupling_left, self.coupling_right,
                               self.coupling_damping)
 
     @property
@@ -92,7 +92,10 @@ class SceneArrays:
         return float(np.abs(np.linalg.lstsq(stiffness, load, rcond=None)[0]).max())
 
 
-def _linear_matrix(own, left, right, values):
+def edge_matrix(own, left, right, values) -> np.ndarray:
+    """diag(own) plus, for each edge (i, j) of value k (a spring [N/m] or a damper
+    [N·s/m]), k on the diagonal at i and j and −k at (i, j) and (j, i); an end −1 (a fixed
+    node) has no row."""
     matrix = np.diag(np.asarray(own, dtype=float))
     for i, j, value in zip(left, right, values):
         for a, b in ((i, j), (j, i)):

@@ -130,6 +130,9 @@ def test_engine_orders_excite_one_diameter_and_the_campbell_diagram_finds_crossi
         assert frequency == pytest.approx(order * speed / 60.0)
     # l = 2 never catches the stiffening blade (f² = f0² + 4 (Ω/60)²); ND 3 and ND 0 do.
     assert {order for order, *_ in campbell.crossings} == {3, 4, 6}
+    from shroudnet.figures import group_campbell_diagram
+    axes = group_campbell_diagram(campbell, modes=4).axes[0]
+    assert len(axes.lines) >= 4 + 1 + 4  # modes, legend entry, four engine orders
 
 
 def test_bad_arguments_are_refused():
