@@ -40,7 +40,7 @@ def test_the_paper_scene_file_is_the_paper_scene():
 
 
 @pytest.mark.parametrize("name", ["paper_three_blade", "ring_24_travelling_wave",
-                                  "mistuned_packet"])
+                                  "mistuned_packet", "bladed_disc_24"])
 def test_every_shipped_scene_reads_and_writes_back_to_the_same_scene(name):
     loaded = scenefile.load(SCENES / f"{name}.toml")
     again = scenefile.read(json.loads(json.dumps(scenefile.document(loaded.scene, loaded.run))))
@@ -81,7 +81,8 @@ def broken_files(folder: Path):
     cases = {
         "unknown top-level key": (paper.replace("speed_rpm = 6000.0", "speed_rpm = 6000.0\n"
                                                 "sped = 1"),
-                                  r"sped: unknown key; allowed keys: blades, excitation"),
+                                  r"sped: unknown key; allowed keys: blades, couplings, "
+                                  r"excitation"),
         "missing speed": (paper.replace("speed_rpm = 6000.0", ""), r"speed_rpm: is required"),
         "negative mass": (paper.replace("mass = 0.082", "mass = -0.082", 1),
                           r"blades\[0\]: Blade\.mass must be in \(0, inf\) kg, got -0\.082"),
