@@ -55,12 +55,12 @@ class BladeGroup:
         return self
 
     def connect(self, left: Hashable, right: Hashable,
-                edge: Interface | Coupling) -> BladeGroup:
-        """Join ``left`` (node i) and ``right`` (node j) by an ``Interface`` (a contact) or a
-        ``Coupling`` (a spring and damper); returns the group."""
-        if not isinstance(edge, Interface | Coupling):
+                interface: Interface | Coupling) -> BladeGroup:
+        """Join ``left`` (node i) and ``right`` (node j) by ``interface``: an ``Interface``
+        (a contact) or a ``Coupling`` (a spring and damper); returns the group."""
+        if not isinstance(interface, Interface | Coupling):
             raise TypeError(f"connect({left!r}, {right!r}, ...) needs a shroudnet.Interface "
-                            f"or a shroudnet.Coupling, got {edge!r}")
+                            f"or a shroudnet.Coupling, got {interface!r}")
         for end in (left, right):
             if end not in self.graph:
                 raise ValueError(f"connect({left!r}, {right!r}): unknown node {end!r}; "
@@ -71,9 +71,9 @@ class BladeGroup:
             raise ValueError(f"connect({left!r}, {right!r}): these nodes are already connected")
         if self.graph.nodes[left]["blade"] is None and self.graph.nodes[right]["blade"] is None:
             raise ValueError(f"connect({left!r}, {right!r}): both nodes are fixed")
-        kind = "interface" if isinstance(edge, Interface) else "coupling"
+        kind = "interface" if isinstance(interface, Interface) else "coupling"
         index = sum(1 for *_, data in self.graph.edges(data=True) if kind in data)
-        self.graph.add_edge(left, right, left=left, index=index, **{kind: edge})
+        self.graph.add_edge(left, right, left=left, index=index, **{kind: interface})
         return self
 
     def _add_node(self, name: Hashable, blade: Blade | None) -> None:
