@@ -11,6 +11,9 @@ interface
 coupling
     An edge of the group that is structure, not contact: a linear spring and damper between
     two nodes (a disc sector, a blade's root and tip).
+prescribed-motion node
+    A node whose displacement is a given function of time (a belt, a shaker): it stands
+    wherever a fixed node may, and friction against it acts on the relative velocity.
 gap, penetration
     Δ is the clearance at rest (negative: preload); penetration δ = (x_i − x_j − Δ) sin α.
 normal force, friction force
@@ -66,6 +69,9 @@ from .linear import linear_modes as linear_modes
 from .methods import Accuracy as Accuracy
 from .mistuning import MistuningStudy as MistuningStudy
 from .mistuning import mistuning_study as mistuning_study
+from .motion import ConstantVelocity as ConstantVelocity
+from .motion import HarmonicMotion as HarmonicMotion
+from .motion import MotionTable as MotionTable
 from .methods import Adaptive as Adaptive
 from .methods import FixedStep as FixedStep
 from .methods import ZenoGuard as ZenoGuard

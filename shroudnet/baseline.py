@@ -188,6 +188,9 @@ def solve_ivp_baseline(scene: Scene, periods: int, *, rtol: float = 1e-8,
     ``Adaptive``; ``method`` is any of solve_ivp's explicit methods ("RK45" is the same
     Dormand–Prince 5(4) pair as ``Adaptive``).
     """
+    if scene.arrays.n_prescribed:
+        raise ValueError("solve_ivp_baseline does not model prescribed-motion nodes: its "
+                         "scenes' nodes are blades and fixed nodes only")
     model = _Model(scene)
     a = scene.arrays
     n = a.n_blades

@@ -2,7 +2,9 @@
 graph.
 
 Every node carries the attribute ``blade`` (a ``Blade``, or None for a fixed node: the disc,
-the casing, a damper platform, whose displacement is x ≡ 0). Every edge carries either
+the casing, a damper platform, whose displacement is x ≡ 0, and for a prescribed-motion
+node) and ``motion`` (the ``Motion`` of a prescribed-motion node, else None: a belt, a
+shaker, whose displacement is a given function of time). Every edge carries either
 ``interface`` (an ``Interface``: a contact that opens, slips and sticks) or ``coupling`` (a
 ``Coupling``: a linear spring and damper that never does), ``left`` (the name of its left
 node i, so that u = x_left − x_right; see ``shroudnet.interface``) and ``index`` (its
@@ -21,6 +23,7 @@ from contact_laws import check_int
 from .blade import Blade
 from .coupling import Coupling
 from .interface import Interface
+from .motion import ConstantVelocity, HarmonicMotion, Motion, MotionTable
 
 
 class BladeGroup:
@@ -54,6 +57,16 @@ class BladeGroup:
         self._add_node(name, None)
         return self
 
+    def add_prescribed(self, name: Hashable, motion: Motion) -> BladeGroup:
+        """Add a node called ``name`` whose displacement follows ``motion`` (a
+        ``ConstantVelocity``, ``HarmonicMotion`` or ``MotionTable``), whatever the forces on
+        it: a moving belt, a shaker. It stands wherever a fixed node may."""
+        if not isinstance(motion, ConstantVelocity | HarmonicMotion | MotionTable):
+            raise TypeError(f"add_prescribed({name!r}, ...) needs a ConstantVelocity, "
+                            f"HarmonicMotion or MotionTable, got {motion!r}")
+        self._add_node(name, None, motion)
+        return self
+
     def connect(self, left: Hashable, right: Hashable,
                 interface: Interface | Coupling) -> BladeGroup:
         """Join ``left`` (node i) and ``right`` (node j) by ``interface``: an ``Interface``
@@ -70,16 +83,18 @@ class BladeGroup:
         if self.graph.has_edge(left, right):
             raise ValueError(f"connect({left!r}, {right!r}): these nodes are already connected")
         if self.graph.nodes[left]["blade"] is None and self.graph.nodes[right]["blade"] is None:
-            raise ValueError(f"connect({left!r}, {right!r}): both nodes are fixed")
+            raise ValueError(f"connect({left!r}, {right!r}): neither node is a blade (both are "
+                             "fixed or prescribed), so nothing between them can move")
         kind = "interface" if isinstance(interface, Interface) else "coupling"
         index = sum(1 for *_, data in self.graph.edges(data=True) if kind in data)
         self.graph.add_edge(left, right, left=left, index=index, **{kind: interface})
         return self
 
-    def _add_node(self, name: Hashable, blade: Blade | None) -> None:
+    def _add_node(self, name: Hashable, blade: Blade | None, motion: Motion | None = None
+                  ) -> None:
         if name in self.graph:
             raise ValueError(f"node {name!r} is already in the group")
-        self.graph.add_node(name, blade=blade)
+        self.graph.add_node(name, blade=blade, motion=motion)
 
     # -- presets ----------------------------------------------------------------------------
 
@@ -164,7 +179,14 @@ class BladeGroup:
     @property
     def fixed(self) -> list[Hashable]:
         """Names of the fixed nodes."""
-        return [n for n, blade in self.graph.nodes(data="blade") if blade is None]
+        return [n for n, data in self.graph.nodes(data=True)
+                if data["blade"] is None and data.get("motion") is None]
+
+    @property
+    def prescribed(self) -> list[tuple[Hashable, Motion]]:
+        """(name, motion) of the prescribed-motion nodes, in the order they were added."""
+        return [(n, motion) for n, motion in self.graph.nodes(data="motion")
+                if motion is not None]
 
     @property
     def interfaces(self) -> list[tuple[Hashable, Hashable, Interface]]:
@@ -186,13 +208,15 @@ class BladeGroup:
         """The ``Blade`` at node ``name``."""
         blade = self.graph.nodes[name]["blade"]
         if blade is None:
-            raise ValueError(f"node {name!r} is fixed, not a blade")
+            kind = "prescribed" if self.graph.nodes[name].get("motion") else "fixed"
+            raise ValueError(f"node {name!r} is {kind}, not a blade")
         return blade
 
     def __repr__(self) -> str:
         couplings = f", {len(self.couplings)} couplings" if self.couplings else ""
-        return (f"BladeGroup({len(self.blades)} blades, {len(self.fixed)} fixed nodes, "
-                f"{len(self.interfaces)} interfaces{couplings})")
+        prescribed = f", {len(self.prescribed)} prescribed" if self.prescribed else ""
+        return (f"BladeGroup({len(self.blades)} blades, {len(self.fixed)} fixed nodes"
+                f"{prescribed}, {len(self.interfaces)} interfaces{couplings})")
 
 
 def _names(n, names, preset):

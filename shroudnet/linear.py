@@ -12,7 +12,9 @@ interfaces in the two limits the friction moves between:
   opens) slides freely and pushes by its normal law only: a spring of its contact
   stiffness ∂N/∂δ sin²α along x, the law's gradient at the rest penetration.
 
-The modes solve K φ = ω² M φ (``scipy.linalg.eigh``), mass-normalised (φᵀ M φ = 1).
+The modes solve K φ = ω² M φ (``scipy.linalg.eigh``), mass-normalised (φᵀ M φ = 1). A
+prescribed-motion node is held where it is, as a fixed node: these are the modes about
+its path.
 
 A ring of N identical sectors (``BladeGroup.ring``, ``BladeGroup.bladed_disc``, or
 ``sectors=N`` for a group whose nodes were added sector by sector) has modes that are
@@ -129,7 +131,7 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
     if contacts == "stuck":
         stuck = a.can_stick.copy()
         stiffness = stiffness + _sliding_contacts(a, ~stuck)
-    basis = _cluster_basis(n, a.left, a.right, stuck)
+    basis = _cluster_basis(a, stuck)
     mass = basis.T @ np.diag(a.mass) @ basis
     if basis.shape[1] == 0:
         raise ValueError("linear_modes: with every interface stuck nothing moves: every "
@@ -154,12 +156,13 @@ def _sliding_contacts(a, candidates) -> np.ndarray:
     return edge_matrix(np.zeros(a.n_blades), a.left, a.right, springs)
 
 
-def _cluster_basis(n, left, right, stuck) -> np.ndarray:
-    """T (n × free clusters): x = T z moves each stick cluster as one body; clusters stuck
-    to a fixed node have no column."""
-    labels, grounded = cluster_labels(n, left, right, stuck)
+def _cluster_basis(a, stuck) -> np.ndarray:
+    """T (n_blades × free clusters): x = T z moves each stick cluster as one body; clusters
+    stuck to a fixed or a prescribed-motion node have no column."""
+    n = a.n_blades
+    labels, grounded, _ = cluster_labels(n + a.n_prescribed, n, a.left, a.right, stuck)
     free = np.flatnonzero(~grounded)
-    return (labels[:, None] == free[None, :]).astype(float)
+    return (labels[:n, None] == free[None, :]).astype(float)
 
 
 def nodal_diameters(shapes, sectors: int) -> np.ndarray:

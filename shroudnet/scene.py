@@ -18,6 +18,7 @@ from contact_laws import FrictionLaw, NormalLaw, check_real
 
 from .excitation import EngineOrderWave, Excitation, ExplicitPhases
 from .group import BladeGroup
+from .motion import Motion
 
 #: Below this |cos α| friction has no component along x: such an interface never sticks.
 _NO_TANGENTIAL = 1e-12
@@ -28,7 +29,8 @@ class SceneArrays:
     """A scene as flat arrays: blades by position, interfaces by edge order.
 
     Blade arrays have length n_blades, interface arrays length n_interfaces. ``left`` and
-    ``right`` hold blade positions, −1 for a fixed node (x ≡ 0).
+    ``right`` hold node positions: a blade's (0 … n_blades − 1), n_blades + p for the
+    prescribed-motion node ``motions[p]``, −1 for a fixed node (x ≡ 0).
     """
 
     mass: np.ndarray           # m_i [kg]
@@ -55,10 +57,24 @@ class SceneArrays:
     coupling_right: np.ndarray      # node j of each coupling (int64, −1 = fixed)
     coupling_stiffness: np.ndarray  # k_c [N/m]
     coupling_damping: np.ndarray    # c_c [N·s/m]
+    motions: tuple[Motion, ...] = ()  # the prescribed-motion nodes, by position − n_blades
 
     @property
     def n_blades(self) -> int:
         return len(self.mass)
+
+    @property
+    def n_prescribed(self) -> int:
+        return len(self.motions)
+
+    def prescribed_state(self, t) -> tuple[np.ndarray, np.ndarray]:
+        """(x_p, ẋ_p) of the prescribed-motion nodes at time ``t`` [s] (a scalar, or an
+        array: one row per time)."""
+        t = np.asarray(t, dtype=float)
+        if not self.motions:
+            return np.zeros(t.shape + (0,)), np.zeros(t.shape + (0,))
+        return (np.stack([m.displacement_at(t) for m in self.motions], axis=-1),
+                np.stack([m.velocity_at(t) for m in self.motions], axis=-1))
 
     @property
     def n_interfaces(self) -> int:
@@ -94,14 +110,16 @@ class SceneArrays:
 
 def edge_matrix(own, left, right, values) -> np.ndarray:
     """diag(own) plus, for each edge (i, j) of value k (a spring [N/m] or a damper
-    [N·s/m]), k on the diagonal at i and j and −k at (i, j) and (j, i); an end −1 (a fixed
-    node) has no row."""
+    [N·s/m]), k on the diagonal at i and j and −k at (i, j) and (j, i); an end outside
+    0 … len(own) − 1 (a fixed node, −1, or a prescribed one beyond the blades) has no row:
+    its motion is no unknown of the matrix."""
+    n = len(own)
     matrix = np.diag(np.asarray(own, dtype=float))
     for i, j, value in zip(left, right, values):
         for a, b in ((i, j), (j, i)):
-            if a >= 0:
+            if 0 <= a < n:
                 matrix[a, a] += value
-                if b >= 0:
+                if 0 <= b < n:
                     matrix[a, b] -= value
     return matrix
 
@@ -187,6 +205,8 @@ class Scene:
         """The scene lowered to flat arrays (computed once)."""
         names = self.blades
         position = {name: i for i, name in enumerate(names)}
+        prescribed = self.group.prescribed
+        position.update((name, len(names) + p) for p, (name, _) in enumerate(prescribed))
         blades = [self.group.blade(name) for name in names]
         edges = self.group.interfaces
         couplings = self.group.couplings
@@ -226,6 +246,7 @@ class Scene:
                                     dtype=np.int64),
             coupling_stiffness=np.array([c.stiffness for *_, c in couplings], dtype=float),
             coupling_damping=np.array([c.damping for *_, c in couplings], dtype=float),
+            motions=tuple(motion for _, motion in prescribed),
         )
 
 
@@ -233,7 +254,8 @@ def check_held(group: BladeGroup, speed_rpm: float) -> None:
     """Raise unless every blade is held against rigid-body drift.
 
     A set of blades joined by interfaces and couplings is held when one of them has a
-    spring to ground (k > 0 at ``speed_rpm``) or one of its edges reaches a fixed node.
+    spring to ground (k > 0 at ``speed_rpm``) or one of its edges reaches a fixed or a
+    prescribed-motion node.
     Blades with k = 0 are allowed where something holds them; a set that nothing holds
     would drift away under a mean force, and has no static equilibrium.
     """

@@ -15,7 +15,8 @@ from .engine.dynamics import interface_kinematics
 from .engine.generate import compiled, kernel_scene, load_kernel
 from .engine.records import Controls, Run
 from .methods import Accuracy, Adaptive, FixedStep, ZenoGuard
-from .scene import Scene
+from .motion import motion_span
+from .scene import Scene, edge_matrix
 from .simulation import EnergyLedger, EventLog, Simulation, SimulationError
 
 
@@ -71,7 +72,7 @@ def simulate(scene: Scene, periods: int, *,
     events = EventLog(time=run.events.time, interface=run.events.interface,
                       kind=run.events.kind,
                       counts={k.name.lower(): int(run.events.counts[k]) for k in EventKind})
-    ledger = _ledger(scene, out.x, out.v, out.modes, out.energy)
+    ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy)
     settings = {"method": type(method).__name__, **asdict(method), "periods": periods,
                 "samples_per_period": samples_per_period,
                 "event_tolerance": done.event_tolerance,
@@ -128,6 +129,8 @@ def integrate(scene: Scene, periods: int, *,
     x0, v0 = (np.zeros(n), np.zeros(n)) if initial is None else (
         _initial(initial[0], n, "x0"), _initial(initial[1], n, "v0"))
     _check_memory(scene, periods, samples_per_period, event_capacity)
+    period = scene.excitation_period
+    _check_motions(scene, periods * period)
 
     n_columns = 0 if tangent is None else tangent.shape[1]
     if tangent is not None and isinstance(method, FixedStep):
@@ -135,8 +138,10 @@ def integrate(scene: Scene, periods: int, *,
                          "method=Adaptive(...) or Accuracy(...), not FixedStep")
     tangent0 = np.zeros((2 * n, n_columns)) if tangent is None else np.array(
         tangent, dtype=float)
+    x_p, v_p = scene.arrays.prescribed_state(0.0)
+    x0, v0 = np.concatenate([x0, x_p]), np.concatenate([v0, v_p])
+    tangent0 = _with_prescribed(tangent0, n, len(x_p))
 
-    period = scene.excitation_period
     kernel = load_kernel(scene, tangent=tangent is not None)
     zeno_window = zeno.window_at(event_tolerance)
     n_samples = periods * samples_per_period + 1
@@ -159,13 +164,46 @@ def integrate(scene: Scene, periods: int, *,
         orthonormalise=orthonormalise)
     arguments = (kernel_scene(scene), x0, v0, tangent0, controls)
     driver, compile_seconds = compiled(driver, arguments)
-    run = driver(*arguments)
+    run = _blades_only(driver(*arguments), n)
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
                                             zeno.events, zeno_window))
     return Integration(run=run, method=method, event_tolerance=event_tolerance,
                        zeno_window=zeno_window, compile_seconds=compile_seconds)
+
+
+def _check_motions(scene, duration):
+    """Refuse, before any work, a run that would leave a motion table's time span."""
+    for name, motion in scene.group.prescribed:
+        first, last = motion_span(motion)
+        if first > 0.0 or last < duration:
+            raise ValueError(f"prescribed node {name!r}: its MotionTable covers t = "
+                             f"{first:g} … {last:g} s, but the run spans 0 … {duration:g} s; "
+                             "extend the table's times, or run fewer periods")
+
+
+def _with_prescribed(tangent, n, n_prescribed):
+    """Tangent columns by blade (x rows, then ẋ rows) with zero rows for the prescribed-
+    motion nodes, which follow the blades in the integrator's state: their motion is given,
+    so it has no variation."""
+    if n_prescribed == 0:
+        return tangent
+    rows = np.zeros((2 * (n + n_prescribed), tangent.shape[1]))
+    rows[:n], rows[n + n_prescribed:2 * n + n_prescribed] = tangent[:n], tangent[n:]
+    return rows
+
+
+def _blades_only(run: Run, n: int) -> Run:
+    """The run's record with the blades' rows only: the prescribed-motion nodes that follow
+    them in the integrator's state are known functions of time."""
+    out, g = run.output, run.tangent
+    nodes = out.x.shape[1]
+    if nodes == n:
+        return run
+    rows = np.r_[0:n, nodes:nodes + n]
+    return run._replace(output=out._replace(x=out.x[:, :n], v=out.v[:, :n]),
+                        tangent=g._replace(matrix=g.matrix[rows]))
 
 
 #: An adaptive step below this many excitation periods stops the run.
@@ -262,10 +300,17 @@ def _contact_energy(law, penetration):
     return 0.5 * penetration * sum(w * law(si, 0.0) for si, w in zip(s, weights))
 
 
-def _stored(scene, x, v, modes):
+def _stored(scene, t, x, v, modes):
+    """Kinetic and strain energy of the blades and couplings [J], and the contacts' strain
+    energy, at time t in state (x, ẋ) by blade; a prescribed-motion node moves as its motion
+    says, and carries no energy of its own."""
     a = scene.arrays
     kinetic = 0.5 * np.sum(a.mass * v * v)
-    strain = 0.5 * x @ a.stiffness_matrix() @ x
+    x_p, v_p = a.prescribed_state(t)
+    x, v = np.concatenate([x, x_p]), np.concatenate([v, v_p])
+    strain = 0.5 * x @ edge_matrix(np.concatenate([a.stiffness, np.zeros(len(x_p))]),
+                                   a.coupling_left, a.coupling_right,
+                                   a.coupling_stiffness) @ x
     penetration, rate, slip = (np.empty(a.n_interfaces) for _ in range(3))
     interface_kinematics(x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle,
                          penetration, rate, slip)
@@ -274,9 +319,9 @@ def _stored(scene, x, v, modes):
     return kinetic + strain, contact
 
 
-def _ledger(scene, x, v, modes, work) -> EnergyLedger:
-    mechanical_0, contact_0 = _stored(scene, x[0], v[0], modes[0])
-    mechanical_1, contact_1 = _stored(scene, x[-1], v[-1], modes[-1])
+def _ledger(scene, t, x, v, modes, work) -> EnergyLedger:
+    mechanical_0, contact_0 = _stored(scene, t[0], x[0], v[0], modes[0])
+    mechanical_1, contact_1 = _stored(scene, t[-1], x[-1], v[-1], modes[-1])
     excitation, damping, friction, contact_work, lock = work[-1] - work[0]
     contact_stored = contact_1 - contact_0
     stored = mechanical_1 - mechanical_0 + contact_stored

@@ -45,8 +45,10 @@ class EnergyLedger:
     """Energy balance over the run [J]: what the excitation put in went somewhere.
 
     excitation_work = damping_loss + friction_loss + contact_loss + stored_change + residual.
-    ``friction_loss`` includes the kinetic energy lost when slipping blades lock together at
-    stick onset (of the order of the event tolerance). ``contact_loss`` is what damped
+    ``excitation_work`` is the work of the forces Q(t) and of the prescribed-motion nodes
+    (the force each motion exerts on the group times its velocity). ``friction_loss``
+    includes the kinetic energy lost when slipping blades lock together at stick onset (of
+    the order of the event tolerance). ``contact_loss`` is what damped
     normal laws dissipate; ``stored_change`` is the change of kinetic energy, blade strain
     energy and contact strain energy ∫₀^δ N(s, 0) ds. The residual measures the integration
     error.

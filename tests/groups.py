@@ -60,7 +60,7 @@ def states(draw, scene, stick=st.booleans()):
     closed = ((u - a.gap) * a.sin_angle > 0) | ~a.opens
     stuck = np.array([bool(closed[e] and a.can_stick[e] and draw(stick))
                       for e in range(a.n_interfaces)], dtype=bool)
-    labels, grounded = cluster_labels(n, a.left, a.right, stuck)
+    labels, grounded, _ = cluster_labels(n, n, a.left, a.right, stuck)
     cluster_v = np.array(draw(st.lists(st.floats(-1.0, 1.0), min_size=len(grounded),
                                        max_size=len(grounded))))
     v = np.where(grounded[labels], 0.0, cluster_v[labels])

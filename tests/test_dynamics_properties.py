@@ -404,7 +404,7 @@ def test_compiled_cluster_labels_are_the_graphs_stick_clusters(data):
             free.append(frozenset(cluster))
     expected = set(free) | ({frozenset(ground)} if ground else set())
 
-    labels, grounded = cluster_labels(a.n_blades, a.left, a.right, stuck)
+    labels, grounded, _ = cluster_labels(a.n_blades, a.n_blades, a.left, a.right, stuck)
     found = {frozenset(names[i] for i in np.flatnonzero(labels == c)) for c in range(len(grounded))}
     assert found == expected
     assert {frozenset(names[i] for i in np.flatnonzero(labels == c))

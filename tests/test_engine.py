@@ -163,8 +163,8 @@ def test_the_static_friction_operator_is_the_pseudo_inverse_on_consistent_forces
                                             max_size=len(left))))
     stuck = np.array(data.draw(st.lists(st.booleans(), min_size=len(left),
                                         max_size=len(left))))
-    labels, grounded = cluster_labels(n, left, right, stuck)
-    operator, stuck_interfaces = static_friction_operator(n, left, right, cos_angle, stuck,
+    labels, grounded, _ = cluster_labels(n, n, left, right, stuck)
+    operator, stuck_interfaces = static_friction_operator(n, n, left, right, cos_angle, stuck,
                                                           labels, grounded)
     g = _incidence(n, left, right, cos_angle, stuck)
     assert np.array_equal(stuck_interfaces, np.flatnonzero(stuck))

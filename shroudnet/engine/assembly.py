@@ -13,11 +13,12 @@ from typing import NamedTuple
 import numpy as np
 
 from ..scene import Scene, SceneArrays
-from .clusters import cluster_labels
+from .clusters import TWO_DRIVERS, cluster_labels
 from .codes import OPEN, SLIP_POSITIVE, STICK, Mode
 from .detect import event_guards
-from .dynamics import (cluster_accelerations, coupling_forces, excitation_forces,
-                       interface_kinematics, resultant_forces, static_friction)
+from .dynamics import (cluster_accelerations, coupling_forces, driven_accelerations,
+                       excitation_forces, interface_kinematics, resultant_forces,
+                       static_friction)
 from .regroup import cluster_mass, static_friction_operator
 
 
@@ -60,7 +61,7 @@ class Assembly(NamedTuple):
     friction_force: np.ndarray   # f_e [N]: sliding, or static on stuck interfaces
     interface_force: np.ndarray  # F_e = N_e sin α_e + f_e cos α_e [N], −F_e on i, +F_e on j
     cluster: np.ndarray          # stick-cluster label of each blade
-    grounded: np.ndarray         # per cluster: joined to a fixed node
+    grounded: np.ndarray         # per cluster: joined to a fixed or prescribed-motion node
     contact_guard: np.ndarray    # see event_guards
     motion_guard: np.ndarray     # see event_guards
 
@@ -69,8 +70,9 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     """Assemble the dynamics of ``scene`` at time ``t`` [s] in state (x [m], ẋ [m/s]).
 
     ``modes`` gives each interface's ``Mode``. A stuck interface must have zero slip
-    velocity (its blades move together); the result's ``motion_guard`` tells whether each
-    static friction force is admissible (|f| ≤ μ_s N).
+    velocity (its nodes move together; a prescribed-motion node moves as its motion says
+    at t); the result's ``motion_guard`` tells whether each static friction force is
+    admissible (|f| ≤ μ_s N).
     """
     a = scene.arrays
     x, v = _state(x, a.n_blades, "x"), _state(v, a.n_blades, "v")
@@ -82,33 +84,44 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     if np.any(stuck & ~a.can_stick):
         raise ValueError("modes: STICK on an interface that cannot stick (no exact friction "
                          f"law, or α = π/2): {np.flatnonzero(stuck & ~a.can_stick)}")
-    n, m = a.n_blades, a.n_interfaces
+    n, m, p = a.n_blades, a.n_interfaces, a.n_prescribed
+    x_p, v_p = a.prescribed_state(float(t))
+    x, v = np.concatenate([x, x_p]), np.concatenate([v, v_p])
+    drive = np.array([motion.acceleration_at(float(t)) for motion in a.motions], dtype=float)
+    none = np.zeros(p)
+    mass = np.concatenate([a.mass, none])
     penetration, rate, slip_velocity = np.empty(m), np.empty(m), np.empty(m)
     interface_kinematics(x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle,
                          penetration, rate, slip_velocity)
     normal, friction = law_forces(a, penetration, rate, slip_velocity, modes)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
-    q = np.empty(n)
+    q = np.zeros(n + p)
     excitation_forces(float(t), a.harmonic_amplitudes, np.cos(a.harmonic_phases),
-                      np.sin(a.harmonic_phases), a.excitation_frequency, q)
-    labels, grounded = cluster_labels(n, a.left, a.right, stuck)
-    resultant = np.empty(n)
-    resultant_forces(x, v, q, a.damping, a.stiffness, a.left, a.right, interface_force, stuck,
-                     resultant)
+                      np.sin(a.harmonic_phases), a.excitation_frequency, q[:n])
+    labels, grounded, driver = cluster_labels(n + p, n, a.left, a.right, stuck)
+    if np.any(driver == TWO_DRIVERS):
+        raise ValueError("modes: the stuck interfaces tie two prescribed motions together, "
+                         "or a prescribed motion to a fixed node")
+    resultant = np.empty(n + p)
+    resultant_forces(x, v, q, np.concatenate([a.damping, none]),
+                     np.concatenate([a.stiffness, none]), a.left, a.right, interface_force,
+                     stuck, resultant)
     coupling_forces(x, v, a.coupling_left, a.coupling_right, a.coupling_stiffness,
                     a.coupling_damping, resultant)
-    acceleration = np.empty(n)
-    cluster_accelerations(resultant, labels, grounded,
-                          cluster_mass(a.mass, labels, len(grounded)), np.empty(n), acceleration)
-    operator, stuck_interfaces = static_friction_operator(a.n_blades, a.left, a.right,
+    acceleration = np.empty(n + p)
+    masses = cluster_mass(mass, labels, len(grounded))
+    cluster_force = np.empty(n + p)
+    cluster_accelerations(resultant, labels, grounded, masses, cluster_force, acceleration)
+    driven_accelerations(labels, driver, masses, cluster_force, v, drive, n, acceleration)
+    operator, stuck_interfaces = static_friction_operator(n + p, n, a.left, a.right,
                                                           a.cos_angle, stuck, labels, grounded)
-    static_friction(operator, stuck_interfaces, a.mass, resultant, acceleration, normal,
-                    a.sin_angle, a.left, a.right, np.empty(n), friction)
+    static_friction(operator, stuck_interfaces, mass, resultant, acceleration, normal,
+                    a.sin_angle, a.left, a.right, np.empty(n + p), friction)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
     contact, motion = np.empty(m), np.empty(m)
     event_guards(modes, penetration, slip_velocity, normal, friction, a.static_mu, a.opens,
                  a.can_stick, contact, motion)
-    return Assembly(acceleration, normal, friction, interface_force, labels, grounded,
+    return Assembly(acceleration[:n], normal, friction, interface_force, labels[:n], grounded,
                     contact, motion)
 
 

@@ -1,7 +1,8 @@
 """Stick clusters: blades joined by stuck interfaces move as one rigid body.
 
 A stick cluster is a connected component of the subgraph of stuck interfaces. A cluster that
-reaches a fixed node is grounded: all its blades are at rest.
+reaches a fixed node is grounded: all its blades are at rest. A cluster that holds a
+prescribed-motion node is driven by it: all its blades move with that node.
 """
 
 from __future__ import annotations
@@ -11,6 +12,9 @@ from collections.abc import Hashable, Iterable
 import networkx as nx
 import numpy as np
 from numba import njit
+
+#: ``cluster_labels``' driver of a cluster whose stuck interfaces join motions that differ.
+TWO_DRIVERS = -2
 
 
 def stick_clusters(graph: nx.Graph, stuck: Iterable[tuple[Hashable, Hashable]]
@@ -46,45 +50,60 @@ def _root(parent, node):
 
 
 @njit(cache=True)
-def cluster_labels(n_blades, left, right, stuck):
-    """Stick clusters of blade positions, by union–find over the stuck interfaces.
+def cluster_labels(n_nodes, n_blades, left, right, stuck):
+    """Stick clusters of node positions, by union–find over the stuck interfaces.
 
     Parameters
     ----------
+    n_nodes : int
+        Positions 0 … n_blades − 1 are blades; n_blades … n_nodes − 1 prescribed-motion
+        nodes, each a cluster's driver.
     n_blades : int
     left, right : int64 arrays (n_interfaces,)
-        Blade positions of each interface, −1 for a fixed node.
+        Node positions of each interface, −1 for a fixed node.
     stuck : bool array (n_interfaces,)
 
     Returns
     -------
-    labels : int64 array (n_blades,)
-        Cluster number 0..n_clusters−1 of each blade, numbered by first blade.
+    labels : int64 array (n_nodes,)
+        Cluster number 0..n_clusters−1 of each node, numbered by first node.
     grounded : bool array (n_clusters,)
-        Whether the cluster is joined to a fixed node (all fixed nodes are one ground).
+        Whether the cluster's motion is given: joined to a fixed node (all fixed nodes are
+        one ground) or holding a prescribed-motion node.
+    driver : int64 array (n_clusters,)
+        The position of the prescribed-motion node a cluster holds, −1 for none, and
+        ``TWO_DRIVERS`` (−2) where it holds two of them, or one and a fixed node:
+        motions no stick can join.
 
-    O((n_blades + n_interfaces) α(n)).
+    O((n_nodes + n_interfaces) α(n)).
     """
-    ground = n_blades
-    parent = np.arange(n_blades + 1)
+    ground = n_nodes
+    parent = np.arange(n_nodes + 1)
     for e in range(len(left)):
         if stuck[e]:
             a = _root(parent, left[e] if left[e] >= 0 else ground)
             b = _root(parent, right[e] if right[e] >= 0 else ground)
             if a != b:
                 parent[max(a, b)] = min(a, b)
-    index = np.full(n_blades + 1, -1)
-    labels = np.empty(n_blades, dtype=np.int64)
+    index = np.full(n_nodes + 1, -1)
+    labels = np.empty(n_nodes, dtype=np.int64)
     count = 0
-    for i in range(n_blades):
+    for i in range(n_nodes):
         r = _root(parent, i)
         if index[r] < 0:
             index[r] = count
             count += 1
         labels[i] = index[r]
     grounded = np.zeros(count, dtype=np.bool_)
+    driver = np.full(count, -1, dtype=np.int64)
     ground_root = _root(parent, ground)
-    for i in range(n_blades):
+    for i in range(n_nodes):
+        c = labels[i]
         if _root(parent, i) == ground_root:
-            grounded[labels[i]] = True
-    return labels, grounded
+            grounded[c] = True
+            if i >= n_blades:
+                driver[c] = TWO_DRIVERS
+        elif i >= n_blades:
+            driver[c] = TWO_DRIVERS if grounded[c] else i
+            grounded[c] = True
+    return labels, grounded, driver

@@ -46,6 +46,7 @@ class Status(IntEnum):
     STEP_TOO_SMALL = 4
     NO_PROGRESS = 5
     STALLED = 6
+    OVERCONSTRAINED = 7
 
     def message(self, when: str, where: str, **details) -> str:
         """What stopped the run ``when`` (a time) ``where`` (an interface), and what to do.
@@ -114,6 +115,12 @@ _MESSAGES = {
         "the state or the forces became non-finite {when}{where}: a contact or friction law "
         "returned inf or NaN there, or the fixed step is too large for the stiffest contact "
         "(use Adaptive, or more steps per period)."),
+    Status.OVERCONSTRAINED: (
+        "no consistent set of stick and slip modes {when}{where}: sticking there would tie "
+        "two prescribed motions together (or a prescribed motion to a fixed node), and "
+        "slipping either way would reverse at once. Give the interface a friction law whose "
+        "static coefficient μ_s the forces there can exceed, or let the two motions meet "
+        "through a coupling."),
     Status.FINISHED: "the run finished {when}{where}",
 }
 
@@ -121,8 +128,8 @@ _MESSAGES = {
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)
 CLOSING, SEPARATION, STICKING, REVERSAL, BREAKAWAY = (int(k) for k in EventKind)
 N_EVENT_KINDS = len(EventKind)
-FINISHED, ZENO, INCONSISTENT, NOT_FINITE, STEP_TOO_SMALL, NO_PROGRESS, STALLED = (
-    int(s) for s in Status)
+(FINISHED, ZENO, INCONSISTENT, NOT_FINITE, STEP_TOO_SMALL, NO_PROGRESS, STALLED,
+ OVERCONSTRAINED) = (int(s) for s in Status)
 #: Work columns integrated from the powers ``derivative`` returns, and all the columns.
 N_POWERS = int(WorkColumn.CONTACT) + 1
 N_WORK = len(WorkColumn)

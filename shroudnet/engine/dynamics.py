@@ -17,6 +17,10 @@ each blade's equilibrium. For the paper's chain these are eqs. (10)–(22). A cl
 cycle (an all-stuck ring) is statically indeterminate: we take the friction forces of
 minimum Euclidean norm, which leave no force circulating round the cycle.
 
+A prescribed-motion node is a node of the state whose acceleration is given,
+ẍ_p = a_p(t) (``prescribed_acceleration``); a cluster that holds one moves with it, and
+the force its motion must exert does work on the group (``driven_accelerations``).
+
 The array functions here are compiled with numba and take no Python objects, so the
 integrator's loop calls them directly; ``assembly.assemble`` wraps them for a ``Scene``.
 """
@@ -26,6 +30,48 @@ from __future__ import annotations
 import math
 
 from .compiled import njit_inlined, njit_inlined_callable, njit_step_callable
+
+
+@njit_inlined
+def prescribed_acceleration(t, s, p):
+    """(ẍ_p [m/s²], its rate [m/s³]) of prescribed-motion node p at time t [s]: the sum
+    −A ω² sin(ω t + φ) + a(t) of its ``KernelScene`` terms (``motion.MotionTerms``), a(t)
+    linear between its knots (and continued by the end pieces outside them)."""
+    omega = s.motion_frequency[p]
+    amplitude = s.motion_amplitude[p]
+    angle = omega * t + s.motion_phase[p]
+    acceleration = -amplitude * omega * omega * math.sin(angle)
+    rate = -amplitude * omega * omega * omega * math.cos(angle)
+    knots = s.motion_knots[p]
+    if knots > 1:
+        times, values = s.motion_times[p], s.motion_accelerations[p]
+        j = 0
+        while j < knots - 2 and times[j + 1] <= t:
+            j += 1
+        slope = (values[j + 1] - values[j]) / (times[j + 1] - times[j])
+        acceleration += values[j] + slope * (t - times[j])
+        rate += slope
+    return acceleration, rate
+
+
+@njit_step_callable
+def driven_accelerations(labels, driver, masses, cluster_force, v, drive, n_blades,
+                         acceleration):
+    """ẍ = a_d of every node of a cluster driven by prescribed-motion node d (``drive``
+    holds a_d by d − n_blades) into ``acceleration``; returns the power the prescribed
+    motions put into the group [W]: Σ_c (M_c a_d − Σ_c R) ẋ_d, the force the motion exerts
+    on its cluster beyond the cluster's resultant (``cluster_force``, from
+    ``cluster_accelerations``), times its velocity."""
+    power = 0.0
+    for c in range(len(driver)):
+        d = driver[c]
+        if d >= 0:
+            power += (masses[c] * drive[d - n_blades] - cluster_force[c]) * v[d]
+    for i in range(len(labels)):
+        d = driver[labels[i]]
+        if d >= 0:
+            acceleration[i] = drive[d - n_blades]
+    return power
 
 
 @njit_step_callable
@@ -65,8 +111,8 @@ def excitation_rate(t, amplitudes, cos_phase, sin_phase, excitation_frequency, o
 
 @njit_inlined
 def relative_motion(x, v, left, right, e):
-    """(u, u̇) of interface e: u = x_i − x_j of its left and right blades [m], and its rate
-    [m/s]; a fixed node has x = 0."""
+    """(u, u̇) of interface e: u = x_i − x_j of its left and right nodes [m], and its rate
+    [m/s]; a fixed node has x = 0, a prescribed-motion node is in x."""
     u = 0.0
     du = 0.0
     if left[e] >= 0:

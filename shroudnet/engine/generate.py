@@ -68,7 +68,8 @@ def _law_classes(arrays) -> tuple[list[type], list[type]]:
 
 def flags(arrays, tangent: bool = False) -> dict[str, bool]:
     """The effects a kernel keeps, from the law classes alone (never from their values),
-    whether the scene has couplings, and whether it integrates the tangent flow.
+    whether the scene has couplings or prescribed-motion nodes, and whether it integrates the
+    tangent flow.
 
     Contact events need a normal law that opens; stick needs an exact friction law;
     regularisation a smoothed one.
@@ -80,6 +81,7 @@ def flags(arrays, tangent: bool = False) -> dict[str, bool]:
         "HAS_FRICTION": bool(frictions),
         "HAS_REGULARISED": any(f.exact is not f for f in frictions),
         "HAS_COUPLINGS": arrays.n_couplings > 0,
+        "HAS_PRESCRIBED": arrays.n_prescribed > 0,
         "HAS_TANGENT": tangent,
     }
 
@@ -287,25 +289,47 @@ def _cached(driver) -> bool:
 
 
 def kernel_scene(scene: Scene) -> KernelScene:
-    """The scene's arrays with each law given as (index of its class, parameter row)."""
+    """The scene's arrays with each law given as (index of its class, parameter row), and
+    its prescribed-motion nodes after the blades (``KernelScene``)."""
     a = scene.arrays
     normal_classes, friction_classes = _law_classes(a)
     normal_kind = np.array([normal_classes.index(type(law)) for law in a.normal_laws],
                            dtype=np.int64)
     friction_kind = np.array([-1 if f is None else friction_classes.index(type(f.exact))
                               for f in a.friction_laws], dtype=np.int64)
+    terms = [motion.terms() for motion in a.motions]
+    knots = max([len(t.knot_times) for t in terms] + [1])
+    times, accelerations = np.zeros((len(terms), knots)), np.zeros((len(terms), knots))
+    for p, t in enumerate(terms):
+        times[p, :len(t.knot_times)] = t.knot_times
+        accelerations[p, :len(t.knot_times)] = t.knot_accelerations
+    none = np.zeros(len(terms))
+
+    def nodes(values):
+        return np.concatenate([values, none])
+
+    amplitudes = a.harmonic_amplitudes
+    phases = np.concatenate([a.harmonic_phases, np.zeros((len(amplitudes), len(terms)))],
+                            axis=1)
     return KernelScene(
-        mass=a.mass, damping=a.damping, stiffness=a.stiffness, left=a.left, right=a.right,
+        mass=nodes(a.mass), damping=nodes(a.damping), stiffness=nodes(a.stiffness),
+        left=a.left, right=a.right,
         gap=a.gap, sin_angle=a.sin_angle, cos_angle=a.cos_angle, opens=a.opens,
         can_stick=a.can_stick, static_mu=a.static_mu, regularisation=a.regularisation,
         normal_kind=normal_kind, normal_params=_rows(a.normal_laws),
         friction_kind=friction_kind,
         friction_params=_rows(a.friction_laws),
-        amplitudes=a.harmonic_amplitudes, cos_phase=np.cos(a.harmonic_phases),
-        sin_phase=np.sin(a.harmonic_phases),
+        amplitudes=np.concatenate([amplitudes, np.zeros((len(amplitudes), len(terms)))],
+                                  axis=1),
+        cos_phase=np.cos(phases), sin_phase=np.sin(phases),
         excitation_frequency=float(a.excitation_frequency),
         coupling_left=a.coupling_left, coupling_right=a.coupling_right,
-        coupling_stiffness=a.coupling_stiffness, coupling_damping=a.coupling_damping)
+        coupling_stiffness=a.coupling_stiffness, coupling_damping=a.coupling_damping,
+        motion_amplitude=np.array([t.amplitude for t in terms], dtype=float),
+        motion_frequency=np.array([t.angular_frequency for t in terms], dtype=float),
+        motion_phase=np.array([t.phase for t in terms], dtype=float),
+        motion_times=times, motion_accelerations=accelerations,
+        motion_knots=np.array([len(t.knot_times) for t in terms], dtype=np.int64))
 
 
 def _rows(laws) -> np.ndarray:

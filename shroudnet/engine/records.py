@@ -17,13 +17,19 @@ from .tableau import DP_STAGES
 #: each interface's law index (into the kernel's list of law classes, −1 for none) and its
 #: parameters, padded into one row per interface; the excitation as tables with one row per
 #: harmonic n and one column per blade: amplitudes s_i q_n, and cos n φ_i and sin n φ_i;
-#: and the couplings' nodes, stiffnesses and dampers.
+#: and the couplings' nodes, stiffnesses and dampers. The prescribed-motion nodes follow
+#: the blades in the node arrays (no mass, spring, damper or excitation of their own), and
+#: each one's acceleration −A ω² sin(ω t + φ) + a(t) (``motion.MotionTerms``) is given by
+#: ``motion_amplitude`` A [m], ``motion_frequency`` ω [rad/s], ``motion_phase`` φ [rad]
+#: and the first ``motion_knots`` entries of its row of ``motion_times`` [s] and
+#: ``motion_accelerations`` [m/s²], between which a(t) is linear.
 KernelScene = namedtuple("KernelScene", [
     "mass", "damping", "stiffness", "left", "right", "gap", "sin_angle", "cos_angle",
     "opens", "can_stick", "static_mu", "regularisation", "normal_kind", "normal_params",
     "friction_kind", "friction_params", "amplitudes", "cos_phase", "sin_phase",
     "excitation_frequency", "coupling_left", "coupling_right", "coupling_stiffness",
-    "coupling_damping",
+    "coupling_damping", "motion_amplitude", "motion_frequency", "motion_phase",
+    "motion_times", "motion_accelerations", "motion_knots",
 ])
 
 #: What a run is asked for, in seconds: the first sample time, the sample spacing and the
@@ -68,23 +74,25 @@ Tangent = namedtuple("Tangent", [
     "singular_interface", "work", "acceleration",
 ])
 
-#: Stick clusters of a set of modes (``regroup``): which interfaces are stuck, each blade's
-#: cluster, whether each cluster is grounded, its mass, and the static friction operator
-#: with the stuck interfaces it gives the friction of.
+#: Stick clusters of a set of modes (``regroup``): which interfaces are stuck, each node's
+#: cluster, whether each cluster's motion is given (``clusters.cluster_labels``: grounded)
+#: and by which prescribed-motion node (``driver``), its mass, and the static friction
+#: operator with the stuck interfaces it gives the friction of.
 Topology = namedtuple("Topology", [
-    "stuck", "labels", "grounded", "masses", "operator", "stuck_interfaces",
+    "stuck", "labels", "grounded", "driver", "masses", "operator", "stuck_interfaces",
 ])
 
 #: Scratch arrays of one run, allocated once. Per blade: q … a_sample, x_new, v_new; per
 #: interface: penetration … motion_trial; Runge–Kutta stages (7 rows): stage_v, stage_a
 #: (per blade) and stage_p (the four powers), and the dense output's weight of each stage;
-#: the state's energy columns: e_new, e_sample.
+#: the state's energy columns: e_new, e_sample; per prescribed-motion node: ``drive``, its
+#: acceleration at the stage being evaluated.
 Work = namedtuple("Work", [
     "q", "resultant", "scratch", "imbalance", "a_start", "a_end", "a_sample", "xt", "vt",
     "x_new", "v_new",
     "penetration", "rate", "slip", "normal", "friction", "force", "contact", "motion",
     "contact_trial", "motion_trial",
-    "stage_v", "stage_a", "stage_p", "dense_weights", "e_new", "e_sample",
+    "stage_v", "stage_a", "stage_p", "dense_weights", "e_new", "e_sample", "drive",
 ])
 
 #: The event log of one run: located switches (time, interface, kind) up to its capacity,
@@ -112,7 +120,7 @@ def last_sample(controls):
 
 
 @njit_internal
-def new_work(n_blades, n_interfaces):
+def new_work(n_blades, n_interfaces, n_prescribed):
     b, m = n_blades, n_interfaces
     return Work(np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b),
                 np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b), np.empty(b),
@@ -120,7 +128,7 @@ def new_work(n_blades, n_interfaces):
                 np.empty(m), np.empty(m), np.empty(m), np.empty(m),
                 np.zeros((DP_STAGES, b)), np.zeros((DP_STAGES, b)),
                 np.zeros((DP_STAGES, N_POWERS)), np.zeros(DP_STAGES),
-                np.zeros(N_WORK), np.zeros(N_WORK))
+                np.zeros(N_WORK), np.zeros(N_WORK), np.zeros(n_prescribed))
 
 
 @njit_internal
@@ -141,8 +149,8 @@ def new_output(n_samples, n_blades, n_interfaces):
 
 
 @njit_internal
-def new_tangent(tangent0, n_interfaces, n_samples):
-    """A ``Tangent`` starting from the columns of ``tangent0`` (2 n_blades × k, k ≥ 0)."""
+def new_tangent(tangent0, n_interfaces, n_prescribed, n_samples):
+    """A ``Tangent`` starting from the columns of ``tangent0`` (2 n_nodes × k, k ≥ 0)."""
     b, m = tangent0.shape[0] // 2, n_interfaces
     k = tangent0.shape[1]
     return Tangent(tangent0.copy(), np.zeros(k), np.zeros((n_samples, k)), np.zeros(m),
@@ -151,7 +159,7 @@ def new_tangent(tangent0, n_interfaces, n_samples):
                    np.zeros(b), np.zeros(b), np.zeros(b), np.zeros(2 * b), np.zeros(2 * b),
                    np.zeros(2 * b),
                    np.zeros(1, dtype=np.int64), np.full(1, np.nan),
-                   np.full(1, -1, dtype=np.int64), new_work(b, m), np.zeros(b))
+                   np.full(1, -1, dtype=np.int64), new_work(b, m, n_prescribed), np.zeros(b))
 
 
 @njit_internal

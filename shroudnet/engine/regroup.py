@@ -25,8 +25,9 @@ def cluster_mass(mass, labels, n_clusters):
 
 
 @njit_entry
-def static_friction_operator(n_blades, left, right, cos_angle, stuck, labels, grounded):
-    """The linear map P from blade force imbalances to static friction on stuck interfaces.
+def static_friction_operator(n_nodes, n_blades, left, right, cos_angle, stuck, labels,
+                             grounded):
+    """The linear map P from node force imbalances to static friction on stuck interfaces.
 
     Every blade i of a cluster obeys Σ_e B_ei (N_e sin α_e + f_e cos α_e) = R_i − m_i ẍ_i
     over its stuck interfaces e, i.e. G f = b with G_ie = B_ei cos α_e. For a tree cluster
@@ -44,9 +45,13 @@ def static_friction_operator(n_blades, left, right, cos_angle, stuck, labels, gr
     P as the pseudo-inverse of G). P is block-diagonal by cluster and depends only on the
     set of stuck interfaces, so it is computed once per mode change.
 
+    A prescribed-motion node (positions n_blades … n_nodes − 1) takes whatever force its
+    motion needs, as a fixed node does: it has no equation, so no row of G (a 1 on the
+    diagonal keeps the matrix definite and its column of P zero).
+
     Returns
     -------
-    operator : float array (n_stuck, n_blades)
+    operator : float array (n_stuck, n_nodes)
     stuck_interfaces : int64 array (n_stuck,)
     """
     count = 0
@@ -60,29 +65,31 @@ def static_friction_operator(n_blades, left, right, cos_angle, stuck, labels, gr
             k += 1
     n_stuck = len(stuck_interfaces)
     if n_stuck == 0:
-        return np.zeros((0, n_blades)), stuck_interfaces
-    g = np.zeros((n_blades, n_stuck))
+        return np.zeros((0, n_nodes)), stuck_interfaces
+    g = np.zeros((n_nodes, n_stuck))
     for k in range(n_stuck):
         e = stuck_interfaces[k]
-        if left[e] >= 0:
+        if 0 <= left[e] < n_blades:
             g[left[e], k] += cos_angle[e]
-        if right[e] >= 0:
+        if 0 <= right[e] < n_blades:
             g[right[e], k] -= cos_angle[e]
     size = np.zeros(len(grounded))
-    for i in range(n_blades):
+    for i in range(n_nodes):
         size[labels[i]] += 1.0
-    matrix = np.zeros((n_blades, n_blades))
-    for i in range(n_blades):
-        for j in range(n_blades):
+    matrix = np.zeros((n_nodes, n_nodes))
+    for i in range(n_nodes):
+        for j in range(n_nodes):
             for k in range(n_stuck):
                 matrix[i, j] += g[i, k] * g[j, k]
             if labels[i] == labels[j] and not grounded[labels[i]]:
                 matrix[i, j] += 1.0 / size[labels[i]]
+        if i >= n_blades:
+            matrix[i, i] = 1.0
     inverse = _spd_inverse(matrix)
-    operator = np.zeros((n_stuck, n_blades))
+    operator = np.zeros((n_stuck, n_nodes))
     for k in range(n_stuck):
-        for j in range(n_blades):
-            for i in range(n_blades):
+        for j in range(n_nodes):
+            for i in range(n_nodes):
                 operator[k, j] += g[i, k] * inverse[i, j]
     return operator, stuck_interfaces
 
@@ -128,16 +135,19 @@ def regroup(s, modes):
     stuck = np.empty(len(modes), dtype=np.bool_)
     for e in range(len(modes)):
         stuck[e] = modes[e] == STICK
-    labels, grounded = cluster_labels(len(s.mass), s.left, s.right, stuck)
-    operator, stuck_interfaces = static_friction_operator(len(s.mass), s.left, s.right,
+    n_nodes = len(s.mass)
+    n_blades = n_nodes - len(s.motion_amplitude)
+    labels, grounded, driver = cluster_labels(n_nodes, n_blades, s.left, s.right, stuck)
+    operator, stuck_interfaces = static_friction_operator(n_nodes, n_blades, s.left, s.right,
                                                           s.cos_angle, stuck, labels, grounded)
-    return Topology(stuck, labels, grounded, cluster_mass(s.mass, labels, len(grounded)),
-                    operator, stuck_interfaces)
+    return Topology(stuck, labels, grounded, driver,
+                    cluster_mass(s.mass, labels, len(grounded)), operator, stuck_interfaces)
 
 
 @njit_internal
 def project_velocities(s, topology, v):
-    """One velocity per stick cluster, conserving its momentum; 0 in a grounded cluster.
+    """One velocity per stick cluster, conserving its momentum; 0 in a grounded cluster,
+    the prescribed node's in a driven one.
 
     Returns the kinetic energy removed [J] (of the order of the event tolerance).
     """
@@ -145,10 +155,14 @@ def project_velocities(s, topology, v):
     momentum = np.zeros(n_clusters)
     for i in range(len(v)):
         momentum[topology.labels[i]] += s.mass[i] * v[i]
+    for c in range(n_clusters):
+        if topology.driver[c] >= 0:
+            momentum[c] = v[topology.driver[c]]
     lost = 0.0
     for i in range(len(v)):
         c = topology.labels[i]
-        new = 0.0 if topology.grounded[c] else momentum[c] / topology.masses[c]
+        new = momentum[c] if topology.driver[c] >= 0 else (
+            0.0 if topology.grounded[c] else momentum[c] / topology.masses[c])
         lost += 0.5 * s.mass[i] * (v[i] * v[i] - new * new)
         v[i] = new
     return lost

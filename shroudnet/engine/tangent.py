@@ -4,7 +4,7 @@ Between switches the modes are fixed and the flow of y = (x, ẋ) is smooth, so 
 change δy of the state moves by δẏ = J δy, with J = ∂f/∂y the Jacobian of that mode set's
 vector field f = (ẋ, ẍ) (DESIGN §6):
 
-    δẍ_i = Σ_{j in i's cluster} δR_j / M_c  (0 in a grounded cluster),
+    δẍ_i = Σ_{j in i's cluster} δR_j / M_c  (0 in a grounded or driven cluster),
     δR_i = −k_i δx_i − c_i δẋ_i − Σ_e B_ei (∂F_e/∂u δu_e + ∂F_e/∂u̇ δu̇_e)
 
 over the interfaces that are closed and not stuck, with u_e = x_left − x_right (paper
@@ -42,7 +42,7 @@ import numpy as np
 
 from .codes import OPEN
 from .compiled import njit_inlined, njit_internal, njit_step
-from .dynamics import cluster_accelerations, excitation_rate
+from .dynamics import cluster_accelerations, excitation_rate, prescribed_acceleration
 from .tableau import DP_A, DP_B, DP_E, DP_STAGES
 
 #: A switch is grazing when its saltation's correction (f⁺ − P f⁻) nᵀ / ġ would stretch
@@ -222,22 +222,29 @@ def orthonormalise(g, s):
 def project_rates(values, s, topology, rows):
     """Project the velocity half of ``values`` (δx then δẋ) onto the stick clusters of
     ``topology`` as ``regroup.project_velocities`` projects velocities: the momentum-
-    weighted mean of each cluster, 0 in a grounded one."""
+    weighted mean of each cluster, 0 in a grounded one, and the prescribed node's in a
+    driven one (0 in a tangent, where that node has no variation, but its acceleration in
+    P f⁻)."""
     n = len(s.mass)
     for c in range(len(topology.grounded)):
         rows[c] = 0.0
     for i in range(n):
         rows[topology.labels[i]] += s.mass[i] * values[n + i]
+    for c in range(len(topology.grounded)):
+        if topology.driver[c] >= 0:
+            rows[c] = values[n + topology.driver[c]]
     for i in range(n):
         c = topology.labels[i]
-        values[n + i] = 0.0 if topology.grounded[c] else rows[c] / topology.masses[c]
+        values[n + i] = rows[c] if topology.driver[c] >= 0 else (
+            0.0 if topology.grounded[c] else rows[c] / topology.masses[c])
 
 
 @njit_step
 def reduce_to_clusters(normal, s, topology, rows):
     """n ← Pᵀ n: a guard's gradient as it acts on tangents of the stick clusters of
     ``topology`` (P as ``project_rates``): each velocity component becomes its cluster's
-    sum times the blade's share of the cluster's mass, 0 in a grounded cluster."""
+    sum times the blade's share of the cluster's mass, 0 in a grounded cluster; in a
+    driven one the sum goes to the prescribed node's component."""
     n = len(s.mass)
     for c in range(len(topology.grounded)):
         rows[c] = 0.0
@@ -245,8 +252,11 @@ def reduce_to_clusters(normal, s, topology, rows):
         rows[topology.labels[i]] += normal[n + i]
     for i in range(n):
         c = topology.labels[i]
-        normal[n + i] = 0.0 if topology.grounded[c] else \
-            rows[c] * s.mass[i] / topology.masses[c]
+        if topology.driver[c] >= 0:
+            normal[n + i] = rows[c] if i == topology.driver[c] else 0.0
+        else:
+            normal[n + i] = 0.0 if topology.grounded[c] else \
+                rows[c] * s.mass[i] / topology.masses[c]
 
 
 #: Two guards are one surface when their gradients (with ∂/∂t) are parallel to this
@@ -344,7 +354,11 @@ def breakaway_normal(e, sign, t, s, modes, topology, g):
                     g.q_rate)
     cluster_accelerations(g.q_rate, topology.labels, topology.grounded, topology.masses,
                           g.rows, g.acceleration_change)
+    n_blades = n - len(s.motion_amplitude)
     for i in range(n):
+        driver = topology.driver[topology.labels[i]]
+        if driver >= 0:  # a driven cluster: ∂ẍ/∂t is its prescribed motion's jerk
+            g.acceleration_change[i] = prescribed_acceleration(t, s, driver - n_blades)[1]
         g.imbalance[i] = g.q_rate[i] - s.mass[i] * g.acceleration_change[i]
     return _static_friction_change(k, sign, s, topology, g)
 

@@ -11,7 +11,8 @@ The header defines, for the law classes of a scene:
   central differences of the law where it gives none;
 - the effect flags ``HAS_CONTACT_EVENTS``, ``HAS_STICK``, ``HAS_FRICTION`` and
   ``HAS_REGULARISED``, compile-time constants that remove the code of effects the laws
-  rule out, ``HAS_COUPLINGS``, set only for scenes with couplings, and ``HAS_TANGENT``,
+  rule out, ``HAS_COUPLINGS`` and ``HAS_PRESCRIBED``, set only for scenes with couplings
+  and with prescribed-motion nodes, and ``HAS_TANGENT``,
   set only in the kernels of runs that integrate the tangent flow (``tangent``), so that
   other runs carry none of its code.
 
@@ -41,9 +42,11 @@ from shroudnet.engine.advance import (dense_state, is_finite, keep_guards, move_
                                       next_step, record, retry_step, set_powers, stage_sum,
                                       take_step)
 from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N_POWERS,
-                                    NO_PROGRESS, NOT_FINITE, OPEN, PROJECTION,
+                                    NO_PROGRESS, NOT_FINITE, OPEN, OVERCONSTRAINED,
+                                    PROJECTION,
                                     SLIP_NEGATIVE, SLIP_POSITIVE, STALL_SIZE, STALL_STEPS,
                                     STALLED, STEP_TOO_SMALL, STICK, ZENO)
+from shroudnet.engine.clusters import TWO_DRIVERS
 from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_internal,
                                        njit_merged, njit_step, njit_step_merged)
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard,
@@ -51,7 +54,8 @@ from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guar
                                      graze_dense, kinematic_dip, mark_grazing, predicted_low,
                                      stuck_crossed)
 from shroudnet.engine.dynamics import (cluster_accelerations, coupling_forces,
-                                       excitation_forces, interface_kinematics,
+                                       driven_accelerations, excitation_forces,
+                                       interface_kinematics, prescribed_acceleration,
                                        resultant_forces, static_friction)
 from shroudnet.engine.locate import bracket_after, bracket_start, next_trial
 from shroudnet.engine.records import (finish, last_sample, new_events, new_output, new_state,
@@ -131,7 +135,9 @@ def forces_at(s, modes, w):
 def derivative(t, x, v, modes, topology, s, w, acceleration):
     """ẍ into ``acceleration``; returns the powers (excitation, damping, friction, contact) [W].
 
-    Damping power is the blades' dampers' and the couplings'.
+    Excitation power is the forces Q's and the prescribed motions'
+    (``dynamics.driven_accelerations``); damping power is the blades' dampers' and the
+    couplings'.
 
     Contact power is Σ N δ̇, friction power Σ f v over sliding interfaces: with stuck
     interfaces carrying no relative motion, d(kinetic + spring energy)/dt is
@@ -153,6 +159,12 @@ def derivative(t, x, v, modes, topology, s, w, acceleration):
     cluster_accelerations(w.resultant, topology.labels, topology.grounded, topology.masses,
                           w.scratch, acceleration)
     excitation = 0.0
+    if HAS_PRESCRIBED:
+        for p in range(len(w.drive)):
+            w.drive[p] = prescribed_acceleration(t, s, p)[0]
+        excitation = driven_accelerations(topology.labels, topology.driver, topology.masses,
+                                          w.scratch, v, w.drive, len(x) - len(w.drive),
+                                          acceleration)
     for i in range(len(x)):
         excitation += w.q[i] * v[i]
         damping += s.damping[i] * v[i] * v[i]
@@ -564,6 +576,18 @@ def graze_fixed(t, h, state, topology, s, w, tolerance):
 
 # ---- resolve and regroup: a switch (allocates: once per event) ----------------------------
 
+@njit_inlined
+def overconstrained(topology, candidates, modes, s):
+    """A candidate for stick in a cluster that ties two prescribed motions (or one and a
+    fixed node) together, else −1 (``clusters.cluster_labels``)."""
+    for e in range(len(modes)):
+        if candidates[e] and modes[e] == STICK:
+            end = s.left[e] if s.left[e] >= 0 else s.right[e]
+            if topology.driver[topology.labels[end]] == TWO_DRIVERS:
+                return e
+    return -1
+
+
 @njit_merged
 def settle(t, state, candidates, topology, s, w):
     """Release stuck interfaces until every one holds: a terminating mode-selection rule.
@@ -578,7 +602,10 @@ def settle(t, state, candidates, topology, s, w):
     other interfaces can turn the friction it needs round, so it may later be released the
     other way; but when it needs more than μ_s N towards a direction already tried,
     neither stick nor slip is consistent for it (its friction law's μ(0⁺) exceeds μ_s, or
-    the coupled limits conflict) and INCONSISTENT is returned with that interface. A held
+    the coupled limits conflict) and INCONSISTENT is returned with that interface. A
+    candidate whose stick would tie two prescribed motions together (``overconstrained``)
+    slips instead, the same way tried first, and OVERCONSTRAINED is returned when both
+    ways reverse. A held
     interface is released at most once, and a candidate at most once each way, so the rule
     ends within 4 n_interfaces + 1 rounds. A held interface is released as soon as
     |f| > μ_s N, as its breakaway guard says; a candidate only beyond
@@ -595,6 +622,15 @@ def settle(t, state, candidates, topology, s, w):
     for _ in range(4 * n + 2):
         if not same_stuck(topology, modes):
             topology = regroup(s, modes)
+        if HAS_PRESCRIBED:
+            tie = overconstrained(topology, candidates, modes, s)
+            if tie >= 0:  # a candidate would tie motions that differ: it slips, a way untried
+                direction = SLIP_NEGATIVE if tried[tie] & direction_bit(SLIP_POSITIVE) \
+                    else SLIP_POSITIVE
+                if tried[tie] & direction_bit(direction):
+                    return OVERCONSTRAINED, 0.0, topology, tie
+                modes[tie] = direction
+                continue
         for i in range(len(v)):
             v_trial[i] = v[i]
         lost = project_velocities(s, topology, v_trial)
@@ -717,11 +753,11 @@ def begin(s, x0, v0, tangent0, controls, n_samples):
 
     The tangent starts from ``tangent0`` with its velocity rows projected as the state's
     are (the derivative of the start's projection)."""
-    n_blades, n_interfaces = len(s.mass), len(s.gap)
-    w = new_work(n_blades, n_interfaces)
-    out = new_output(n_samples, n_blades, n_interfaces)
+    n_nodes, n_interfaces, n_prescribed = len(s.mass), len(s.gap), len(s.motion_amplitude)
+    w = new_work(n_nodes, n_interfaces, n_prescribed)
+    out = new_output(n_samples, n_nodes, n_interfaces)
     events = new_events(controls.event_capacity, controls.zeno_events)
-    state = new_state(x0, v0, new_tangent(tangent0, n_interfaces, n_samples))
+    state = new_state(x0, v0, new_tangent(tangent0, n_interfaces, n_prescribed, n_samples))
     candidates = initial_modes(state, s, w)
     status, lost, topology, _ = settle(controls.t0, state, candidates,
                                        regroup(s, state.modes), s, w)
