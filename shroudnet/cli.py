@@ -336,9 +336,13 @@ def _run(args) -> int:
     ledger = sim.energy
     counts = sim.events.counts
     group = scene.group
-    print(f"scene    {args.scene}: {len(group.blades)} blades, {len(group.fixed)} fixed nodes, "
-          f"{len(group.interfaces)} interfaces; {scene.speed_rpm:g} rpm, "
-          f"f_e = {1.0 / scene.excitation_period:g} Hz")
+    prescribed = f", {len(group.prescribed)} prescribed" if group.prescribed else ""
+    forced = (f"f_e = {1.0 / scene.excitation_period:g} Hz"
+              if any(scene.excitation.amplitudes) else
+              f"no excitation (periods of {scene.excitation_period:g} s)")
+    print(f"scene    {args.scene}: {len(group.blades)} blades, {len(group.fixed)} fixed nodes"
+          f"{prescribed}, {len(group.interfaces)} interfaces; {scene.speed_rpm:g} rpm, "
+          f"{forced}")
     print(f"method   {settings.method}, {periods} periods, event tolerance "
           f"{settings.event_tolerance:g} periods")
     compiling = (f" + {sim.compile_seconds:.2f} s compiling the integrator, once"

@@ -15,6 +15,7 @@ from matplotlib.ticker import NullFormatter
 
 from .analysis import Campbell, classify, spectrum
 from .continuation import Branch
+from .engine.codes import Mode
 from .linear import GroupCampbell, LinearModes, excited_diameter
 from .mistuning import MistuningStudy
 from .precision import Study
@@ -280,3 +281,64 @@ def mistuning_histogram(study: MistuningStudy, *,
     axes.set(xlabel="worst blade peak / tuned peak", ylabel="patterns", title=title)
     axes.legend(fontsize="small")
     return figure
+
+
+def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
+                     shown_periods: int = 10, title: str = "") -> Figure:
+    """A friction interface's stick–slip motion after ``skip`` periods: its blade's
+    displacement with the stuck phases shaded, the phase portrait with stuck and slipping
+    samples apart, and the friction coefficient f/N the interface carried against its slip
+    velocity, over its law's μ(|v|) sgn v."""
+    left, right, face = sim.scene.group.interfaces[interface]
+    blade = left if left in sim.scene.blades else right
+    i = sim.scene.blade_position(blade)
+    rows = slice(skip * sim.samples_per_period, None)
+    t, x, v = sim.t[rows], sim.x[rows, i], sim.v[rows, i]
+    stuck = sim.modes[rows, interface] == Mode.STICK
+    normal, friction = sim.normal_force[rows, interface], sim.friction_force[rows, interface]
+    a = sim.scene.arrays
+    u_rate = _slip_velocity(sim, interface)[rows]
+    figure = Figure(figsize=(11, 7.5), layout="constrained")
+    axes = figure.subplot_mosaic([["history", "history"], ["phase", "law"]])
+    shown = slice(None, shown_periods * sim.samples_per_period + 1)
+    axes["history"].plot(t[shown] * 1e3, x[shown] * 1e3, lw=0.9, color="C0")
+    axes["history"].fill_between(t[shown] * 1e3, 0, 1, where=stuck[shown], color="C1",
+                                 alpha=0.2, transform=axes["history"].get_xaxis_transform(),
+                                 label="stuck")
+    axes["history"].set(xlabel="t [ms]", ylabel=f"x [mm] ({blade})", title="displacement")
+    axes["history"].legend(loc="upper right", fontsize="small")
+    axes["phase"].plot(x[~stuck] * 1e3, v[~stuck], ".", ms=2, color="C0", label="slipping")
+    axes["phase"].plot(x[stuck] * 1e3, v[stuck], ".", ms=2, color="C1", label="stuck")
+    axes["phase"].set(xlabel="x [mm]", ylabel="ẋ [m/s]", title="phase portrait")
+    axes["phase"].legend(loc="upper right", fontsize="small")
+    closed = normal > 0.0
+    axes["law"].plot(u_rate[closed & ~stuck], friction[closed & ~stuck] / normal[closed & ~stuck],
+                     ".", ms=2, color="C0", label="slipping")
+    axes["law"].plot(u_rate[closed & stuck], friction[closed & stuck] / normal[closed & stuck],
+                     ".", ms=2, color="C1", label="stuck (static friction)")
+    if face.friction is not None and np.any(closed):
+        reach = np.abs(u_rate).max()
+        speeds = np.linspace(-reach, reach, 401)
+        law = face.friction
+        axes["law"].plot(speeds, [law(abs(s)) * np.sign(s) for s in speeds], lw=0.8,
+                         color="k", label="μ(|v|) sgn v")
+        axes["law"].axhline(a.static_mu[interface], color="0.5", lw=0.6, ls=":")
+        axes["law"].axhline(-a.static_mu[interface], color="0.5", lw=0.6, ls=":")
+    axes["law"].set(xlabel="slip velocity v [m/s]", ylabel="f / N",
+                    title=f"friction on {left}–{right}")
+    axes["law"].legend(loc="lower right", fontsize="small")
+    figure.suptitle(title or f"stick–slip of {blade}")
+    return figure
+
+
+def _slip_velocity(sim: Simulation, interface: int) -> np.ndarray:
+    """v = u̇ cos α of an interface at every sample, prescribed nodes moving as they do."""
+    a = sim.scene.arrays
+    _, v_p = a.prescribed_state(sim.t)
+    velocities = np.concatenate([sim.v, v_p], axis=1)
+    rate = np.zeros(len(sim.t))
+    if a.left[interface] >= 0:
+        rate += velocities[:, a.left[interface]]
+    if a.right[interface] >= 0:
+        rate -= velocities[:, a.right[interface]]
+    return rate * a.cos_angle[interface]

@@ -22,6 +22,12 @@ A scene file holds one document (SI units; speeds in rev/min)::
 
     fixed = ["disc"]                  # fixed nodes (x ≡ 0), optional
 
+    [[prescribed]]                    # nodes moving on a given path, optional
+    name = "belt"
+    motion = {kind = "constant_velocity", velocity = 0.1}   # V [m/s], position x_0 [m]
+    # or {kind = "harmonic", amplitude = 1e-4, frequency = 100.0, phase = 0.0}  [m, Hz, rad]
+    # or {kind = "table", times = [0.0, …], displacements = [0.0, …]}           [s, m]
+
     [[interfaces]]
     left = "blade1"
     right = "blade2"
@@ -64,6 +70,9 @@ imported, or be passed in ``laws``::
 
 (on the command line: ``shroudnet run group.toml --laws my_laws``).
 
+``[excitation]`` may be left out: no force Q(t) acts (a block driven by a belt alone), and
+the period the run counts in is 60/``speed_rpm`` s.
+
 Every key is checked before anything runs: a bad file raises ``SceneFileError`` naming
 the file, the key and what is allowed there.
 """
@@ -88,6 +97,7 @@ from .excitation import AntiPhase, EngineOrderWave, Excitation, ExplicitPhases, 
 from .group import BladeGroup
 from .interface import Interface
 from .methods import Accuracy, Adaptive, FixedStep
+from .motion import ConstantVelocity, HarmonicMotion, MotionTable
 from .scene import Scene
 
 
@@ -183,6 +193,8 @@ def read(document: dict, *, source: str = "scene", laws: Laws = ()) -> SceneFile
             raise _KeyError("the file", "must be a table of keys, got "
                                         f"{type(document).__name__}")
         scene, run = _scene(document, own), _run(document.get("run", {}))
+        if "blade" not in document.get("run", {}) and len(scene.blades) == 1:
+            run = dataclasses.replace(run, blade=0)  # the default, position 1, is not there
         _build("run.blade", lambda: scene.blade_position(run.blade))
         return SceneFile(scene=scene, run=run, document=document)
     except _KeyError as error:
@@ -221,8 +233,8 @@ class _KeyError(Exception):
         self.key, self.message = key, message
 
 
-_TOP = {"speed_rpm", "excitation", "blades", "fixed", "interfaces", "couplings", "sectors",
-        "group", "run"}
+_TOP = {"speed_rpm", "excitation", "blades", "fixed", "prescribed", "interfaces",
+        "couplings", "sectors", "group", "run"}
 
 
 def _scene(document: dict, own: dict[str, type]) -> Scene:
@@ -230,8 +242,9 @@ def _scene(document: dict, own: dict[str, type]) -> Scene:
     if "group" in document and ("blades" in document or "interfaces" in document):
         raise _KeyError("group", "give either [group] or [[blades]] and [[interfaces]], "
                                  "not both")
-    if "group" in document and "couplings" in document:
-        raise _KeyError("couplings", "give couplings with [[blades]], not with [group]")
+    for key in ("couplings", "prescribed"):
+        if "group" in document and key in document:
+            raise _KeyError(key, f"give {key} with [[blades]], not with [group]")
     group = _shorthand(document["group"], own) if "group" in document \
         else _explicit(document, own)
     if "sectors" in document:
@@ -241,7 +254,8 @@ def _scene(document: dict, own: dict[str, type]) -> Scene:
             raise _KeyError("sectors", f"must be a whole number >= 1 that divides the "
                                        f"{len(group.blades)} blades, got {sectors!r}")
         group.graph.graph["sectors"] = sectors
-    excitation = _excitation(_table(document, "excitation", "excitation"))
+    excitation = _excitation(_table(document, "excitation", "excitation")) \
+        if "excitation" in document else NO_EXCITATION
     speed = _number(document, "speed_rpm", "speed_rpm", low=0.0)
     return _build("the scene", lambda: Scene(group=group, excitation=excitation,
                                              speed_rpm=speed))
@@ -266,6 +280,13 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
         if not isinstance(name, str | int) or isinstance(name, bool):
             raise _KeyError(f"fixed[{i}]", f"must be a name (text or integer), got {name!r}")
         _build(f"fixed[{i}]", lambda: group.add_fixed(name))
+    for i, entry in enumerate(_list(document, "prescribed", "prescribed")):
+        key = f"prescribed[{i}]"
+        entry = _as_table(entry, key)
+        _only(entry, {"name", "motion"}, key)
+        name = _name(entry, key)
+        motion = _motion(_table(entry, "motion", f"{key}.motion"), f"{key}.motion")
+        _build(key, lambda: group.add_prescribed(name, motion))
     for i, entry in enumerate(document.get("interfaces", [])):
         key = f"interfaces[{i}]"
         entry = _as_table(entry, key)
@@ -328,6 +349,35 @@ def _bladed_disc(table, own: dict[str, type]) -> BladeGroup:
                             own)
     return _build("group", lambda: BladeGroup.bladed_disc(count, disc, disc_coupling, blade,
                                                          couplings, shroud))
+
+
+#: The ``kind`` of a prescribed motion in a file, its class and its keys.
+_MOTIONS = {"constant_velocity": (ConstantVelocity, {"velocity", "position"}),
+            "harmonic": (HarmonicMotion, {"amplitude", "frequency", "phase"}),
+            "table": (MotionTable, {"times", "displacements"})}
+
+#: The excitation of a file without ``[excitation]``: no force.
+NO_EXCITATION = Excitation(engine_order=1, amplitudes=(0.0,), phases=AntiPhase())
+
+
+def _motion(table: dict, key: str):
+    kind = table.get("kind")
+    if kind not in _MOTIONS:
+        raise _KeyError(f"{key}.kind", f"must be one of {', '.join(map(repr, _MOTIONS))}, "
+                                       f"got {kind!r}")
+    cls, keys = _MOTIONS[kind]
+    _only(table, {"kind"} | keys, key)
+    fields = {k: tuple(v) if isinstance(v, list) else v for k, v in table.items()
+              if k != "kind"}
+    return _build(key, lambda: cls(**fields))
+
+
+def _motion_document(motion) -> dict:
+    kind = next(k for k, (cls, _) in _MOTIONS.items() if isinstance(motion, cls))
+    return {"kind": kind, **{f.name: list(getattr(motion, f.name))
+                             if isinstance(getattr(motion, f.name), tuple)
+                             else float(getattr(motion, f.name))
+                             for f in dataclasses.fields(motion)}}
 
 
 def _coupling(table: dict, key: str) -> Coupling:
@@ -573,6 +623,9 @@ def document(scene: Scene, run: RunSettings | None = None) -> dict:
                         for name in group.blades]
     if group.fixed:
         result["fixed"] = list(group.fixed)
+    if group.prescribed:
+        result["prescribed"] = [{"name": name, "motion": _motion_document(motion)}
+                                for name, motion in group.prescribed]
     result["interfaces"] = [{"left": left, "right": right, "gap": float(i.gap),
                              "angle": float(i.angle), "normal": _law_document(i.normal),
                              **({"friction": _law_document(i.friction)}

@@ -5,13 +5,15 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from contact_laws import ExponentialFriction, FrictionLaw, LinearSpring, NormalLaw, check_real
+from contact_laws import (ConstantLoad, ExponentialFriction, FrictionLaw, LinearSpring,
+                          NormalLaw, Stribeck, check_real)
 
 from .blade import Blade, Southwell
 from .coupling import Coupling
 from .excitation import AntiPhase, EngineOrderWave, Excitation, PhasePattern
 from .group import BladeGroup
 from .interface import Interface
+from .motion import ConstantVelocity
 from .scene import Scene
 
 #: The paper's §3 data: blade material and geometry, shroud mass and damping, friction.
@@ -174,3 +176,30 @@ def bladed_disc_24(*, speed_rpm: float = 3000.0, engine_order: int = 6, q1: floa
     excitation = Excitation(engine_order=engine_order, amplitudes=(0.0, q1),
                             phases=EngineOrderWave())
     return Scene(group=group, excitation=excitation, speed_rpm=speed_rpm)
+
+
+def block_on_belt(*, belt_speed: float = 0.1, normal_force: float = 10.0, mass: float = 1.0,
+                  stiffness: float = 1e4, damping: float = 0.0,
+                  friction: FrictionLaw = Stribeck(mu_static=0.4, mu_kinetic=0.25,
+                                                   stribeck_velocity=0.05),
+                  period: float = 0.1) -> Scene:
+    """A block on a spring to ground, pressed by ``normal_force`` [N] on a belt moving at
+    ``belt_speed`` [m/s] (a ``ConstantVelocity`` node): the classical stick–slip oscillator.
+
+    The belt's face is along x (α = 0, a ``ConstantLoad`` normal law), so friction acts on
+    the slip velocity ẋ − V. The block rides with the belt, stuck, until the spring pulls
+    with μ_s N (at x = μ_s N / k), breaks away, slides back under the lower kinetic friction
+    of a velocity-weakening law, and sticks again when its velocity meets the belt's: a
+    self-excited limit cycle. No force excites it; ``period`` [s] is only the unit the run
+    counts in (its ``speed_rpm`` is 60/period).
+    """
+    check_real("block_on_belt", "period", period, low=0.0, low_open=True, unit="s")
+    group = BladeGroup().add_blade("block", Blade(mass=mass, damping=damping,
+                                                  stiffness=stiffness))
+    group.add_prescribed("belt", ConstantVelocity(velocity=belt_speed))
+    group.connect("block", "belt", Interface(gap=0.0, angle=0.0,
+                                             normal=ConstantLoad(force=normal_force),
+                                             friction=friction))
+    return Scene(group=group, excitation=Excitation(engine_order=1, amplitudes=(0.0,),
+                                                    phases=AntiPhase()),
+                 speed_rpm=60.0 / period)

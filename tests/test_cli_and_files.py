@@ -12,9 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shroudnet import continuation, results, scenefile, simulate, sweep
+from shroudnet import (BladeGroup, Coupling, HarmonicMotion, MotionTable, Scene,
+                       continuation, results, scenefile, simulate, sweep)
 from shroudnet.cli import main
-from shroudnet.scenes import three_blade_paper
+from shroudnet.scenes import block_on_belt, three_blade_paper
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ROOT / "examples" / "scenes"
@@ -40,7 +41,7 @@ def test_the_paper_scene_file_is_the_paper_scene():
 
 
 @pytest.mark.parametrize("name", ["paper_three_blade", "ring_24_travelling_wave",
-                                  "mistuned_packet", "bladed_disc_24"])
+                                  "mistuned_packet", "bladed_disc_24", "belt_stick_slip"])
 def test_every_shipped_scene_reads_and_writes_back_to_the_same_scene(name):
     loaded = scenefile.load(SCENES / f"{name}.toml")
     again = scenefile.read(json.loads(json.dumps(scenefile.document(loaded.scene, loaded.run))))
@@ -64,6 +65,46 @@ def test_an_unforced_node_and_an_engine_order_wave_read_and_write_back():
     assert again["blades"][0]["excitation_scale"] == 0.0
     assert "excitation_scale" not in again["blades"][1]
     assert again["excitation"]["phases"] == {"travelling_wave": 2}
+
+
+def test_the_belt_file_is_the_shipped_belt_scene_and_every_motion_writes_back():
+    loaded = scenefile.load(SCENES / "belt_stick_slip.toml").scene
+    built = block_on_belt()
+    assert loaded.group.prescribed == built.group.prescribed
+    assert loaded.excitation_period == built.excitation_period
+    assert not any(loaded.excitation.amplitudes)
+    group = BladeGroup()
+    group.graph = built.group.graph.copy()  # the scene's own is frozen
+    group.add_prescribed("shaker", HarmonicMotion(amplitude=1e-4, frequency=80.0, phase=0.5))
+    group.add_prescribed("path", MotionTable(times=(0.0, 1.0, 2.0),
+                                             displacements=(0.0, 1e-3, 0.0)))
+    group.connect("block", "shaker", Coupling(stiffness=1e3))
+    group.connect("block", "path", Coupling(stiffness=1e3))
+    scene = Scene(group=group, excitation=built.excitation, speed_rpm=built.speed_rpm)
+    again = scenefile.read(json.loads(json.dumps(scenefile.document(scene)))).scene
+    assert again.group.prescribed == scene.group.prescribed
+
+
+@pytest.mark.parametrize("motion, message", [
+    ('{kind = "table", times = [0.0, 0.2, 0.1], displacements = [0.0, 1e-3, 0.0]}',
+     r"prescribed\[0\]\.motion: MotionTable\.times must increase strictly: times\[2\] = "
+     r"0\.1 s follows times\[1\] = 0\.2 s"),
+    ('{kind = "table", times = [0.0, 0.1], displacements = [0.0]}',
+     r"prescribed\[0\]\.motion: MotionTable\.displacements needs one value per time"),
+    ('{kind = "belt", velocity = 0.1}',
+     r"prescribed\[0\]\.motion\.kind: must be one of 'constant_velocity', 'harmonic', "
+     r"'table', got 'belt'"),
+    ('{kind = "harmonic", amplitude = 1e-4}',
+     r"prescribed\[0\]\.motion: .*frequency"),
+])
+def test_a_bad_prescribed_motion_is_one_line_naming_its_key(tmp_path, motion, message):
+    text = (SCENES / "belt_stick_slip.toml").read_text().replace(
+        'motion = {kind = "constant_velocity", velocity = 0.1}', f"motion = {motion}")
+    path = tmp_path / "belt.toml"
+    path.write_text(text)
+    with pytest.raises(scenefile.SceneFileError, match=message) as error:
+        scenefile.load(path)
+    assert "\n" not in str(error.value)
 
 
 def test_a_user_law_is_named_by_its_module():

@@ -156,6 +156,21 @@ def check_bladed_disc(example, result, arguments):
     assert result.mistuning.patterns.shape == (arguments["samples"], 24)
 
 
+def check_belt_stick_slip(example, result, arguments):
+    """Every breakaway of the settled cycle happens where the spring pulls with μ_s N (the
+    block rides the belt while stuck, x = x_s + V (t − t_s) from its last stuck sample);
+    the block
+    sticks part of each cycle; the belt's work balances the friction loss."""
+    assert len(result.breakaway_x) >= 3
+    scene = result.sim.scene
+    # a breakaway is located within the event tolerance, 1e-10 periods: V·1e-10 T_e in x
+    bracket = 0.1 * 1e-10 * scene.excitation_period
+    np.testing.assert_allclose(result.breakaway_x, result.static_limit, rtol=0, atol=bracket)
+    assert 0.0 < result.stick_fraction < 1.0 and result.period > 0.0
+    ledger = result.sim.energy
+    assert abs(ledger.residual) < 1e-6 * ledger.excitation_work
+
+
 #: Each example: arguments small enough for a test, the figures it must save, its check.
 STUDY = {"transient": 20, "record": 10, "steady": 10}
 EXAMPLES = {
@@ -171,6 +186,8 @@ EXAMPLES = {
                                       ["fig16_bifurcation_q1.png", "fig19_q1_50.png"],
                                       check_paper_study),
     "fig20_campbell": ({}, ["fig20_campbell.png"], check_campbell),
+    "belt_stick_slip": ({"periods": 20, "transient": 10, "samples_per_period": 100},
+                        ["belt_stick_slip.png"], check_belt_stick_slip),
     "bladed_disc": ({"max_points": 3, "samples": 2, "speeds": 2, "transient": 30,
                      "record": 5},
                     ["bladed_disc_zzenf.png", "bladed_disc_response.png",

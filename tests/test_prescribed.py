@@ -15,7 +15,8 @@ import pytest
 from contact_laws import ConstantLoad, Coulomb, Stribeck
 from shroudnet import (Adaptive, AntiPhase, Blade, BladeGroup, ConstantVelocity, Coupling,
                        Excitation, FixedStep, HarmonicMotion, Interface, Mode, MotionTable,
-                       Scene, assemble, linear_modes, monodromy, simulate)
+                       Scene, assemble, linear_modes, monodromy, periodic_orbit,
+                       simulate)
 from shroudnet.engine.codes import EventKind
 from tests.test_tangent import (EXACT, differenced_monodromy, scaled_error, state_scale)
 
@@ -219,6 +220,20 @@ def test_monodromy_through_stick_and_breakaway_on_a_shaker_agrees_with_differenc
     assert matrix.shape == (2, 2)
     reference = differenced_monodromy(scene, 1, y, scale)
     assert scaled_error(matrix, reference, scale) <= 1e-6
+
+
+def test_the_periodic_orbit_on_a_shaker_is_where_a_long_transient_settles():
+    """Its stick phase gives a zero Floquet multiplier; the transient ends on the orbit's
+    start to 2e-15 m and 8e-13 m/s (measured)."""
+    scene = belt(HarmonicMotion(amplitude=1e-4, frequency=100.0),
+                 block=Blade(mass=0.1, damping=2.0, stiffness=1e5), speed_rpm=6000.0,
+                 load=12.0)
+    orbit = periodic_orbit(scene, transient=20)
+    assert orbit.stable and abs(orbit.multipliers[-1]) < 1e-12
+    run = simulate(scene, 600, method=Adaptive(rtol=1e-11), samples_per_period=1,
+                   event_capacity=0)
+    assert abs(run.x[-1, 0] - orbit.initial[0][0]) < 1e-9 * orbit.peak[0]
+    assert abs(run.v[-1, 0] - orbit.initial[1][0]) < 1e-9 * orbit.peak[0] * 2 * math.pi * 100
 
 
 # ---- a stick that would tie two motions together ---------------------------------------------
