@@ -98,12 +98,13 @@ def mistuned_group(scene: Scene, factors) -> BladeGroup:
     names = scene.blades
     factor = dict(zip(names, (float(f) for f in factors)))
     group = BladeGroup()
-    for name in scene.group.graph.nodes:
-        blade = scene.group.graph.nodes[name]["blade"]
-        if blade is None:
-            group.add_fixed(name)
+    for name, data in scene.group.graph.nodes(data=True):
+        if data["blade"] is not None:
+            group.add_blade(name, _scaled_blade(data["blade"], factor[name]))
+        elif data.get("motion") is not None:
+            group.add_prescribed(name, data["motion"])
         else:
-            group.add_blade(name, _scaled_blade(blade, factor[name]))
+            group.add_fixed(name)
     for left, right, interface in scene.group.interfaces:
         group.connect(left, right, interface)
     for left, right, coupling in scene.group.couplings:

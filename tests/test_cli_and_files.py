@@ -193,6 +193,15 @@ def test_a_result_file_loads_back_without_loss(tmp_path):
     assert not list(tmp_path.glob(".*part"))  # nothing left from the atomic write
 
 
+def test_command_line_runs_the_belt_and_its_result_loads_back(tmp_path, capsys):
+    assert main(["run", str(SCENES / "belt_stick_slip.toml"), "-o", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "1 prescribed" in out and "no excitation (periods of 0.1 s)" in out
+    back = results.load(tmp_path / "belt_stick_slip.npz")
+    assert back.scene.group.prescribed == block_on_belt().group.prescribed
+    assert back.events.counts["sticking"] > 20
+
+
 def test_command_line_run_sweep_and_plot(tmp_path, capsys):
     scene = small_paper_scene(tmp_path)
     assert main(["run", str(scene), "-o", str(tmp_path / "out")]) == 0

@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from shroudnet import (Blade, BladeGroup, Coupling, EngineOrderWave, Excitation, Scene,
-                       linear_modes, mistuning_study)
+from shroudnet import (Blade, BladeGroup, Coupling, EngineOrderWave, Excitation,
+                       HarmonicMotion, Scene, linear_modes, mistuning_study)
 from shroudnet.mistuning import mistuned_group
 
 N = 6
@@ -75,6 +75,19 @@ def test_a_mistuned_blade_has_its_frequency_scaled():
     couplings = {(a, b): c.stiffness for a, b, c in group.couplings}
     assert couplings[("blade1", "blade2")] == pytest.approx(5e3 * 1.21)
     assert couplings[("blade2", "blade3")] == 5e3
+
+
+def test_mistuning_keeps_fixed_and_prescribed_nodes_as_they_are():
+    group = BladeGroup().add_blade("blade", Blade(mass=0.1, damping=2.0, stiffness=1e5))
+    group.add_fixed("lug").add_prescribed("shaker", HarmonicMotion(amplitude=1e-5,
+                                                                   frequency=100.0))
+    group.connect("blade", "lug", Coupling(stiffness=1e3))
+    group.connect("blade", "shaker", Coupling(stiffness=2e3))
+    scene = Scene(group=group, speed_rpm=6000.0, excitation=Excitation(
+        engine_order=1, amplitudes=(0.0, 1.0), phases=[0.0]))
+    mistuned = mistuned_group(scene, [1.1])
+    assert mistuned.fixed == ["lug"] and mistuned.prescribed == scene.group.prescribed
+    assert [c.stiffness for *_, c in mistuned.couplings] == pytest.approx([1.21e3, 2.42e3])
 
 
 @pytest.mark.parametrize("arguments, match", [
