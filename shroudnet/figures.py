@@ -215,7 +215,8 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
     for kind, (marker, color) in BIFURCATION_MARKERS.items():
         if any(b.kind == kind for branch in branches.values() for b in branch.bifurcations):
             peak_axes.plot([], [], marker, color=color, mfc="none", lw=0, label=kind)
-    peak_axes.plot([], [], "k--", lw=1.2, label="unstable")
+    if not all(np.all(branch.stable) for branch in branches.values()):
+        peak_axes.plot([], [], "k--", lw=1.2, label="unstable")
     peak_axes.set(ylabel=f"max |x| [{unit}]", title=title)
     peak_axes.legend(fontsize="small")
     energy_axes.set(xlabel=xlabel or next(iter(branches.values())).name,

@@ -84,19 +84,26 @@ class MistunedScenes:
     scene: Scene
     factors: np.ndarray        # (samples + 1, n_blades): 1 + ε of each node, 1 if tuned
     speeds_rpm: tuple[float, ...]
+    mistuned: tuple[Hashable, ...] | None = None  # the nodes mistuned (``mistuned_group``)
 
     def __call__(self, value: float) -> Scene:
         sample, speed = divmod(int(round(value)), len(self.speeds_rpm))
-        group = mistuned_group(self.scene, self.factors[sample])
+        group = mistuned_group(self.scene, self.factors[sample], self.mistuned)
         return replace(self.scene, group=group, speed_rpm=self.speeds_rpm[speed])
 
 
-def mistuned_group(scene: Scene, factors) -> BladeGroup:
+def mistuned_group(scene: Scene, factors,
+                   mistuned: Sequence[Hashable] | None = None) -> BladeGroup:
     """The scene's group with each node's frequency scaled by its factor (module
     docstring): ground springs by factor², couplings by the factors of their mistuned
-    ends (factor² where one end is)."""
+    ends, (1 + ε_a)(1 + ε_b) between two and (1 + ε)² where one end is. ``mistuned``
+    names the mistuned nodes (a node among them may draw ε = 0); by default those whose
+    factor is not 1."""
     names = scene.blades
     factor = dict(zip(names, (float(f) for f in factors)))
+    if mistuned is None:
+        mistuned = [name for name in names if factor[name] != 1.0]
+    mistuned = set(mistuned)
     group = BladeGroup()
     for name, data in scene.group.graph.nodes(data=True):
         if data["blade"] is not None:
@@ -108,7 +115,7 @@ def mistuned_group(scene: Scene, factors) -> BladeGroup:
     for left, right, interface in scene.group.interfaces:
         group.connect(left, right, interface)
     for left, right, coupling in scene.group.couplings:
-        ends = [factor[n] for n in (left, right) if factor.get(n, 1.0) != 1.0]
+        ends = [factor[n] for n in (left, right) if n in mistuned]
         scale = 1.0 if not ends else ends[0] ** 2 if len(ends) == 1 else ends[0] * ends[1]
         group.connect(left, right, replace(coupling, stiffness=coupling.stiffness * scale))
     group.graph.graph.update(scene.group.graph.graph)
@@ -194,7 +201,7 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
     mistuned = np.array([names.index(b) for b in blades])
     factors = np.ones((samples + 1, len(names)))
     factors[:samples, mistuned] = 1.0 + patterns[:, mistuned // per_sector]
-    scenes = MistunedScenes(scene, factors, speeds)
+    scenes = MistunedScenes(scene, factors, speeds, tuple(blades))
     result = sweep(scenes, range((samples + 1) * len(speeds)), parameter="sample×speed",
                    transient=transient, record=record, samples_per_period=samples_per_period,
                    method=method, workers=workers, executor=executor, progress=progress)

@@ -58,7 +58,7 @@ def test_one_mistuned_blade_amplifies_as_the_direct_linear_solve_says():
     pattern[0, 2] = 0.04
     study = mistuning_study(scene, spread=0.04, samples=1, speeds_rpm=speeds,
                             patterns=pattern, progress=False)
-    mistuned = Scene(group=mistuned_group(scene, 1.0 + pattern[0]),
+    mistuned = Scene(group=mistuned_group(scene, 1.0 + pattern[0], scene.blades),
                      excitation=scene.excitation, speed_rpm=scene.speed_rpm)
     expected = direct_peaks(mistuned, speeds).max() / direct_peaks(scene, speeds).max()
     # The loop's peak is the largest of 100 samples a period: within 1 − cos(π/100).
@@ -75,6 +75,10 @@ def test_a_mistuned_blade_has_its_frequency_scaled():
     couplings = {(a, b): c.stiffness for a, b, c in group.couplings}
     assert couplings[("blade1", "blade2")] == pytest.approx(5e3 * 1.21)
     assert couplings[("blade2", "blade3")] == 5e3
+    # blade 2 mistuned too, by ε = 0: the coupling takes (1 + ε1)(1 + ε2)
+    both = {(a, b): c.stiffness
+            for a, b, c in mistuned_group(scene, factors, ["blade1", "blade2"]).couplings}
+    assert both[("blade1", "blade2")] == pytest.approx(5e3 * 1.1)
 
 
 def test_mistuning_keeps_fixed_and_prescribed_nodes_as_they_are():
