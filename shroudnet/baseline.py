@@ -8,7 +8,9 @@ loop beyond the scene's arrays and its laws' ``__call__``, so it also serves the
 independent check of that loop. Stuck interfaces join their blades into clusters with one
 acceleration; the static friction is the minimum-norm solution of each blade's equilibrium,
 as in ``shroudnet.dynamics``. After a switch the release rule is the simple one: a stuck
-interface whose friction exceeds μ_s N slips the way its friction pushed.
+interface whose friction exceeds μ_s N slips the way its friction pushed. A prescribed-
+motion node is evaluated from its motion at each time (the loop carries it as a state), and
+a cluster that holds one moves with it.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from .engine.codes import Mode
-from .scene import Scene
+from .scene import Scene, edge_matrix
 
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)
 
@@ -36,55 +38,76 @@ class BaselineRun:
 
 
 class _Model:
-    """The scene's equations in plain numpy, for one set of modes at a time."""
+    """The scene's equations in plain numpy, for one set of modes at a time.
+
+    A prescribed-motion node is no unknown here: its displacement, velocity and
+    acceleration are its motion's, evaluated at the time asked for."""
 
     def __init__(self, scene: Scene):
         a = scene.arrays
         self.a = a
-        n, m = a.n_blades, a.n_interfaces
-        self.incidence = np.zeros((m, n))  # B: +1 at the left blade, −1 at the right one
+        n, m, p = a.n_blades, a.n_interfaces, a.n_prescribed
+        self.incidence = np.zeros((m, n + p))  # B: +1 at the left node, −1 at the right one
         for e in range(m):
             if a.left[e] >= 0:
                 self.incidence[e, a.left[e]] = 1.0
             if a.right[e] >= 0:
                 self.incidence[e, a.right[e]] = -1.0
         self.harmonics = np.arange(1, len(a.amplitudes))
-        self.stiffness = a.stiffness_matrix()  # blades' springs and couplings
-        self.damping = a.damping_matrix()
+        none = np.zeros(p)
+        # blades' springs and couplings, by blade row and node column
+        self.stiffness = edge_matrix(np.concatenate([a.stiffness, none]), a.coupling_left,
+                                     a.coupling_right, a.coupling_stiffness)[:n]
+        self.damping = edge_matrix(np.concatenate([a.damping, none]), a.coupling_left,
+                                   a.coupling_right, a.coupling_damping)[:n]
         self.set_modes(np.zeros(m, dtype=np.int64))
+
+    def motion(self, t):
+        """(x_p, ẋ_p, ẍ_p) of the prescribed-motion nodes at time t."""
+        motions = self.a.motions
+        return (np.array([m.displacement_at(t) for m in motions], dtype=float),
+                np.array([m.velocity_at(t) for m in motions], dtype=float),
+                np.array([m.acceleration_at(t) for m in motions], dtype=float))
 
     def set_modes(self, modes):
         """Clusters, their masses and the static-friction pseudo-inverse for ``modes``."""
         a = self.a
-        n = a.n_blades
+        n, nodes = a.n_blades, a.n_blades + a.n_prescribed
         self.modes = modes.copy()
         self.stuck = np.flatnonzero(modes == STICK)
-        # Cluster labels over blades plus one ground node (index n) for fixed nodes.
-        ends = [(a.left[e] if a.left[e] >= 0 else n, a.right[e] if a.right[e] >= 0 else n)
-                for e in self.stuck]
+        # Cluster labels over the nodes plus one ground node (index nodes) for fixed ones.
+        ends = [(a.left[e] if a.left[e] >= 0 else nodes,
+                 a.right[e] if a.right[e] >= 0 else nodes) for e in self.stuck]
         rows = [i for i, _ in ends]
         cols = [j for _, j in ends]
-        graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n + 1, n + 1))
+        graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(nodes + 1, nodes + 1))
         _, labels = connected_components(graph, directed=False)
         self.labels = labels[:n]
-        grounded = labels[:n] == labels[n]
+        grounded = labels[:n] == labels[nodes]
+        # each blade's prescribed node, where its cluster holds one (−1 where none)
+        self.driven_by = np.full(n, -1)
+        for node in range(n, nodes):
+            self.driven_by[labels[:n] == labels[node]] = node - n
         self.sums = (self.labels[None, :] == np.unique(self.labels)[:, None]).astype(float)
-        self.sums[:, grounded] = 0.0  # a grounded cluster does not move
+        self.sums[:, grounded | (self.driven_by >= 0)] = 0.0  # given motion: no momentum
         masses = self.sums @ a.mass
         self.share = np.divide(self.sums, masses[:, None], out=np.zeros_like(self.sums),
                                where=masses[:, None] > 0)
-        balance = (self.incidence[self.stuck] * a.cos_angle[self.stuck, None]).T
+        balance = (self.incidence[self.stuck][:, :n] * a.cos_angle[self.stuck, None]).T
         self.pinv = np.linalg.pinv(balance) if len(self.stuck) else np.zeros((0, n))
 
-    def kinematics(self, x, v):
-        u, du = self.incidence @ x, self.incidence @ v
+    def kinematics(self, t, x, v):
+        x_p, v_p, _ = self.motion(t)
+        u = self.incidence @ np.concatenate([x, x_p])
+        du = self.incidence @ np.concatenate([v, v_p])
         a = self.a
         return (u - a.gap) * a.sin_angle, du * a.sin_angle, du * a.cos_angle
 
     def forces(self, t, x, v):
         """(ẍ, N, f): accelerations, normal forces, friction (sliding or static)."""
         a = self.a
-        penetration, rate, slip = self.kinematics(x, v)
+        n = a.n_blades
+        penetration, rate, slip = self.kinematics(t, x, v)
         closed = self.modes != OPEN
         normal = np.zeros(a.n_interfaces)
         friction = np.zeros(a.n_interfaces)
@@ -103,11 +126,17 @@ class _Model:
         # Q_i = s_i [q0 + Σ_n q_n sin(n (lΩ t + φ_i))]: harmonic n carries n φ_i.
         angle = self.harmonics[:, None] * (a.excitation_frequency * t + a.phases[None, :])
         q = a.excitation_scale * (a.amplitudes[0] + a.amplitudes[1:] @ np.sin(angle))
-        resultant = q - self.damping @ v - self.stiffness @ x - self.incidence.T @ load
+        x_p, v_p, a_p = self.motion(t)
+        resultant = (q - self.damping @ np.concatenate([v, v_p])
+                     - self.stiffness @ np.concatenate([x, x_p])
+                     - self.incidence[:, :n].T @ load)
         acceleration = self.share.T @ (self.sums @ resultant)
+        driven = self.driven_by >= 0
+        acceleration[driven] = a_p[self.driven_by[driven]]
         if len(self.stuck):
             imbalance = (resultant - a.mass * acceleration
-                         - self.incidence[self.stuck].T @ (normal * a.sin_angle)[self.stuck])
+                         - self.incidence[self.stuck][:, :n].T
+                         @ (normal * a.sin_angle)[self.stuck])
             friction[self.stuck] = self.pinv @ imbalance
         return acceleration, normal, friction
 
@@ -115,10 +144,13 @@ class _Model:
         n = self.a.n_blades
         return np.concatenate([y[n:], self.forces(t, y[:n], y[n:])[0]])
 
-    def project(self, v):
+    def project(self, t, v):
         """Velocities of the current clusters: each one's momentum over its mass (0 if
-        grounded)."""
-        return self.share.T @ (self.sums @ (self.a.mass * v))
+        grounded, the prescribed node's if it holds one)."""
+        projected = self.share.T @ (self.sums @ (self.a.mass * v))
+        driven = self.driven_by >= 0
+        projected[driven] = self.motion(t)[1][self.driven_by[driven]]
+        return projected
 
     def events(self):
         """(interface, is a contact guard, solve_ivp event function) for every guard that
@@ -131,7 +163,7 @@ class _Model:
             if a.opens[e]:
                 sign = -1.0 if mode == OPEN else 1.0
                 found.append((e, True, _event(lambda t, y, e=e, s=sign:
-                                              s * self.kinematics(y[:n], y[n:])[0][e])))
+                                              s * self.kinematics(t, y[:n], y[n:])[0][e])))
             if mode == STICK:
                 def margin(t, y, e=e):
                     _, normal, friction = self.forces(t, y[:n], y[n:])
@@ -140,7 +172,7 @@ class _Model:
             elif a.can_stick[e] and mode != OPEN:
                 sign = 1.0 if mode == SLIP_POSITIVE else -1.0
                 found.append((e, False, _event(lambda t, y, e=e, s=sign:
-                                               s * self.kinematics(y[:n], y[n:])[2][e])))
+                                               s * self.kinematics(t, y[:n], y[n:])[2][e])))
         return found
 
 
@@ -154,7 +186,7 @@ def _switch(model: _Model, t, x, v, interface, guard_is_contact):
     """New modes after ``interface``'s guard crossed; returns the projected velocities."""
     a = model.a
     modes = model.modes.copy()
-    _, _, slip = model.kinematics(x, v)
+    _, _, slip = model.kinematics(t, x, v)
     if guard_is_contact:
         slipping = SLIP_POSITIVE if slip[interface] >= 0.0 else SLIP_NEGATIVE
         modes[interface] = slipping if modes[interface] == OPEN else OPEN
@@ -165,7 +197,7 @@ def _switch(model: _Model, t, x, v, interface, guard_is_contact):
         modes[interface] = SLIP_POSITIVE if friction[interface] > 0.0 else SLIP_NEGATIVE
     for _ in range(2 * a.n_interfaces + 1):  # release the worst stuck interface until all hold
         model.set_modes(modes)
-        trial = model.project(v)
+        trial = model.project(t, v)
         _, normal, friction = model.forces(t, x, trial)
         ratio = np.zeros(a.n_interfaces)
         held = model.stuck
@@ -188,15 +220,12 @@ def solve_ivp_baseline(scene: Scene, periods: int, *, rtol: float = 1e-8,
     ``Adaptive``; ``method`` is any of solve_ivp's explicit methods ("RK45" is the same
     Dormand–Prince 5(4) pair as ``Adaptive``).
     """
-    if scene.arrays.n_prescribed:
-        raise ValueError("solve_ivp_baseline does not model prescribed-motion nodes: its "
-                         "scenes' nodes are blades and fixed nodes only")
     model = _Model(scene)
     a = scene.arrays
     n = a.n_blades
     period = scene.excitation_period
     x, v = (np.zeros(n), np.zeros(n)) if initial is None else map(np.array, initial)
-    penetration, _, slip = model.kinematics(x, v)
+    penetration, _, slip = model.kinematics(0.0, x, v)
     model.set_modes(np.where(a.opens & (penetration <= 0.0), OPEN,
                              np.where(slip >= 0.0, SLIP_POSITIVE, SLIP_NEGATIVE)))
     tolerance = np.concatenate([np.full(n, atol), np.full(n, atol * a.excitation_frequency)])

@@ -18,6 +18,9 @@ from shroudnet import (Adaptive, AntiPhase, Blade, BladeGroup, ConstantVelocity,
                        Scene, assemble, linear_modes, monodromy, periodic_orbit,
                        simulate)
 from shroudnet.engine.codes import EventKind
+from shroudnet.baseline import solve_ivp_baseline
+from shroudnet.engine.generate import flags
+from shroudnet.scenes import three_blade_paper
 from tests.test_tangent import (EXACT, differenced_monodromy, scaled_error, state_scale)
 
 NO_EXCITATION = Excitation(engine_order=1, amplitudes=(0.0,), phases=AntiPhase())
@@ -91,6 +94,11 @@ def test_bad_motions_and_nodes_are_refused():
     assert group.fixed == ["wall"] and [name for name, _ in group.prescribed] == ["belt"]
     with pytest.raises(ValueError, match="is prescribed, not a blade"):
         group.blade("belt")
+
+
+def test_kernels_carry_prescribed_motion_code_only_for_scenes_with_such_nodes():
+    assert flags(belt().arrays)["HAS_PRESCRIBED"]
+    assert not flags(three_blade_paper().arrays)["HAS_PRESCRIBED"]
 
 
 def test_a_run_that_would_leave_its_table_is_refused_before_any_work():
@@ -170,6 +178,37 @@ def test_assembly_of_a_stuck_block_moves_it_with_a_shaking_belt():
     assert done.acceleration[0] == a_p
     # m a = −k x − F with F the static friction (α = 0): F = −k x − m a
     assert done.friction_force[0] == pytest.approx(-1e4 * x[0] - 1.0 * a_p, rel=1e-12)
+
+
+@pytest.mark.parametrize("case", ["belt", "shaker and a coupled base"])
+def test_stick_slip_on_a_moving_node_follows_the_plain_solve_ivp_implementation(case):
+    """The plain implementation evaluates each motion where the loop integrates it as a
+    state: the two agree through every stick, breakaway and stick again."""
+    if case == "belt":  # just below the belt's speed: both slip, then stick at once
+        scene, periods, start = belt(), 10, ([0.0], [0.999 * BELT_SPEED])
+    else:
+        group = BladeGroup().add_blade("blade", Blade(mass=0.1, damping=2.0, stiffness=1e5))
+        group.add_prescribed("shaker", HarmonicMotion(amplitude=1e-4, frequency=100.0,
+                                                      phase=0.3))
+        group.connect("blade", "shaker", Interface(gap=0.0, angle=0.0,
+                                                   normal=ConstantLoad(force=12.0),
+                                                   friction=FRICTION))
+        group.add_prescribed("base", HarmonicMotion(amplitude=5e-5, frequency=100.0,
+                                                    phase=1.0))
+        group.connect("blade", "base", Coupling(stiffness=2e4, damping=0.5))
+        scene = Scene(group=group, excitation=NO_EXCITATION, speed_rpm=6000.0)
+        periods, start = 6, None
+    compiled = simulate(scene, periods, method=Adaptive(rtol=1e-10, atol=1e-14),
+                        samples_per_period=1, event_tolerance=1e-12, initial=start)
+    counts = compiled.events.counts
+    assert counts["sticking"] > 0 and counts["breakaway"] > 0, counts
+    plain = solve_ivp_baseline(scene, periods, rtol=1e-10, atol=1e-14, initial=start)
+    assert plain.switches == sum(counts.values())
+    # the scales: the largest sampled |x|, and the largest speed of a sample or a motion
+    speeds = [np.abs(motion.velocity_at(np.linspace(0.0, 0.01, 101))).max()
+              for _, motion in scene.group.prescribed]
+    assert np.abs(plain.x - compiled.x).max() < 1e-7 * np.abs(compiled.x).max()
+    assert np.abs(plain.v - compiled.v).max() < 1e-7 * max(np.abs(compiled.v).max(), *speeds)
 
 
 # ---- a blade shaken through a coupling: the linear closed form --------------------------------
