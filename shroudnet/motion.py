@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from scipy.interpolate import CubicSpline
@@ -59,6 +60,7 @@ class ConstantVelocity:
         return np.zeros_like(np.asarray(t, dtype=float))
 
     def terms(self) -> MotionTerms:
+        """ẍ_p = 0."""
         return MotionTerms()
 
 
@@ -108,11 +110,12 @@ class HarmonicMotion:
                                                    + self.phase)
 
     def terms(self) -> MotionTerms:
+        """ẍ_p = −A ω² sin(ω t + φ)."""
         return MotionTerms(amplitude=self.amplitude, angular_frequency=self.angular_frequency,
                            phase=self.phase)
 
 
-@dataclass(frozen=True, kw_only=True, eq=False)
+@dataclass(frozen=True, kw_only=True)
 class MotionTable:
     """x_p(t): the C² cubic spline (not-a-knot ends) through the points (t_k, x_k).
 
@@ -146,8 +149,9 @@ class MotionTable:
         object.__setattr__(self, "times", tuple(map(float, times)))
         object.__setattr__(self, "displacements", tuple(map(float, displacements)))
 
-    @property
+    @cached_property
     def spline(self) -> CubicSpline:
+        """The spline x_p(t) through the points."""
         return CubicSpline(self.times, self.displacements)
 
     @property
@@ -168,15 +172,9 @@ class MotionTable:
         return self.spline(np.asarray(t, dtype=float), 2)
 
     def terms(self) -> MotionTerms:
+        """ẍ_p linear between the knots, where the spline's second derivative is given."""
         times = np.asarray(self.times)
         return MotionTerms(knot_times=times, knot_accelerations=self.spline(times, 2))
-
-    def __eq__(self, other):
-        return isinstance(other, MotionTable) and (self.times, self.displacements) == (
-            other.times, other.displacements)
-
-    def __hash__(self):
-        return hash((self.times, self.displacements))
 
 
 Motion = ConstantVelocity | HarmonicMotion | MotionTable
