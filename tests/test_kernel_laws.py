@@ -86,7 +86,7 @@ def test_kernel_forces_follow_each_laws_formula(penetration, rate, slip, stuck):
     nothing."""
     kernel = load_kernel(SCENE)
     s = kernel_scene(SCENE)
-    work = new_work.py_func(6, 6)
+    work = new_work.py_func(6, 6, 0)
     work.penetration[:] = penetration
     work.rate[:] = rate
     work.slip[:] = slip
@@ -110,7 +110,7 @@ def test_kernel_forces_follow_each_laws_formula(penetration, rate, slip, stuck):
 @pytest.mark.slow  # compiles a kernel with every law
 def test_open_interfaces_carry_no_force():
     kernel = load_kernel(SCENE)
-    work = new_work.py_func(6, 6)
+    work = new_work.py_func(6, 6, 0)
     work.penetration[:] = 1e-6
     work.rate[:] = 0.1
     work.slip[:] = 0.3

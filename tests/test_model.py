@@ -42,7 +42,7 @@ EXCITATION = Excitation(engine_order=2, amplitudes=(0.0, 10.0), phases=AntiPhase
     (lambda: BladeGroup().add_blade("a", BLADE).connect("a", "a", SHROUD), ValueError,
      r"needs two nodes"),
     (lambda: BladeGroup().add_fixed("d").add_fixed("c").connect("d", "c", SHROUD), ValueError,
-     r"both nodes are fixed"),
+     r"neither node is a blade \(both are fixed or prescribed\)"),
     (lambda: BladeGroup.chain(2, BLADE, SHROUD).connect("blade2", "blade1", SHROUD), ValueError,
      r"already connected"),
     (lambda: BladeGroup.ring(2, BLADE, SHROUD), ValueError, r"ring needs n >= 3"),

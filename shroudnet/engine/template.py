@@ -369,7 +369,7 @@ def linearise_at(t, x, v, modes, s, tangent0):
     """``linearise`` and the vector field's Jacobian at (t, x, v) in ``modes``, callable
     from Python for tests: returns (J, ẍ), J = ∂(ẋ, ẍ)/∂(x, ẋ) (2 n_blades square)."""
     n = len(x)
-    g = new_tangent(tangent0, len(modes), 1)
+    g = new_tangent(tangent0, len(modes), len(s.motion_amplitude), 1)
     topology = regroup(s, modes)
     linearise(t, x, v, modes, topology, s, g)
     jacobian = np.zeros((2 * n, 2 * n))
