@@ -181,3 +181,8 @@ class Excitation:
     def frequency(self, speed_rpm: float) -> float:
         """f_e = l Ω/60 [Hz] at ``speed_rpm`` [rev/min]."""
         return self.engine_order * speed_rpm / 60.0
+
+
+#: No force on any blade: a group driven by prescribed motions alone (a block on a belt).
+#: Its engine order 1 makes the period a run counts in 60/speed_rpm s.
+NO_EXCITATION = Excitation(engine_order=1, amplitudes=(0.0,), phases=AntiPhase())

@@ -93,7 +93,8 @@ import contact_laws
 
 from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
 from .coupling import Coupling
-from .excitation import AntiPhase, EngineOrderWave, Excitation, ExplicitPhases, TravellingWave
+from .excitation import (NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation,
+                         ExplicitPhases, TravellingWave)
 from .group import BladeGroup
 from .interface import Interface
 from .methods import Accuracy, Adaptive, FixedStep
@@ -355,10 +356,6 @@ def _bladed_disc(table, own: dict[str, type]) -> BladeGroup:
 _MOTIONS = {"constant_velocity": (ConstantVelocity, {"velocity", "position"}),
             "harmonic": (HarmonicMotion, {"amplitude", "frequency", "phase"}),
             "table": (MotionTable, {"times", "displacements"})}
-
-#: The excitation of a file without ``[excitation]``: no force.
-NO_EXCITATION = Excitation(engine_order=1, amplitudes=(0.0,), phases=AntiPhase())
-
 
 def _motion(table: dict, key: str):
     kind = table.get("kind")

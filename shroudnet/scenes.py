@@ -10,7 +10,8 @@ from contact_laws import (ConstantLoad, ExponentialFriction, FrictionLaw, Linear
 
 from .blade import Blade, Southwell
 from .coupling import Coupling
-from .excitation import AntiPhase, EngineOrderWave, Excitation, PhasePattern
+from .excitation import (NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation,
+                         PhasePattern)
 from .group import BladeGroup
 from .interface import Interface
 from .motion import ConstantVelocity
@@ -200,6 +201,4 @@ def block_on_belt(*, belt_speed: float = 0.1, normal_force: float = 10.0, mass: 
     group.connect("block", "belt", Interface(gap=0.0, angle=0.0,
                                              normal=ConstantLoad(force=normal_force),
                                              friction=friction))
-    return Scene(group=group, excitation=Excitation(engine_order=1, amplitudes=(0.0,),
-                                                    phases=AntiPhase()),
-                 speed_rpm=60.0 / period)
+    return Scene(group=group, excitation=NO_EXCITATION, speed_rpm=60.0 / period)
