@@ -10,13 +10,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate._ivp.rk import RK45
 
-from contact_laws import ExponentialFriction, LinearSpring
+from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz,
+                          LinearSpring, Regularised, Stribeck)
 from shroudnet import Mode, Simulation, simulate
 from shroudnet.engine import codes, generate, locate, tableau
 from shroudnet.engine.cache import cache_size, clear_cache
 from shroudnet.engine.clusters import cluster_labels
 from shroudnet.engine.detect import crossed, depth, parabola_low, predicted_low
 from shroudnet.engine.regroup import static_friction_operator
+from shroudnet.scenes import block_on_belt as belt
 from shroudnet.scenes import three_blade_paper
 from tests.laws import CubicSpring
 
@@ -249,6 +251,27 @@ def test_a_change_in_a_laws_helper_module_gives_a_new_kernel(tmp_path, monkeypat
     assert names[0] != names[1]
 
 
+def test_every_combination_of_built_in_laws_shares_one_kernel():
+    """A new combination of built-in laws, or a scene that rules effects out, compiles
+    nothing; a law of the user's own gets a kernel of its own."""
+    scenes = [three_blade_paper(), three_blade_paper(friction=None),
+              three_blade_paper(normal=Hertz(stiffness=3e7), friction=Coulomb(mu=0.3)),
+              three_blade_paper(normal=ConstantLoad(force=5.0),
+                                friction=Regularised(law=Stribeck(mu_static=0.4,
+                                                                  mu_kinetic=0.2,
+                                                                  stribeck_velocity=0.01),
+                                                     velocity=1e-3)),
+              three_blade_paper(gap=1.0), belt()]
+    kernels = {generate.load_kernel(scene).__name__ for scene in scenes}
+    assert len(kernels) == 1
+    shared = generate.load_kernel(scenes[0])
+    assert shared.SHARED and shared.HAS_CONTACT_EVENTS and shared.HAS_REGULARISED
+    assert not shared.HAS_TANGENT and generate.load_kernel(scenes[0], tangent=True).TANGENT
+    own = generate.load_kernel(three_blade_paper(normal=CubicSpring(linear=1e5, cubic=1e13)))
+    assert own.__name__ not in kernels and not own.SHARED and own.LAWS == ("CubicSpring",
+                                                                          "ExponentialFriction")
+
+
 def test_a_user_law_without_a_helper_keeps_one_kernel():
     law = LinearSpring(stiffness=2e5)
     assert (generate.load_kernel(three_blade_paper(normal=law)).__name__
@@ -278,7 +301,7 @@ def test_a_compile_is_announced_once_and_timed_apart(tmp_path, monkeypatch, caps
         again = capsys.readouterr().err
     finally:
         generate._kernel.cache_clear()
-    assert "compiling the adaptive integrator for LinearSpring + ExponentialFriction" in \
+    assert "compiling the adaptive integrator for every built-in contact law" in \
         announced and "once" in announced
     assert again == ""
     assert first.compile_seconds > second.compile_seconds == 0.0

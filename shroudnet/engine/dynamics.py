@@ -54,7 +54,7 @@ def prescribed_acceleration(t, s, p):
     return acceleration, rate
 
 
-@njit_step_callable
+@njit_inlined_callable
 def driven_accelerations(labels, driver, masses, cluster_force, v, drive, n_blades,
                          acceleration):
     """ẍ = a_d of every node of a cluster driven by prescribed-motion node d (``drive``
@@ -74,7 +74,7 @@ def driven_accelerations(labels, driver, masses, cluster_force, v, drive, n_blad
     return power
 
 
-@njit_step_callable
+@njit_inlined_callable
 def excitation_forces(t, amplitudes, cos_phase, sin_phase, excitation_frequency, out):
     """Q_i(t) = s_i [q0 + Σ_n q_n sin(n (l Ω t + φ_i))] [N] (paper §2), written into ``out``.
 
@@ -139,7 +139,7 @@ def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle,
         slip_velocity[e] = du * cos_angle[e]
 
 
-@njit_step_callable
+@njit_inlined_callable
 def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, stuck,
                      resultant):
     """R_i = Q_i − c_i ẋ_i − k_i x_i − (Bᵀ F)_i over the interfaces that are not stuck [N].
@@ -157,7 +157,7 @@ def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, 
             resultant[right[e]] += interface_force[e]
 
 
-@njit_step_callable
+@njit_inlined_callable
 def coupling_forces(x, v, left, right, stiffness, damping, resultant):
     """Subtract each coupling's F = k_c (x_i − x_j) + c_c (ẋ_i − ẋ_j) from node i's resultant
     and add it to node j's [N]; returns the power its dampers dissipate, Σ c_c (ẋ_i − ẋ_j)²
@@ -174,7 +174,7 @@ def coupling_forces(x, v, left, right, stiffness, damping, resultant):
     return power
 
 
-@njit_step_callable
+@njit_inlined_callable
 def cluster_accelerations(resultant, labels, grounded, masses, cluster_force, acceleration):
     """ẍ_i = Σ_cluster R / Σ_cluster m for every blade of a cluster; 0 in a grounded one.
 
@@ -190,7 +190,7 @@ def cluster_accelerations(resultant, labels, grounded, masses, cluster_force, ac
         acceleration[i] = 0.0 if grounded[c] else cluster_force[c] / masses[c]
 
 
-@njit_step_callable
+@njit_inlined_callable
 def static_friction(operator, stuck_interfaces, mass, resultant, acceleration, normal_force,
                     sin_angle, left, right, imbalance, friction):
     """Static friction f_e [N] on each stuck interface, written into ``friction[e]``.

@@ -1,9 +1,12 @@
 """Kernel generation: the loop template specialised for the law classes of a scene.
 
-A kernel is ``template.py`` behind a generated header that dispatches to the scene's law
-classes and switches off the effects those classes rule out (contact events, stick,
-friction, regularisation). It depends on which law classes are present, never on the
-number of blades or on a parameter value, so a sweep compiles each combination once.
+A kernel is ``template.py`` behind a generated header that dispatches to law classes and
+switches off the effects those classes rule out (contact events, stick, friction,
+regularisation). Scenes whose laws are all built into ``contact_laws`` share one kernel
+that dispatches over every built-in class with every effect kept, so no combination of
+them compiles twice; a scene with a law of the user's own gets a kernel specialised for
+its law classes. A kernel never depends on the number of blades or on a parameter value,
+so a sweep compiles at most once.
 Kernels are written to the cache folder (``cache.cache_folder``) and compiled by numba
 with its on-disk cache, so a second process does not compile again. The cache key covers
 every source a kernel is made of: the template, the engine's modules, and the modules of
@@ -28,6 +31,8 @@ from types import ModuleType
 import numba
 import numpy as np
 
+from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz, HuntCrossley,
+                          KelvinVoigt, LinearSpring, Stribeck)
 from contact_laws.base import PENETRATION_SCALE, RATE_SCALE, SPEED_SCALE
 
 from ..scene import Scene
@@ -41,9 +46,9 @@ _TEMPLATE = _ENGINE / "template.py"
 #: About how long compiling one driver of a kernel takes on a 2-core machine [s], with
 #: the engine's own compiled code in the cache, and without (the very first run); and
 #: the driver with its tangent flow.
-COMPILE_ESTIMATE = 60
-FIRST_COMPILE_ESTIMATE = 70
-TANGENT_COMPILE_ESTIMATE = 80
+COMPILE_ESTIMATE = 80
+FIRST_COMPILE_ESTIMATE = 100
+TANGENT_COMPILE_ESTIMATE = 100
 
 
 def announce(message: str) -> None:
@@ -60,16 +65,31 @@ def _classes(laws) -> list[type]:
     return sorted(unique, key=lambda c: (c.__module__, c.__qualname__))
 
 
+#: The law classes of the shared kernel, in its index order.
+BUILT_IN_NORMAL = (LinearSpring, Hertz, KelvinVoigt, HuntCrossley, ConstantLoad)
+BUILT_IN_FRICTION = (Coulomb, ExponentialFriction, Stribeck)
+
+
 def _law_classes(arrays) -> tuple[list[type], list[type]]:
-    """The scene's normal and (exact) friction law classes, in the kernel's index order."""
+    """The kernel's normal and (exact) friction law classes, in its index order: every
+    built-in class where the scene has no other, else the scene's own."""
     frictions = [f.exact for f in arrays.friction_laws if f is not None]
-    return _classes(arrays.normal_laws), _classes(frictions)
+    normal, friction = _classes(arrays.normal_laws), _classes(frictions)
+    if built_in(normal, friction):
+        return list(BUILT_IN_NORMAL), list(BUILT_IN_FRICTION)
+    return normal, friction
+
+
+def built_in(normal_classes, friction_classes) -> bool:
+    """Whether these law classes are all built into ``contact_laws`` (the shared kernel)."""
+    return (set(normal_classes) <= set(BUILT_IN_NORMAL)
+            and set(friction_classes) <= set(BUILT_IN_FRICTION))
 
 
 def flags(arrays, tangent: bool = False) -> dict[str, bool]:
-    """The effects a kernel keeps, from the law classes alone (never from their values),
+    """The effects a scene calls for, from the law classes alone (never from their values),
     whether the scene has couplings or prescribed-motion nodes, and whether it integrates the
-    tangent flow.
+    tangent flow. A specialised kernel keeps these; the shared one keeps every effect.
 
     Contact events need a normal law that opens; stick needs an exact friction law;
     regularisation a smoothed one.
@@ -221,8 +241,10 @@ def load_kernel(scene: Scene, tangent: bool = False) -> ModuleType:
     integrates the tangent flow too."""
     arrays = scene.arrays
     normal_classes, friction_classes = _law_classes(arrays)
-    return _kernel(tuple(normal_classes), tuple(friction_classes),
-                   tuple(flags(arrays, tangent).items()))
+    effects = flags(arrays, tangent)
+    if built_in(normal_classes, friction_classes):
+        effects = {flag: True for flag in effects} | {"HAS_TANGENT": tangent}
+    return _kernel(tuple(normal_classes), tuple(friction_classes), tuple(effects.items()))
 
 
 @functools.cache
@@ -255,6 +277,7 @@ def _kernel(normal_classes, friction_classes, effect_flags) -> ModuleType:
                         numba.njit(_derivative_function(law_class, kind)))
     module.LAWS = tuple(c.__qualname__ for c in normal_classes + friction_classes)
     module.TANGENT = dict(effect_flags)["HAS_TANGENT"]
+    module.SHARED = built_in(normal_classes, friction_classes)
     return module
 
 
@@ -272,9 +295,10 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
             seconds = TANGENT_COMPILE_ESTIMATE if module.TANGENT else \
                 COMPILE_ESTIMATE if _cached(regroup) else FIRST_COMPILE_ESTIMATE
             flow = " with its tangent flow" if module.TANGENT else ""
+            laws = "every built-in contact law (once" if module.SHARED else \
+                f"{' + '.join(module.LAWS)} (once for these law classes"
             announce(f"shroudnet: compiling the {driver.__name__.removeprefix('run_')} "
-                     f"integrator{flow} for {' + '.join(module.LAWS) or 'no laws'} (once for "
-                     f"these law classes; about {seconds} s)")
+                     f"integrator{flow} for {laws}; about {seconds} s)")
         began = time.perf_counter()
         driver.compile(tuple(numba.typeof(a) for a in arguments))
         return driver, time.perf_counter() - began

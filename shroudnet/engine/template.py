@@ -159,7 +159,7 @@ def derivative(t, x, v, modes, topology, s, w, acceleration):
     cluster_accelerations(w.resultant, topology.labels, topology.grounded, topology.masses,
                           w.scratch, acceleration)
     excitation = 0.0
-    if HAS_PRESCRIBED:
+    if HAS_PRESCRIBED and len(w.drive) > 0:
         for p in range(len(w.drive)):
             w.drive[p] = prescribed_acceleration(t, s, p)[0]
         excitation = driven_accelerations(topology.labels, topology.driver, topology.masses,
