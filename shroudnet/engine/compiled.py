@@ -14,17 +14,16 @@ dozen arrays it touches: summing the forces on three blades took 125 ns instead 
 14 ns, and the paper scene ran at 170,000 instead of 1,150,000 steps per second.
 
 Inlined flavours are for the small helpers called many times per step with the loop's
-records, whose passing would otherwise cost more than their work. Those that take the
-records are inlined by numba itself (``inline="always"``); the array helpers that Python
-calls too by LLVM (``forceinline``). Leaving all of them to LLVM compiles in 30 s instead
-of 45 s and runs fast in the process that compiled it, but the code numba loads back
-from its cache then runs 1.4 times slower (0.35 against 0.25 ms per period of the paper
-scene), and most runs load it from the cache. Measure both before changing this.
-The force assembly of every stage (``dynamics``: excitation, resultants, couplings,
-cluster accelerations, static friction) is inlined too: called apart, its ten-odd array
-arguments cost more than its work, and inlining it took the paper scene from 0.21 to
-0.15 ms per period (adaptive, loaded from the cache) and fixed steps from 0.57 to
-0.40 ms per period, for 5 s more compiling.
+records, whose passing would otherwise cost more than their work. LLVM inlines them
+(``forceinline``), the force assembly of every stage (``dynamics``: excitation,
+resultants, couplings, cluster accelerations, static friction) included: called apart,
+its ten-odd array arguments cost more than its work, and inlining it took the paper
+scene from 0.21 to 0.15 ms per period (adaptive, loaded from the cache) and fixed steps
+from 0.57 to 0.40 ms per period. numba's own inlining (``inline="always"``) does the
+same at the level of its typed code, but it copies the callee's code into every caller
+and types it again there: for the helpers it cost half the compile time (a shared kernel
+compiled in 105 s, against 57 s with LLVM's), for the same speed. Measure both, on code
+loaded back from the cache, before changing this.
 
 numpy's error model makes a division by zero give inf or NaN instead of raising inside
 compiled code; the loop then stops with a non-finite state, which it reports.
@@ -52,7 +51,7 @@ njit_step = njit(**_STEP, **_NOT_FROM_PYTHON)
 #: Step-path array functions that Python calls too.
 njit_step_callable = njit(**_STEP)
 #: Small step-path helpers, inlined into their callers.
-njit_inlined = njit(**_STEP, inline="always", **_NOT_FROM_PYTHON)
+njit_inlined = njit(**_STEP, forceinline=True, **_NOT_FROM_PYTHON)
 #: Small step-path helpers, inlined, that Python calls too.
 njit_inlined_callable = njit(**_STEP, forceinline=True)
 
