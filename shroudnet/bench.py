@@ -1,10 +1,10 @@
 """Benchmark: ``python -m shroudnet.bench`` prints what the paper's scene costs to simulate.
 
 0. Compiling: the first run of the paper's scene on an empty cache, and then the first run
-   of a new combination of law classes, each in a fresh process.
+   of another combination of built-in law classes, each in a fresh process.
 1. Steps per second of each integrator on one core.
-2. Scene specialisation: the same blades with no contact, frictionless and frictional
-   contact, each running the kernel compiled for its effects.
+2. Effects: the same blades with no contact, frictionless and frictional contact, each
+   paying for the effects it has (all of them run the kernel shared by the built-in laws).
 3. The ratio against a plain ``solve_ivp`` event-driven implementation of the same scene
    (``shroudnet.baseline``) at equal accuracy, both measured against a converged reference.
 4. Sweeps: seconds per bifurcation point, the speed-up with the number of workers, and the
@@ -116,7 +116,7 @@ def without_interfaces(scene: Scene) -> Scene:
     return Scene(group=group, excitation=scene.excitation, speed_rpm=scene.speed_rpm)
 
 
-def specialisation_scenes() -> dict[str, Scene]:
+def effect_scenes() -> dict[str, Scene]:
     frictional = three_blade_paper(**POINT)
     return {
         "no interfaces": without_interfaces(frictional),
@@ -296,9 +296,9 @@ def main(argv=None) -> None:
               f"residual {sim.energy.residual:.3e} J against friction loss "
               f"{sim.energy.friction_loss:.4f} J")
 
-    print("\n2. Scene specialisation: the same blades, one core, steps/s with fixed-step RK4 "
-          "and adaptive DP5(4)")
-    for label, scene in specialisation_scenes().items():
+    print("\n2. Effects: the same blades, one core, steps/s with fixed-step RK4 and adaptive "
+          "DP5(4)")
+    for label, scene in effect_scenes().items():
         fixed, sim = steps_per_second(FixedStep(), scene=scene, periods=periods,
                                       repeats=repeats)
         adaptive, _ = steps_per_second(Adaptive(), scene=scene, periods=periods,

@@ -253,14 +253,15 @@ def _parser() -> argparse.ArgumentParser:
 
     cache = commands.add_parser(
         "cache", help="show where compiled integrators are kept and their size; --clear",
-        description="Show the folder that keeps the compiled integrators (one per "
-        "combination of contact and friction law classes) and how much room they take. "
+        description="Show the folder that keeps the compiled integrators (one shared by "
+        "the built-in laws, and one per combination of law classes of your own) and how "
+        "much room they take. "
         "With --clear, delete them: the next run compiles again, once.")
     cache.add_argument("--clear", action="store_true", help="delete the compiled integrators")
     cache.set_defaults(command=_cache, name="cache")
 
     bench = commands.add_parser(
-        "bench", help="run the benchmark (speed, specialisation, baseline, sweeps)",
+        "bench", help="run the benchmark (speed, effects, baseline, sweeps)",
         description="Run the benchmark; the options after 'bench' go to it "
         "(python -m shroudnet.bench --help lists them).", add_help=False)
     bench.add_argument("options", nargs=argparse.REMAINDER)

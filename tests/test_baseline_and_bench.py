@@ -33,7 +33,7 @@ def test_plain_solve_ivp_and_the_compiled_loop_follow_the_same_trajectory(scene)
 def test_the_benchmark_runs_and_prints_every_section(capsys):
     bench_main(["--quick"])
     out = capsys.readouterr().out
-    for heading in ("1. Integration speed", "2. Scene specialisation", "3. Against plain",
+    for heading in ("1. Integration speed", "2. Effects", "3. Against plain",
                     "4. Sweeps", "Fig. 6-class diagram", "peak resident memory",
                     "5. The tangent flow"):
         assert heading in out
