@@ -487,7 +487,7 @@ def test_ctrl_c_stops_the_workers_at_once_without_noise_and_keeps_the_saved_poin
     """Ctrl-C (SIGINT to the process group) after the first points are saved: the sweep
     raises KeyboardInterrupt alone, prints nothing, stops the workers without waiting for
     their points, and every saved point loads."""
-    process = start_sweep_process(tmp_path, transient=30_000)
+    process = start_sweep_process(tmp_path, transient=150_000)  # points of several seconds
     workers = set()
     points = tmp_path / "sweep" / "points"
     try:
