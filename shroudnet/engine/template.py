@@ -12,7 +12,8 @@ The header defines, for the law classes of a scene:
 - the effect flags ``HAS_CONTACT_EVENTS``, ``HAS_STICK``, ``HAS_FRICTION`` and
   ``HAS_REGULARISED``, compile-time constants that remove the code of effects the laws
   rule out, ``HAS_COUPLINGS`` and ``HAS_PRESCRIBED``, set only for scenes with couplings
-  and with prescribed-motion nodes, and ``HAS_TANGENT``,
+  and with prescribed-motion nodes (all of these are set in the kernel shared by the
+  built-in laws, whose code then checks each effect at run time), and ``HAS_TANGENT``,
   set only in the kernels of runs that integrate the tangent flow (``tangent``), so that
   other runs carry none of its code.
 
