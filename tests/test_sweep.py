@@ -404,12 +404,14 @@ def test_terminal_progress_writes_a_notice_on_its_own_line():
 # ---- the worker processes when the sweep's process stops ----------------------------------
 
 CHILD = '''
-import os, sys
+import os, signal, sys
 from pathlib import Path
 from shroudnet import sweep
 from shroudnet.scenes import three_blade_paper
 
 FOLDER = Path(sys.argv[1])
+# A command in a terminal takes Ctrl-C; one started in the background inherits it ignored.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def scene_at(gamma1):
@@ -487,7 +489,7 @@ def test_ctrl_c_stops_the_workers_at_once_without_noise_and_keeps_the_saved_poin
     """Ctrl-C (SIGINT to the process group) after the first points are saved: the sweep
     raises KeyboardInterrupt alone, prints nothing, stops the workers without waiting for
     their points, and every saved point loads."""
-    process = start_sweep_process(tmp_path, transient=150_000)  # points of several seconds
+    process = start_sweep_process(tmp_path, transient=30_000)
     workers = set()
     points = tmp_path / "sweep" / "points"
     try:
