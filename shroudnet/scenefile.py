@@ -357,6 +357,7 @@ _MOTIONS = {"constant_velocity": (ConstantVelocity, {"velocity", "position"}),
             "harmonic": (HarmonicMotion, {"amplitude", "frequency", "phase"}),
             "table": (MotionTable, {"times", "displacements"})}
 
+
 def _motion(table: dict, key: str):
     kind = table.get("kind")
     if kind not in _MOTIONS:
