@@ -79,30 +79,35 @@ FRICTION_SLACK = 1e-9
 
 # ---- the right-hand side and the guards (every stage of every step) -------------------
 
-@njit_step
-def sliding_coefficient(kind, params, speed):
-    """μ and dμ/ds of an exact law at the slip speed s = ±u̇ cos α signed by the slip mode:
-    μ(s) for s ≥ 0; for s < 0, a state past the end of its mode (within the event
-    tolerance past a located switch, or a Runge–Kutta stage just beyond it),
-    μ(|s|) + 2 μ'(|s|) s, which leaves s = 0 with the slope μ'(0⁺) that the slip side
-    arrives with (its own slope, μ'(|s|) − 2 μ''(|s|) s, is taken as μ'(|s|): s is within
-    a tolerance of 0). The mode's vector field thus continues across the switching
-    surface with a continuous slope, where μ(|s|) would have a kink: stages beyond the
-    kink made the tangent flow converge at first order only. A law whose μ jumps at 0
-    (μ(0⁺) ≠ μ_s) is continued from μ(0⁺), the value the slip side has."""
+@njit_inlined
+def sliding_mu(kind, params, speed):
+    """μ of an exact law at the slip speed s = ±u̇ cos α signed by the slip mode: μ(s) for
+    s ≥ 0; for s < 0, a state past the end of its mode (within the event tolerance past a
+    located switch, or a Runge–Kutta stage just beyond it), μ(|s|) + 2 μ'(|s|) s, which
+    leaves s = 0 with the slope μ'(0⁺) that the slip side arrives with. The mode's vector
+    field thus continues across the switching surface with a continuous slope, where
+    μ(|s|) would have a kink: stages beyond the kink made the tangent flow converge at
+    first order only. A law whose μ jumps at 0 (μ(0⁺) ≠ μ_s) is continued from μ(0⁺), the
+    value the slip side has. The slope is evaluated only for s < 0."""
     size = abs(speed)
     mu = friction_coefficient(kind, params, size)
-    slope = friction_slope(kind, params, size)
     if speed >= 0.0:
-        return mu, slope
-    return mu + 2.0 * slope * speed, slope
+        return mu
+    return mu + 2.0 * friction_slope(kind, params, size) * speed
+
+
+@njit_step
+def sliding_coefficient(kind, params, speed):
+    """``sliding_mu`` and dμ/ds: μ'(|s|) (for s < 0 the slope of the continuation,
+    μ'(|s|) − 2 μ''(|s|) s, is taken as μ'(|s|): s is within a tolerance of 0)."""
+    return sliding_mu(kind, params, speed), friction_slope(kind, params, abs(speed))
 
 
 @njit_step
 def law_forces(s, modes, w):
     """N and sliding f on every interface from its laws, into w.normal and w.friction.
 
-    Exact laws slip with f = σ μ(σ u̇ cos α) N, σ = ±1 by the mode (``sliding_coefficient``),
+    Exact laws slip with f = σ μ(σ u̇ cos α) N, σ = ±1 by the mode (``sliding_mu``),
     regularised ones with f = μ(|u̇ cos α|) N tanh(u̇ cos α / v_ε) (paper eqs. 2–6).
     """
     for e in range(len(modes)):
@@ -121,9 +126,8 @@ def law_forces(s, modes, w):
                 * math.tanh(w.slip[e] / s.regularisation[e])
         else:
             sign = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
-            mu, _ = sliding_coefficient(s.friction_kind[e], s.friction_params[e],
-                                        sign * w.slip[e])
-            w.friction[e] = sign * normal * mu
+            w.friction[e] = sign * normal * sliding_mu(s.friction_kind[e],
+                                                       s.friction_params[e], sign * w.slip[e])
 
 
 @njit_entry
@@ -612,6 +616,8 @@ def settle(t, state, candidates, topology, s, w):
     |f| > μ_s N, as its breakaway guard says; a candidate only beyond
     μ_s N (1 + ``FRICTION_SLACK``).
 
+    With nothing stuck and no candidate the set holds as it is, and no force is evaluated.
+
     ``topology`` is that of the modes before the switch, kept while the set of stuck
     interfaces stays the same. Returns (status, kinetic energy lost to the projection,
     topology, the interface that made the set inconsistent or −1); state.v is projected.
@@ -620,6 +626,9 @@ def settle(t, state, candidates, topology, s, w):
     n = len(modes)
     tried = np.zeros(n, dtype=np.int64)  # per interface: bit 1 slip +, bit 2 slip − tried
     v_trial = np.empty(len(v))
+    any_candidate = False
+    for e in range(n):
+        any_candidate = any_candidate or candidates[e]
     for _ in range(4 * n + 2):
         if not same_stuck(topology, modes):
             topology = regroup(s, modes)
@@ -635,7 +644,8 @@ def settle(t, state, candidates, topology, s, w):
         for i in range(len(v)):
             v_trial[i] = v[i]
         lost = project_velocities(s, topology, v_trial)
-        evaluate_guards_apart(t, x, v_trial, modes, topology, s, w, w.a_end)
+        if len(topology.stuck_interfaces) > 0 or any_candidate:  # else forces decide nothing
+            evaluate_guards_apart(t, x, v_trial, modes, topology, s, w, w.a_end)
         worst = -1
         worst_ratio = 0.0
         for e in topology.stuck_interfaces:
@@ -796,6 +806,27 @@ def locate_fixed(t, h, theta, state, topology, s, w, controls):
 
 
 @njit_step_merged
+def dense_guards(t, h, theta, state, topology, s, w):
+    """The guards at t + θh on the dense output of the adaptive step of size h from t, into
+    w.contact / w.motion (the state there in w.xt, w.vt).
+
+    Contact and slip guards are functions of the state alone (``detect.event_guards``):
+    without stuck interfaces no force is evaluated, as in ``detect.kinematic_dip``. A
+    breakaway margin needs the static friction, so with stuck interfaces the forces are
+    evaluated too.
+    """
+    dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
+    if len(topology.stuck_interfaces) > 0:
+        evaluate_guards_apart(t + theta * h, w.xt, w.vt, state.modes, topology, s, w,
+                              w.a_sample)
+        return
+    interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
+                         w.penetration, w.rate, w.slip)
+    event_guards(state.modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu,
+                 s.opens, s.can_stick, w.contact, w.motion)
+
+
+@njit_step_merged
 def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
     """The earliest switch in (0, θ] of the adaptive step from t of size h; moves the state
     there.
@@ -808,15 +839,13 @@ def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
     is taken. Leaves the guards there in w. Returns (the switch time, the next sample).
     """
     width = 0.5 * controls.event_tolerance / h
-    dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
-    evaluate_guards_apart(t + theta * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
+    dense_guards(t, h, theta, state, topology, s, w)
     lo, f_lo, hi, f_hi, side, g = bracket_start(theta, state, w)
     previous, slow = hi, np.int64(0)
     while hi - lo > width:
         trial, slow = next_trial(lo, f_lo, hi, f_hi, width, previous, slow)
         previous = hi - lo
-        dense_state(trial, h, state, w, w.xt, w.vt, w.e_sample)
-        evaluate_guards_apart(t + trial * h, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
+        dense_guards(t, h, trial, state, topology, s, w)
         lo, f_lo, hi, f_hi, side, g = bracket_after(lo, f_lo, hi, f_hi, side, g, trial, state,
                                                     w)
     past = min(1.0, hi + width)
