@@ -100,8 +100,10 @@ class Stribeck(FrictionLaw):
 
     @staticmethod
     def coefficient(slip_speed, mu_static, mu_kinetic, stribeck_velocity, exponent):
-        return mu_kinetic + (mu_static - mu_kinetic) * math.exp(
-            -((slip_speed / stribeck_velocity) ** exponent))
+        ratio = slip_speed / stribeck_velocity
+        # the Gaussian shape as a product: a fraction of a power's time
+        power = ratio * ratio if exponent == 2.0 else ratio ** exponent
+        return mu_kinetic + (mu_static - mu_kinetic) * math.exp(-power)
 
     @staticmethod
     def coefficient_slope(slip_speed, mu_static, mu_kinetic, stribeck_velocity, exponent):
@@ -110,6 +112,9 @@ class Stribeck(FrictionLaw):
         ratio = slip_speed / stribeck_velocity
         if ratio == 0.0 and exponent != 1.0:
             return 0.0 if exponent > 1.0 else -math.inf
+        if exponent == 2.0:
+            return -(mu_static - mu_kinetic) * 2.0 * ratio * math.exp(-(ratio * ratio)) \
+                / stribeck_velocity
         return -(mu_static - mu_kinetic) * exponent * ratio ** (exponent - 1.0) \
             * math.exp(-(ratio ** exponent)) / stribeck_velocity
 

@@ -6,6 +6,7 @@ Each ``normal_force`` is called only while the contact is closed (penetration δ
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -59,13 +60,18 @@ class Hertz(NormalLaw):
     @staticmethod
     def normal_force(penetration, rate, stiffness, exponent):
         # A trial state inside a step that separates can hold δ < 0: no force, not NaN.
-        return stiffness * max(penetration, 0.0) ** exponent
+        depth = max(penetration, 0.0)
+        if exponent == 1.5:  # the point contact: δ √δ takes a fraction of a power's time
+            return stiffness * depth * math.sqrt(depth)
+        return stiffness * depth ** exponent
 
     @staticmethod
     def normal_force_gradient(penetration, rate, stiffness, exponent):
         # ∂N/∂δ = k n δ^(n−1); at δ ≤ 0 the contact carries no force, so 0 (also for n = 1).
         if penetration <= 0.0:
             return 0.0, 0.0
+        if exponent == 1.5:
+            return stiffness * 1.5 * math.sqrt(penetration), 0.0
         return stiffness * exponent * penetration ** (exponent - 1.0), 0.0
 
 

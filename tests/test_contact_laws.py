@@ -299,6 +299,7 @@ def _smooth_normal_points(draw):
     law = draw(st.sampled_from([
         cl.LinearSpring(stiffness=stiffness),
         cl.Hertz(stiffness=stiffness, exponent=draw(st.floats(1.0, 3.0))),
+        cl.Hertz(stiffness=stiffness),  # n = 3/2 has a path of its own
         cl.KelvinVoigt(stiffness=stiffness, damping=draw(st.floats(0.0, 100.0))),
         cl.HuntCrossley(stiffness=stiffness, damping=draw(st.floats(0.0, 5.0)),
                         exponent=draw(st.floats(1.0, 3.0))),
@@ -349,6 +350,8 @@ def _friction_points(draw):
         cl.Stribeck(mu_static=mu_s, mu_kinetic=mu_k,
                     stribeck_velocity=draw(st.floats(1e-4, 1.0)),
                     exponent=draw(st.floats(0.2, 4.0))),
+        cl.Stribeck(mu_static=mu_s, mu_kinetic=mu_k,  # δ = 2 has a path of its own
+                    stribeck_velocity=draw(st.floats(1e-4, 1.0))),
     ]))
     return law, draw(st.floats(1e-5, 10.0))
 
