@@ -106,19 +106,23 @@ def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
         return 0.0
     phi = phi / spread
     lags = np.arange(1, n // 10 + 1)
-    j = np.arange(1, n + 1)
-    k_values = []
-    for c in np.random.default_rng(seed).uniform(math.pi / 5, 4 * math.pi / 5, n_frequencies):
-        p = np.cumsum(phi * np.cos(j * c))
-        q = np.cumsum(phi * np.sin(j * c))
-        mean_square = np.array([np.mean((p[lag:] - p[:-lag]) ** 2 + (q[lag:] - q[:-lag]) ** 2)
-                                for lag in lags])
-        oscillating = phi.mean() ** 2 * (1 - np.cos(lags * c)) / (1 - math.cos(c))
-        displacement = mean_square - oscillating
-        if np.ptp(displacement) == 0.0:
-            k_values.append(0.0)
-        else:
-            k_values.append(np.corrcoef(lags, displacement)[0, 1])
+    c = np.random.default_rng(seed).uniform(math.pi / 5, 4 * math.pi / 5, n_frequencies)
+    angles = np.outer(c, np.arange(1, n + 1))  # one row per frequency
+    p = np.cumsum(phi * np.cos(angles), axis=1)
+    q = np.cumsum(phi * np.sin(angles), axis=1)
+    mean_square = np.stack([np.mean((p[:, lag:] - p[:, :-lag]) ** 2
+                                    + (q[:, lag:] - q[:, :-lag]) ** 2, axis=1)
+                            for lag in lags], axis=1)
+    oscillating = phi.mean() ** 2 * (1 - np.cos(np.outer(c, lags))) \
+        / (1 - np.cos(c))[:, None]
+    displacement = mean_square - oscillating
+    # K = the correlation coefficient of each row with the lags; 0 for a flat row
+    lag_dev = lags - lags.mean()
+    dev = displacement - displacement.mean(axis=1, keepdims=True)
+    scale = np.sqrt((lag_dev @ lag_dev) * np.einsum("ij,ij->i", dev, dev))
+    flat = np.ptp(displacement, axis=1) == 0.0
+    k_values = np.where(flat, 0.0, np.clip(dev @ lag_dev / np.where(flat, 1.0, scale),
+                                           -1.0, 1.0))
     return float(np.median(k_values))
 
 
