@@ -28,8 +28,9 @@ def set_powers(row, powers):
 
 
 @njit_inlined
-def dense_state(theta, h, state, w, x_out, v_out, energy_out):
-    """The state at t + θh from the dense output of the last ``dp5_step`` of size h."""
+def dense_motion(theta, h, state, w, x_out, v_out):
+    """x and ẋ at t + θh from the dense output of the last ``dp5_step`` of size h; the
+    stages' dense weights at θ are left in w.dense_weights."""
     b0 = theta
     b1 = theta * theta
     b2 = b1 * theta
@@ -40,8 +41,16 @@ def dense_state(theta, h, state, w, x_out, v_out, energy_out):
     for i in range(len(state.x)):
         x_out[i] = state.x[i] + h * stage_sum(weights, w.stage_v, DP_STAGES, i)
         v_out[i] = state.v[i] + h * stage_sum(weights, w.stage_a, DP_STAGES, i)
+
+
+@njit_inlined
+def dense_state(theta, h, state, w, x_out, v_out, energy_out):
+    """The state at t + θh from the dense output of the last ``dp5_step`` of size h: its
+    motion (``dense_motion``) and its work columns."""
+    dense_motion(theta, h, state, w, x_out, v_out)
     for c in range(N_POWERS):
-        energy_out[c] = state.energy[c] + h * stage_sum(weights, w.stage_p, DP_STAGES, c)
+        energy_out[c] = state.energy[c] + h * stage_sum(w.dense_weights, w.stage_p,
+                                                        DP_STAGES, c)
     for c in range(N_POWERS, N_WORK):
         energy_out[c] = state.energy[c]
 

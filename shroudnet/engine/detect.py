@@ -10,7 +10,7 @@ for those. None of this depends on the contact or friction laws.
 
 import numpy as np
 
-from .advance import dense_state
+from .advance import dense_motion
 from .codes import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 from .compiled import njit_inlined, njit_inlined_callable
 from .dynamics import interface_kinematics, relative_motion
@@ -177,7 +177,7 @@ def kinematic_dip(h, state, s, w):
     """
     modes = state.modes
     for theta in DIP_POINTS:
-        dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
+        dense_motion(theta, h, state, w, w.xt, w.vt)
         interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
                              w.penetration, w.rate, w.slip)
         event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu,
@@ -202,12 +202,12 @@ def graze_dense(h, tolerance, state, s, w):
         lo, hi = 0.0, 1.0
         while (hi - lo) * h > tolerance:
             mid = 0.5 * (lo + hi)
-            dense_state(mid, h, state, w, w.xt, w.vt, w.e_sample)
+            dense_motion(mid, h, state, w, w.xt, w.vt)
             if contact_guard(e, w.xt, w.vt, modes, s)[1] < 0.0:
                 lo = mid
             else:
                 hi = mid
-        dense_state(hi, h, state, w, w.xt, w.vt, w.e_sample)
+        dense_motion(hi, h, state, w, w.xt, w.vt)
         if contact_guard(e, w.xt, w.vt, modes, s)[0] < 0.0:
             first = min(first, hi)
     return first

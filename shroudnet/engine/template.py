@@ -39,7 +39,8 @@ import math
 
 import numpy as np
 
-from shroudnet.engine.advance import (dense_state, is_finite, keep_guards, move_state,
+from shroudnet.engine.advance import (dense_motion, dense_state, is_finite, keep_guards,
+                                      move_state,
                                       next_step, record, retry_step, set_powers, stage_sum,
                                       take_step)
 from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N_POWERS,
@@ -202,6 +203,18 @@ def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
 def evaluate_guards_apart(t, x, v, modes, topology, s, w, acceleration):
     """``evaluate_guards`` compiled on its own, for the paths taken once per switch."""
     return evaluate_guards(t, x, v, modes, topology, s, w, acceleration)
+
+
+@njit_step_merged
+def sample_forces(time, xt, vt, modes, topology, s, w):
+    """The interface forces that a sample records, static friction included, at the state
+    (xt, vt) into w.normal / w.friction: with nothing stuck, the laws alone."""
+    if HAS_STICK and len(topology.stuck_interfaces) > 0:
+        stuck_forces(time, xt, vt, modes, topology, s, w)
+        return
+    interface_kinematics(xt, vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
+                         w.penetration, w.rate, w.slip)
+    law_forces(s, modes, w)
 
 
 @njit_step_merged
@@ -501,7 +514,7 @@ def breakaway_dense(t, h, state, topology, s, w):
     kept = (w.contact_trial, w.motion_trial)
     for k in range(len(DIP_POINTS)):
         theta = DIP_POINTS[k]
-        dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
+        dense_motion(theta, h, state, w, w.xt, w.vt)
         stuck_forces(t + theta * h, w.xt, w.vt, modes, topology, s, w)
         for e in topology.stuck_interfaces:
             margin = breakaway_margin(s.static_mu[e], w.normal[e], w.friction[e])
@@ -517,7 +530,7 @@ def breakaway_dense(t, h, state, topology, s, w):
         if value < 0.0 and 0.0 < theta < first:
             first = theta
     if first < 1.0:
-        dense_state(first, h, state, w, w.xt, w.vt, w.e_sample)
+        dense_motion(first, h, state, w, w.xt, w.vt)
         stuck_forces(t + first * h, w.xt, w.vt, modes, topology, s, w)
         if stuck_crossed(topology, state, s, w):
             return first
@@ -815,7 +828,7 @@ def dense_guards(t, h, theta, state, topology, s, w):
     breakaway margin needs the static friction, so with stuck interfaces the forces are
     evaluated too.
     """
-    dense_state(theta, h, state, w, w.xt, w.vt, w.e_sample)
+    dense_motion(theta, h, state, w, w.xt, w.vt)
     if len(topology.stuck_interfaces) > 0:
         evaluate_guards_apart(t + theta * h, w.xt, w.vt, state.modes, topology, s, w,
                               w.a_sample)
@@ -875,14 +888,14 @@ def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
 def record_dense(sample, t, t_to, h, state, topology, s, w, controls, out):
     """Record the samples in (t, t_to] from the dense output of the step of size h from t.
 
-    Returns the index of the next sample. Overwrites the forces and guards in w.
+    Returns the index of the next sample. Overwrites the forces in w (``sample_forces``).
     """
     while sample < controls.n_samples:
         time = controls.t0 + sample * controls.sample_step
         if time > t_to:
             break
         dense_state((time - t) / h, h, state, w, w.xt, w.vt, w.e_sample)
-        evaluate_guards(time, w.xt, w.vt, state.modes, topology, s, w, w.a_sample)
+        sample_forces(time, w.xt, w.vt, state.modes, topology, s, w)
         record(out, sample, time, w.xt, w.vt, state.modes, w.e_sample, w)
         if HAS_TANGENT:  # the growth to within a step of the sample: enough for its spread
             for c in range(len(state.tangent.log_growth)):
