@@ -49,6 +49,9 @@ njit_entry = njit(cache=True, no_cfunc_wrapper=True)
 njit_internal = njit(cache=True, no_cfunc_wrapper=True, **_NOT_FROM_PYTHON)
 #: Step-path code called from compiled code only.
 njit_step = njit(**_STEP, **_NOT_FROM_PYTHON)
+#: Step-path code whose sums must stay as written, with no fused or reordered terms: the
+#: projection onto stick clusters, whose removed energy is a difference of near equals.
+njit_step_exact = njit(**{**_STEP, "fastmath": False}, **_NOT_FROM_PYTHON)
 #: Step-path array functions that Python calls too.
 njit_step_callable = njit(**_STEP)
 #: Small step-path helpers, inlined into their callers.

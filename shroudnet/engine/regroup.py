@@ -3,15 +3,15 @@
 Stuck interfaces join their blades into stick clusters that move as one body
 (``clusters.cluster_labels``). A mode change regroups once: cluster masses, the linear
 operator that turns force imbalances into static friction, and the projection of the
-velocities onto the clusters. Everything here allocates, and none of it depends on the
-contact or friction laws.
+velocities onto the clusters. Regrouping allocates; the projection, done at every
+switch, works in the caller's scratch. None of it depends on the contact or friction laws.
 """
 
 import numpy as np
 
 from .clusters import cluster_labels
 from .codes import STICK
-from .compiled import njit_entry, njit_inlined, njit_internal
+from .compiled import njit_entry, njit_inlined, njit_internal, njit_step_exact
 from .records import Topology
 
 
@@ -166,15 +166,16 @@ def regroup(s, modes):
                     cluster_mass(s.mass, labels, len(grounded)), operator, stuck_interfaces)
 
 
-@njit_internal
-def project_velocities(s, topology, v):
+@njit_step_exact
+def project_velocities(s, topology, v, momentum):
     """One velocity per stick cluster, conserving its momentum; 0 in a grounded cluster,
-    the prescribed node's in a driven one.
+    the prescribed node's in a driven one. ``momentum`` is scratch, one entry per node.
 
     Returns the kinetic energy removed [J] (of the order of the event tolerance).
     """
     n_clusters = len(topology.grounded)
-    momentum = np.zeros(n_clusters)
+    for c in range(n_clusters):
+        momentum[c] = 0.0
     for i in range(len(v)):
         momentum[topology.labels[i]] += s.mass[i] * v[i]
     for c in range(n_clusters):

@@ -9,7 +9,7 @@ import numpy as np
 
 from .codes import (BREAKAWAY, CLOSING, OPEN, REVERSAL, SEPARATION, SLIP_NEGATIVE,
                     SLIP_POSITIVE, STICK, STICKING)
-from .compiled import njit_inlined, njit_internal
+from .compiled import njit_inlined, njit_internal, njit_step
 from .dynamics import interface_kinematics
 
 
@@ -62,7 +62,7 @@ def event_kind(before, after):
     return REVERSAL
 
 
-@njit_internal
+@njit_step
 def log_switches(t, old, modes, events):
     """Record every interface whose mode changed; returns the last one's index (or −1)."""
     last = -1

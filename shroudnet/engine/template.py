@@ -656,7 +656,7 @@ def settle(t, state, candidates, topology, s, w):
                 continue
         for i in range(len(v)):
             v_trial[i] = v[i]
-        lost = project_velocities(s, topology, v_trial)
+        lost = project_velocities(s, topology, v_trial, w.scratch)
         if len(topology.stuck_interfaces) > 0 or any_candidate:  # else forces decide nothing
             evaluate_guards_apart(t, x, v_trial, modes, topology, s, w, w.a_end)
         worst = -1
@@ -762,7 +762,7 @@ def switch(t, state, topology, s, w, events, controls):
     return status, stop_interface, topology
 
 
-@njit_step_merged
+@njit_step
 def start(t, state, topology, s, w):
     """Evaluate the first stage and the guards at a (re)start point; they become the
     state's reference."""
