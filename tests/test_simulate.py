@@ -104,9 +104,11 @@ def _sticky_scene(alpha=0.3, mu=0.8, q1=20.0, n=3, regularisation=0.0):
                  speed_rpm=6000.0)
 
 
-def test_stuck_interfaces_respect_the_friction_limit_and_slip_follows_its_mode():
-    sim = simulate(_sticky_scene(), 30, method=FixedStep(steps_per_period=1000),
-                   samples_per_period=1000)
+# Adaptive samples come from the dense output between steps, with their own forces: the
+# laws alone while nothing sticks, static friction as well while something does.
+@pytest.mark.parametrize("method", [FixedStep(steps_per_period=1000), Adaptive()])
+def test_stuck_interfaces_respect_the_friction_limit_and_slip_follows_its_mode(method):
+    sim = simulate(_sticky_scene(), 30, method=method, samples_per_period=1000)
     counts = sim.events.counts
     assert counts["sticking"] > 0 and counts["breakaway"] > 0
     # By hand from _sticky_scene's numbers: u = x_i − x_(i+1), δ = (u + 5 µm) sin 0.3,
