@@ -166,6 +166,17 @@ def predicted_low(samples):
 
 
 @njit_inlined
+def kinematic_guards(x, v, modes, s, w, contact, motion):
+    """The contact and slip guards at (x, v) into ``contact`` and ``motion``, from the
+    kinematics alone (left in w.penetration, w.rate, w.slip): no force is evaluated, so
+    a stuck interface's breakaway margin there is not to be read."""
+    interface_kinematics(x, v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
+                         w.penetration, w.rate, w.slip)
+    event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu, s.opens,
+                 s.can_stick, contact, motion)
+
+
+@njit_inlined
 def kinematic_dip(h, state, s, w):
     """The first of ``DIP_POINTS`` inside the adaptive step of size h at which a contact or
     slip guard has crossed, else 2.
@@ -178,10 +189,7 @@ def kinematic_dip(h, state, s, w):
     modes = state.modes
     for theta in DIP_POINTS:
         dense_motion(theta, h, state, w, w.xt, w.vt)
-        interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
-                             w.penetration, w.rate, w.slip)
-        event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu,
-                     s.opens, s.can_stick, w.contact_trial, w.motion_trial)
+        kinematic_guards(w.xt, w.vt, modes, s, w, w.contact_trial, w.motion_trial)
         for e in range(len(modes)):
             if crossed(state.contact_before[e], w.contact_trial[e]) or (
                     modes[e] != STICK and crossed(state.motion_before[e], w.motion_trial[e])):

@@ -40,9 +40,8 @@ import math
 import numpy as np
 
 from shroudnet.engine.advance import (dense_motion, dense_state, is_finite, keep_guards,
-                                      move_state,
-                                      next_step, record, retry_step, set_powers, stage_sum,
-                                      take_step)
+                                      move_state, next_step, record, retry_step, set_powers,
+                                      stage_sum, take_step)
 from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N_POWERS,
                                     NO_PROGRESS, NOT_FINITE, OPEN, OVERCONSTRAINED,
                                     PROJECTION,
@@ -53,8 +52,8 @@ from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_internal,
                                        njit_merged, njit_step, njit_step_merged)
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard,
                                      count_crossed, crossed, event_guards, first_crossed,
-                                     graze_dense, kinematic_dip, mark_grazing, predicted_low,
-                                     stuck_crossed)
+                                     graze_dense, kinematic_dip, kinematic_guards,
+                                     mark_grazing, predicted_low, stuck_crossed)
 from shroudnet.engine.dynamics import (cluster_accelerations, coupling_forces,
                                        driven_accelerations, excitation_forces,
                                        interface_kinematics, prescribed_acceleration,
@@ -639,9 +638,7 @@ def settle(t, state, candidates, topology, s, w):
     n = len(modes)
     tried = np.zeros(n, dtype=np.int64)  # per interface: bit 1 slip +, bit 2 slip − tried
     v_trial = np.empty(len(v))
-    any_candidate = False
-    for e in range(n):
-        any_candidate = any_candidate or candidates[e]
+    any_candidate = candidates.any()
     for _ in range(4 * n + 2):
         if not same_stuck(topology, modes):
             topology = regroup(s, modes)
@@ -823,8 +820,8 @@ def dense_guards(t, h, theta, state, topology, s, w):
     """The guards at t + θh on the dense output of the adaptive step of size h from t, into
     w.contact / w.motion (the state there in w.xt, w.vt).
 
-    Contact and slip guards are functions of the state alone (``detect.event_guards``):
-    without stuck interfaces no force is evaluated, as in ``detect.kinematic_dip``. A
+    Contact and slip guards are functions of the state alone: without stuck interfaces
+    no force is evaluated (``detect.kinematic_guards``). A
     breakaway margin needs the static friction, so with stuck interfaces the forces are
     evaluated too.
     """
@@ -833,10 +830,7 @@ def dense_guards(t, h, theta, state, topology, s, w):
         evaluate_guards_apart(t + theta * h, w.xt, w.vt, state.modes, topology, s, w,
                               w.a_sample)
         return
-    interface_kinematics(w.xt, w.vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
-                         w.penetration, w.rate, w.slip)
-    event_guards(state.modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu,
-                 s.opens, s.can_stick, w.contact, w.motion)
+    kinematic_guards(w.xt, w.vt, state.modes, s, w, w.contact, w.motion)
 
 
 @njit_step_merged
