@@ -13,7 +13,7 @@ from contact_laws import check_int, check_real
 from .engine.codes import EventKind, Mode, Status, WorkColumn
 from .engine.dynamics import interface_kinematics
 from .engine.generate import compiled, kernel_scene, load_kernel
-from .engine.records import Controls, Run
+from .engine.records import Controls, Run, allocate, finish
 from .methods import Accuracy, Adaptive, FixedStep, ZenoGuard
 from .motion import motion_span
 from .scene import Scene, edge_matrix
@@ -162,9 +162,13 @@ def integrate(scene: Scene, periods: int, *,
         event_tolerance=event_tolerance * period, zeno_events=zeno.events,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
         orthonormalise=orthonormalise)
-    arguments = (kernel_scene(scene), x0, v0, tangent0, controls)
+    arrays = kernel_scene(scene)
+    state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls)
+    arguments = (state, arrays, work, switching, events, controls, output)
     driver, compile_seconds = compiled(driver, arguments)
-    run = _blades_only(driver(*arguments), n)
+    status, time, interface, steps, samples = driver(*arguments)
+    run = _blades_only(finish(status, time, interface, steps, output, samples, events,
+                              state.tangent), n)
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,

@@ -3,11 +3,13 @@
 import importlib
 import math
 import sys
+from collections import namedtuple
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from numba import njit
 from scipy.integrate._ivp.rk import RK45
 
 from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz,
@@ -17,7 +19,8 @@ from shroudnet.engine import codes, generate, locate, tableau
 from shroudnet.engine.cache import cache_size, clear_cache
 from shroudnet.engine.clusters import cluster_labels
 from shroudnet.engine.detect import crossed, depth, parabola_low, predicted_low
-from shroudnet.engine.regroup import static_friction_operator
+from shroudnet.engine.records import new_switching
+from shroudnet.engine.regroup import fill_groups, static_friction_operator
 from shroudnet.scenes import block_on_belt as belt
 from shroudnet.scenes import three_blade_paper
 from tests.laws import CubicSpring
@@ -173,6 +176,60 @@ def test_the_static_friction_operator_is_the_pseudo_inverse_on_consistent_forces
     b = g @ np.array(data.draw(st.lists(st.floats(-1.0, 1.0), min_size=g.shape[1],
                                         max_size=g.shape[1])))
     assert np.allclose(operator @ b, np.linalg.pinv(g) @ b, atol=1e-10)
+
+
+#: The scene fields regrouping reads (a ``KernelScene`` has them among others).
+_Nodes = namedtuple("_Nodes", ["mass", "motion_amplitude", "left", "right", "cos_angle"])
+
+
+def _modes(stuck):
+    return np.where(stuck, Mode.STICK, Mode.SLIP_POSITIVE).astype(np.int64)
+
+
+@njit
+def _regrouped_after(nodes, modes_before, modes):
+    """Regroup ``modes`` into storage that held the grouping of ``modes_before``."""
+    store = new_switching(len(nodes.mass), len(modes))
+    fill_groups(nodes, modes_before, store)
+    n_clusters, n_stuck = fill_groups(nodes, modes, store)
+    return (store.labels.copy(), store.grounded[:n_clusters].copy(),
+            store.driver[:n_clusters].copy(), store.masses[:n_clusters].copy(),
+            store.operator[:n_stuck].copy(), store.stuck_interfaces[:n_stuck].copy())
+
+
+@settings(max_examples=100, deadline=None)
+@given(data=st.data())
+def test_regrouping_into_used_storage_gives_what_fresh_arrays_give(data):
+    """A switch regroups into storage allocated once per run; whatever grouping it held
+    before, the clusters, masses and static friction operator are those computed in fresh
+    arrays, bit for bit. Blades, a prescribed-motion node, fixed ends, trees and cycles."""
+    n_blades = data.draw(st.integers(1, 6))
+    n_nodes = n_blades + data.draw(st.integers(0, 1))
+    m = data.draw(st.integers(1, 9))
+    ends = st.integers(-1, n_nodes - 1)
+    left = np.array(data.draw(st.lists(ends, min_size=m, max_size=m)))
+    right = np.array(data.draw(st.lists(ends, min_size=m, max_size=m)))
+    keep = (left != right) & ((left >= 0) | (right >= 0))
+    left, right = left[keep], right[keep]
+    if not len(left):
+        return
+    m = len(left)
+    nodes = _Nodes(np.array(data.draw(st.lists(st.floats(0.1, 10.0), min_size=n_nodes,
+                                               max_size=n_nodes))),
+                   np.ones(n_nodes - n_blades), left, right,
+                   np.array(data.draw(st.lists(st.floats(0.2, 1.0), min_size=m, max_size=m))))
+    stuck_sets = st.lists(st.booleans(), min_size=m, max_size=m)
+    before, stuck = (np.array(data.draw(stuck_sets)) for _ in range(2))
+    labels, grounded, driver = cluster_labels(n_nodes, n_blades, left, right, stuck)
+    operator, stuck_interfaces = static_friction_operator(n_nodes, n_blades, left, right,
+                                                          nodes.cos_angle, stuck, labels,
+                                                          grounded)
+    masses = np.zeros(len(grounded))
+    np.add.at(masses, labels, nodes.mass)
+    refilled = _regrouped_after(nodes, _modes(before), _modes(stuck))
+    for got, fresh in zip(refilled, (labels, grounded, driver, masses, operator,
+                                     stuck_interfaces), strict=True):
+        assert np.array_equal(got, fresh)
 
 
 # ---- the generator --------------------------------------------------------------------------

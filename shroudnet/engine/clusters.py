@@ -11,7 +11,8 @@ from collections.abc import Hashable, Iterable
 
 import networkx as nx
 import numpy as np
-from numba import njit
+
+from .compiled import njit_entry, njit_inlined, njit_step_callable
 
 #: ``cluster_labels``' driver of a cluster whose stuck interfaces join motions that differ.
 TWO_DRIVERS = -2
@@ -41,7 +42,7 @@ def stick_clusters(graph: nx.Graph, stuck: Iterable[tuple[Hashable, Hashable]]
     return [set(c) for c in nx.connected_components(sub)]
 
 
-@njit(cache=True)
+@njit_inlined
 def _root(parent, node):
     while parent[node] != node:
         parent[node] = parent[parent[node]]  # path halving
@@ -49,7 +50,7 @@ def _root(parent, node):
     return node
 
 
-@njit(cache=True)
+@njit_entry
 def cluster_labels(n_nodes, n_blades, left, right, stuck):
     """Stick clusters of node positions, by union–find over the stuck interfaces.
 
@@ -77,26 +78,44 @@ def cluster_labels(n_nodes, n_blades, left, right, stuck):
 
     O((n_nodes + n_interfaces) α(n)).
     """
+    labels = np.empty(n_nodes, dtype=np.int64)
+    grounded = np.empty(n_nodes, dtype=np.bool_)
+    driver = np.empty(n_nodes, dtype=np.int64)
+    parent = np.empty(n_nodes + 1, dtype=np.int64)
+    count = label_clusters(n_blades, left, right, stuck, parent, labels, grounded, driver)
+    return labels, grounded[:count].copy(), driver[:count].copy()
+
+
+@njit_step_callable
+def label_clusters(n_blades, left, right, stuck, parent, labels, grounded, driver):
+    """``cluster_labels`` into the caller's arrays (n_nodes = len(labels); ``parent`` is
+    scratch of n_nodes + 1 entries): fills labels, and grounded and driver up to the number
+    of clusters, which it returns. Allocates nothing."""
+    n_nodes = len(labels)
     ground = n_nodes
-    parent = np.arange(n_nodes + 1)
+    for i in range(n_nodes + 1):
+        parent[i] = i
     for e in range(len(left)):
         if stuck[e]:
             a = _root(parent, left[e] if left[e] >= 0 else ground)
             b = _root(parent, right[e] if right[e] >= 0 else ground)
             if a != b:
                 parent[max(a, b)] = min(a, b)
-    index = np.full(n_nodes + 1, -1)
-    labels = np.empty(n_nodes, dtype=np.int64)
+    # A union keeps the smaller root, so each cluster's root is its first node (the ground,
+    # last, is a root only while no node joins it): numbering roots as they come numbers
+    # the clusters by first node.
     count = 0
     for i in range(n_nodes):
         r = _root(parent, i)
-        if index[r] < 0:
-            index[r] = count
+        if r == i:
+            labels[i] = count
             count += 1
-        labels[i] = index[r]
-    grounded = np.zeros(count, dtype=np.bool_)
-    driver = np.full(count, -1, dtype=np.int64)
+        else:
+            labels[i] = labels[r]
     ground_root = _root(parent, ground)
+    for c in range(count):
+        grounded[c] = False
+        driver[c] = -1
     for i in range(n_nodes):
         c = labels[i]
         if _root(parent, i) == ground_root:
@@ -106,4 +125,4 @@ def cluster_labels(n_nodes, n_blades, left, right, stuck):
         elif i >= n_blades:
             driver[c] = TWO_DRIVERS if grounded[c] else i
             grounded[c] = True
-    return labels, grounded, driver
+    return count

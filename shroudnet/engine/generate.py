@@ -38,7 +38,7 @@ from contact_laws.base import PENETRATION_SCALE, RATE_SCALE, SPEED_SCALE
 from ..scene import Scene
 from .cache import cache_folder
 from .records import KernelScene
-from .regroup import regroup
+from .regroup import fill_groups
 
 _ENGINE = Path(__file__).parent
 _TEMPLATE = _ENGINE / "template.py"
@@ -293,7 +293,7 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
         if not _cached(driver):
             module = sys.modules[driver.py_func.__module__]
             seconds = TANGENT_COMPILE_ESTIMATE if module.TANGENT else \
-                COMPILE_ESTIMATE if _cached(regroup) else FIRST_COMPILE_ESTIMATE
+                COMPILE_ESTIMATE if _cached(fill_groups) else FIRST_COMPILE_ESTIMATE
             flow = " with its tangent flow" if module.TANGENT else ""
             laws = "every built-in contact law (once" if module.SHARED else \
                 f"{' + '.join(module.LAWS)} (once for these law classes"

@@ -77,9 +77,30 @@ Tangent = namedtuple("Tangent", [
 #: Stick clusters of a set of modes (``regroup``): which interfaces are stuck, each node's
 #: cluster, whether each cluster's motion is given (``clusters.cluster_labels``: grounded)
 #: and by which prescribed-motion node (``driver``), its mass, and the static friction
-#: operator with the stuck interfaces it gives the friction of.
+#: operator with the stuck interfaces it gives the friction of. Its arrays are views of a
+#: run's ``Switching`` storage, refilled at each mode change.
 Topology = namedtuple("Topology", [
     "stuck", "labels", "grounded", "driver", "masses", "operator", "stuck_interfaces",
+])
+
+#: What the switches of one run work in, allocated once, so that a switch allocates
+#: nothing. The stick clusters (``regroup``): the ``Topology`` fields at their largest
+#: sizes (one cluster per node, every interface stuck), refilled at each mode change, and
+#: their scratch: the union–find's ``parent`` (n_nodes + 1: the ground is a node), each
+#: stuck interface's two blade ``ends`` and G entries, the n_nodes × n_nodes G Gᵀ
+#: (``gram``), its Cholesky factor and its inverse, and each cluster's ``size``. The mode
+#: rule (``settle``): per interface the modes before the switch (``modes_before``), the
+#: ``candidates`` for stick and the slip directions ``tried``, and per node ``v_trial``,
+#: the velocities projected onto trial clusters. Switches of several interfaces at once
+#: (``tangent.apply_saltations``): the interfaces that switch (``crossings``), each one's
+#: guard gradient (a row of ``crossing_normals``) and rate, each node's switching
+#: interface (``owner``) and each switching interface's component of a tangent vector
+#: (``along``).
+Switching = namedtuple("Switching", [
+    "stuck", "labels", "grounded", "driver", "masses", "operator", "stuck_interfaces",
+    "parent", "ends", "entries", "gram", "lower", "inverse", "size",
+    "modes_before", "candidates", "tried", "v_trial",
+    "crossings", "crossing_normals", "crossing_rates", "owner", "along",
 ])
 
 #: Scratch arrays of one run, allocated once. Per blade: q … a_sample, x_new, v_new; per
@@ -132,6 +153,21 @@ def new_work(n_blades, n_interfaces, n_prescribed):
 
 
 @njit_internal
+def new_switching(n_nodes, n_interfaces):
+    n, m = n_nodes, n_interfaces
+    return Switching(np.zeros(m, dtype=np.bool_), np.zeros(n, dtype=np.int64),
+                     np.zeros(n, dtype=np.bool_), np.zeros(n, dtype=np.int64), np.zeros(n),
+                     np.zeros((m, n)), np.zeros(m, dtype=np.int64),
+                     np.zeros(n + 1, dtype=np.int64), np.zeros((m, 2), dtype=np.int64),
+                     np.zeros((m, 2)), np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n)),
+                     np.zeros(n),
+                     np.zeros(m, dtype=np.int64), np.zeros(m, dtype=np.bool_),
+                     np.zeros(m, dtype=np.int64), np.zeros(n),
+                     np.zeros(m, dtype=np.int64), np.zeros((m, 2 * n)), np.zeros(m),
+                     np.zeros(n, dtype=np.int64), np.zeros(m))
+
+
+@njit_internal
 def new_events(capacity, zeno_events):
     return Events(np.empty(capacity), np.empty(capacity, dtype=np.int64),
                   np.empty(capacity, dtype=np.int8), np.zeros(N_EVENT_KINDS, dtype=np.int64),
@@ -149,8 +185,9 @@ def new_output(n_samples, n_blades, n_interfaces):
 
 
 @njit_internal
-def new_tangent(tangent0, n_interfaces, n_prescribed, n_samples):
-    """A ``Tangent`` starting from the columns of ``tangent0`` (2 n_nodes × k, k ≥ 0)."""
+def new_tangent(tangent0, n_interfaces, n_samples, work):
+    """A ``Tangent`` starting from the columns of ``tangent0`` (2 n_nodes × k, k ≥ 0), with
+    ``work`` (``new_work``) for the forces at its stages."""
     b, m = tangent0.shape[0] // 2, n_interfaces
     k = tangent0.shape[1]
     return Tangent(tangent0.copy(), np.zeros(k), np.zeros((n_samples, k)), np.zeros(m),
@@ -159,7 +196,7 @@ def new_tangent(tangent0, n_interfaces, n_prescribed, n_samples):
                    np.zeros(b), np.zeros(b), np.zeros(b), np.zeros(2 * b), np.zeros(2 * b),
                    np.zeros(2 * b),
                    np.zeros(1, dtype=np.int64), np.full(1, np.nan),
-                   np.full(1, -1, dtype=np.int64), new_work(b, m, n_prescribed), np.zeros(b))
+                   np.full(1, -1, dtype=np.int64), work, np.zeros(b))
 
 
 @njit_internal
@@ -172,20 +209,33 @@ def new_state(x0, v0, tangent):
                  np.empty(n_interfaces), np.empty(n_interfaces), tangent)
 
 
-@njit_internal
-def finish(status, time, interface, steps, out, n_samples, events, tangent):
-    """The driver's ``Run``: the samples taken and the events logged, trimmed."""
-    n = min(events.n_events[0], len(events.time))
-    output = Output(out.t[:n_samples], out.x[:n_samples], out.v[:n_samples],
-                    out.normal[:n_samples], out.friction[:n_samples], out.modes[:n_samples],
-                    out.energy[:n_samples])
-    logged = Events(events.time[:n], events.interface[:n], events.kind[:n], events.counts,
-                    events.recent, events.n_events, events.idle)
-    g = tangent
-    kept = Tangent(g.matrix, g.log_growth, g.history[:n_samples], g.normal_u, g.normal_du,
-                   g.force_u, g.force_du, g.stages, g.candidate, g.direction,
-                   g.resultant_change,
-                   g.acceleration_change, g.rows, g.imbalance, g.q_rate, g.guard_normal,
-                   g.f_minus, g.f_plus, g.singular, g.singular_time, g.singular_interface,
-                   g.work, g.acceleration)
-    return Run(status, time, interface, steps, output, logged, kept)
+def allocate(s, x0, v0, tangent0, controls):
+    """Every record a driver works in, allocated once, here in Python, so that the
+    compiled loop allocates nothing and runs without reference counting: (state, work
+    arrays, the switches' storage, event log, output), with the tangent from ``tangent0``
+    (2 n_nodes × k)."""
+    n_nodes, n_interfaces, n_prescribed = len(s.mass), len(s.gap), len(s.motion_amplitude)
+    tangent = _in_python(new_tangent)(tangent0, n_interfaces, controls.n_samples,
+                                      _in_python(new_work)(n_nodes, n_interfaces, n_prescribed))
+    return (_in_python(new_state)(x0, v0, tangent),
+            _in_python(new_work)(n_nodes, n_interfaces, n_prescribed),
+            _in_python(new_switching)(n_nodes, n_interfaces),
+            _in_python(new_events)(controls.event_capacity, controls.zeno_events),
+            _in_python(new_output)(controls.n_samples, n_nodes, n_interfaces))
+
+
+def _in_python(allocator):
+    """The allocator as plain Python (numpy): compiled, it is callable from compiled code
+    only."""
+    return getattr(allocator, "py_func", allocator)
+
+
+def finish(status, time, interface, steps, out, n_samples, events, tangent) -> Run:
+    """The driver's ``Run``: what it returned, the samples taken and the events logged,
+    trimmed."""
+    n = min(int(events.n_events[0]), len(events.time))
+    output = Output(*(column[:n_samples] for column in out))
+    logged = events._replace(time=events.time[:n], interface=events.interface[:n],
+                             kind=events.kind[:n])
+    return Run(int(status), float(time), int(interface), int(steps), output, logged,
+               tangent._replace(history=tangent.history[:n_samples]))

@@ -3,16 +3,18 @@
 Stuck interfaces join their blades into stick clusters that move as one body
 (``clusters.cluster_labels``). A mode change regroups once: cluster masses, the linear
 operator that turns force imbalances into static friction, and the projection of the
-velocities onto the clusters. Regrouping allocates; the projection, done at every
-switch, works in the caller's scratch. None of it depends on the contact or friction laws.
+velocities onto the clusters. Regrouping refills storage allocated once per run
+(``records.Switching``) and the projection works in the caller's scratch, so a switch
+allocates nothing. Sums here stay as written (``njit_step_exact``). None of it depends on
+the contact or friction laws.
 """
 
 import numpy as np
 
-from .clusters import cluster_labels
+from .clusters import label_clusters
 from .codes import STICK
-from .compiled import njit_entry, njit_inlined, njit_internal, njit_step_exact
-from .records import Topology
+from .compiled import njit_entry, njit_inlined, njit_step_exact, njit_step_merged
+from .records import Topology, new_switching
 
 
 @njit_entry
@@ -57,61 +59,86 @@ def static_friction_operator(n_nodes, n_blades, left, right, cos_angle, stuck, l
     operator : float array (n_stuck, n_nodes)
     stuck_interfaces : int64 array (n_stuck,)
     """
-    count = 0
+    g = new_switching(n_nodes, len(stuck))
     for e in range(len(stuck)):
-        count += 1 if stuck[e] else 0
-    stuck_interfaces = np.empty(count, dtype=np.int64)
-    k = 0
-    for e in range(len(stuck)):
-        if stuck[e]:
-            stuck_interfaces[k] = e
-            k += 1
-    n_stuck = len(stuck_interfaces)
+        g.stuck[e] = stuck[e]
+    for i in range(n_nodes):
+        g.labels[i] = labels[i]
+    for c in range(len(grounded)):
+        g.grounded[c] = grounded[c]
+    n_stuck = fill_operator(n_blades, left, right, cos_angle, g, len(grounded))
+    return g.operator[:n_stuck].copy(), g.stuck_interfaces[:n_stuck].copy()
+
+
+@njit_step_exact
+def fill_operator(n_blades, left, right, cos_angle, g, n_clusters):
+    """``static_friction_operator`` of g.stuck, g.labels and g.grounded (the first
+    ``n_clusters``) into g.operator and g.stuck_interfaces, with g's gram, lower, inverse,
+    ends, entries and size as scratch (g: ``records.Switching``); returns the number of
+    stuck interfaces. Allocates nothing."""
+    n_nodes = len(g.labels)
+    n_stuck = 0
+    for e in range(len(g.stuck)):
+        if g.stuck[e]:
+            g.stuck_interfaces[n_stuck] = e
+            n_stuck += 1
     if n_stuck == 0:
-        return np.zeros((0, n_nodes)), stuck_interfaces
+        return 0
     # G's column k: cos α at interface k's left blade, −cos α at its right (none at a
     # fixed or prescribed end)
-    ends = np.full((n_stuck, 2), -1, dtype=np.int64)
-    entries = np.zeros((n_stuck, 2))
+    ends, entries, labels = g.ends, g.entries, g.labels
     for k in range(n_stuck):
-        e = stuck_interfaces[k]
+        e = g.stuck_interfaces[k]
+        ends[k, 0], entries[k, 0] = -1, 0.0
+        ends[k, 1], entries[k, 1] = -1, 0.0
         if 0 <= left[e] < n_blades:
             ends[k, 0], entries[k, 0] = left[e], cos_angle[e]
         if 0 <= right[e] < n_blades:
             ends[k, 1], entries[k, 1] = right[e], -cos_angle[e]
-    matrix = np.zeros((n_nodes, n_nodes))
+    matrix = g.gram
+    for i in range(n_nodes):
+        for j in range(n_nodes):
+            matrix[i, j] = 0.0
     for k in range(n_stuck):
         for a in range(2):
             for b in range(2):
                 if ends[k, a] >= 0 and ends[k, b] >= 0:
                     matrix[ends[k, a], ends[k, b]] += entries[k, a] * entries[k, b]
-    size = np.zeros(len(grounded))
+    size = g.size
+    for c in range(n_clusters):
+        size[c] = 0.0
     for i in range(n_nodes):
         size[labels[i]] += 1.0
     for i in range(n_nodes):
         for j in range(n_nodes):
-            if labels[i] == labels[j] and not grounded[labels[i]]:
+            if labels[i] == labels[j] and not g.grounded[labels[i]]:
                 matrix[i, j] += 1.0 / size[labels[i]]
         if i >= n_blades:
             matrix[i, i] = 1.0
-    inverse = _spd_inverse(matrix, labels)
-    operator = np.zeros((n_stuck, n_nodes))
+    _spd_inverse(matrix, labels, g.lower, g.inverse)
+    operator = g.operator
     for k in range(n_stuck):
+        for j in range(n_nodes):
+            operator[k, j] = 0.0
         for a in range(2):
             i = ends[k, a]
             if i >= 0:
                 for j in range(n_nodes):
-                    operator[k, j] += entries[k, a] * inverse[i, j]
-    return operator, stuck_interfaces
+                    operator[k, j] += entries[k, a] * g.inverse[i, j]
+    return n_stuck
 
 
-@njit_entry
-def _spd_inverse(matrix, labels):
-    """The inverse of a symmetric positive definite matrix, by Cholesky factorisation,
-    block-diagonal by ``labels``: an entry between two labels is zero in the matrix, and
-    so in its factor and its inverse; those are left out."""
+@njit_step_exact
+def _spd_inverse(matrix, labels, lower, inverse):
+    """The inverse of a symmetric positive definite matrix into ``inverse``, by Cholesky
+    factorisation (into ``lower``), block-diagonal by ``labels``: an entry between two
+    labels is zero in the matrix, and so in its factor and its inverse; those are left
+    out."""
     n = len(matrix)
-    lower = np.zeros((n, n))
+    for i in range(n):
+        for j in range(n):
+            lower[i, j] = 0.0
+            inverse[i, j] = 0.0
     for j in range(n):
         for i in range(j, n):
             if labels[i] != labels[j]:
@@ -121,7 +148,6 @@ def _spd_inverse(matrix, labels):
                 if labels[k] == labels[j]:
                     value -= lower[i, k] * lower[j, k]
             lower[i, j] = np.sqrt(value) if i == j else value / lower[j, j]
-    inverse = np.zeros((n, n))
     for c in range(n):
         for i in range(n):  # L z = e_c
             if labels[i] != labels[c]:
@@ -139,7 +165,6 @@ def _spd_inverse(matrix, labels):
                 if labels[k] == labels[c]:
                     value -= lower[k, i] * inverse[k, c]
             inverse[i, c] = value / lower[i, i]
-    return inverse
 
 
 @njit_inlined
@@ -151,19 +176,34 @@ def same_stuck(topology, modes):
     return True
 
 
-@njit_internal
-def regroup(s, modes):
-    """Stick clusters and the static friction operator of a set of modes."""
-    stuck = np.empty(len(modes), dtype=np.bool_)
+@njit_step_exact
+def fill_groups(s, modes, g):
+    """The stick clusters of ``modes`` into ``g`` (``records.Switching``): stuck
+    interfaces, labels, grounded, drivers, masses and the static friction operator.
+    Returns (n_clusters, n_stuck). Allocates nothing."""
     for e in range(len(modes)):
-        stuck[e] = modes[e] == STICK
-    n_nodes = len(s.mass)
-    n_blades = n_nodes - len(s.motion_amplitude)
-    labels, grounded, driver = cluster_labels(n_nodes, n_blades, s.left, s.right, stuck)
-    operator, stuck_interfaces = static_friction_operator(n_nodes, n_blades, s.left, s.right,
-                                                          s.cos_angle, stuck, labels, grounded)
-    return Topology(stuck, labels, grounded, driver,
-                    cluster_mass(s.mass, labels, len(grounded)), operator, stuck_interfaces)
+        g.stuck[e] = modes[e] == STICK
+    n_blades = len(s.mass) - len(s.motion_amplitude)
+    n_clusters = label_clusters(n_blades, s.left, s.right, g.stuck, g.parent, g.labels,
+                                g.grounded, g.driver)
+    for c in range(n_clusters):
+        g.masses[c] = 0.0
+    for i in range(len(s.mass)):
+        g.masses[g.labels[i]] += s.mass[i]
+    n_stuck = fill_operator(n_blades, s.left, s.right, s.cos_angle, g, n_clusters)
+    return n_clusters, n_stuck
+
+
+@njit_step_merged
+def regroup(s, modes, g):
+    """Stick clusters and the static friction operator of a set of modes, refilled into
+    ``g`` (``records.Switching``): a ``Topology`` of views of it, valid until g is refilled.
+
+    Merged into each caller, so that the views are counted as the caller counts arrays
+    (code compiled without reference counting must not hand arrays to code with it)."""
+    n_clusters, n_stuck = fill_groups(s, modes, g)
+    return Topology(g.stuck, g.labels, g.grounded[:n_clusters], g.driver[:n_clusters],
+                    g.masses[:n_clusters], g.operator[:n_stuck], g.stuck_interfaces[:n_stuck])
 
 
 @njit_step_exact

@@ -5,23 +5,22 @@ needs the laws; here are the initial modes, the kinds of events, the event log a
 Zeno guard.
 """
 
-import numpy as np
 
 from .codes import (BREAKAWAY, CLOSING, OPEN, REVERSAL, SEPARATION, SLIP_NEGATIVE,
                     SLIP_POSITIVE, STICK, STICKING)
-from .compiled import njit_inlined, njit_internal, njit_step
+from .compiled import njit_inlined, njit_step
 from .dynamics import interface_kinematics
 
 
-@njit_internal
-def initial_modes(state, s, w):
+@njit_step
+def initial_modes(state, s, w, candidates):
     """Modes at the start, into state.modes: closed where δ > 0 (or the law never opens),
-    stuck where possible. Returns which interfaces are candidates for stick."""
+    stuck where possible; which interfaces are candidates for stick, into ``candidates``."""
     modes = state.modes
     interface_kinematics(state.x, state.v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
                          w.penetration, w.rate, w.slip)
-    candidates = np.zeros(len(modes), dtype=np.bool_)
     for e in range(len(modes)):
+        candidates[e] = False
         if s.opens[e] and w.penetration[e] <= 0.0:
             modes[e] = OPEN
         elif s.can_stick[e] and w.slip[e] == 0.0:
@@ -29,7 +28,6 @@ def initial_modes(state, s, w):
             candidates[e] = True
         else:
             modes[e] = SLIP_POSITIVE if w.slip[e] >= 0.0 else SLIP_NEGATIVE
-    return candidates
 
 
 @njit_inlined

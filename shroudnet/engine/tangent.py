@@ -38,10 +38,9 @@ saltation matrix.
 
 import math
 
-import numpy as np
 
 from .codes import OPEN
-from .compiled import njit_inlined, njit_internal, njit_step
+from .compiled import njit_inlined, njit_step, njit_step_exact
 from .dynamics import cluster_accelerations, excitation_rate, prescribed_acceleration
 from .tableau import DP_A, DP_B, DP_E, DP_STAGES
 
@@ -414,8 +413,8 @@ def apply_saltation(t, e, time_rate, several, s, topology, g):
 COMMUTING = 1e-9
 
 
-@njit_internal
-def apply_saltations(t, crossings, normals, rates, s, topology, g):
+@njit_step_exact
+def apply_saltations(t, count, s, topology, g, sw):
     """Φ ← S Φ for switches of several interfaces at one instant, where that is well
     defined; returns whether it was (else nothing is changed).
 
@@ -425,12 +424,13 @@ def apply_saltations(t, crossings, normals, rates, s, topology, g):
     (|n_jᵀ Δf_k| ≤ ``COMMUTING`` |n_jᵀ f⁻ + ∂g_j/∂t| for j ≠ k), the saltation matrices
     S_k = P + Δf_k n_kᵀ / ġ_k commute: in whichever order a perturbation makes the
     interfaces switch, S Φ = P Φ + Σ_k Δf_k (n_kᵀ Φ) / ġ_k. Such are interfaces far apart
-    on a ring, which its symmetry makes switch together. ``normals[k]`` and ``rates[k]``
-    are n_k and ġ_k of ``crossings[k]``; g.f_minus and g.f_plus hold f⁻ and f⁺. A grazing
-    one (``GRAZING_GAIN``) is counted in g.singular, as ``apply_saltation`` counts it.
+    on a ring, which its symmetry makes switch together. The first ``count`` rows of
+    sw.crossing_normals and entries of sw.crossing_rates are n_k and ġ_k of sw.crossings[k]
+    (``records.Switching``); g.f_minus and g.f_plus hold f⁻ and f⁺. A grazing one
+    (``GRAZING_GAIN``) is counted in g.singular, as ``apply_saltation`` counts it.
     """
     n = len(s.mass)
-    count = len(crossings)
+    crossings, normals, rates = sw.crossings, sw.crossing_normals, sw.crossing_rates
     jump = g.direction
     for r in range(2 * n):
         jump[r] = g.f_minus[r]
@@ -439,7 +439,9 @@ def apply_saltations(t, crossings, normals, rates, s, topology, g):
     for r in range(2 * n):
         jump[r] = g.f_plus[r] - jump[r]
         largest = max(largest, abs(jump[r]))
-    owner = np.full(n, -1, dtype=np.int64)
+    owner = sw.owner
+    for i in range(n):
+        owner[i] = -1
     for k in range(count):
         e = crossings[k]
         for i in range(n):
@@ -476,7 +478,7 @@ def apply_saltations(t, crossings, normals, rates, s, topology, g):
                 g.singular_time[0] = t
                 g.singular_interface[0] = crossings[k]
             g.singular[0] += 1
-    along = np.zeros(count)
+    along = sw.along
     matrix = g.matrix
     for column in range(matrix.shape[1]):
         for k in range(count):

@@ -25,7 +25,10 @@ tolerance, by the Illinois method; ``locate``), resolve (the new consistent set 
 for each cluster; ``regroup``). Two drivers share everything but the advance and the
 state inside a step: ``run_fixed_step`` (classical RK4 on a grid; a state inside a step is
 integrated anew) and ``run_adaptive`` (Dormand–Prince 5(4) with error control; a switch is
-located on the step's dense output, and the state there integrated anew).
+located on the step's dense output, and the state there integrated anew). A driver works
+in records its caller allocates (``records.allocate``) and allocates nothing itself, at a
+switch included (regrouping refills ``records.Switching``), so that all of it compiles
+without reference counting.
 
 The state carries, beside x and ẋ, the work done so far: excitation, damping, friction and
 contact work from the powers ``derivative`` returns (integrated by the same Runge–Kutta
@@ -48,8 +51,8 @@ from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N
                                     SLIP_NEGATIVE, SLIP_POSITIVE, STALL_SIZE, STALL_STEPS,
                                     STALLED, STEP_TOO_SMALL, STICK, ZENO)
 from shroudnet.engine.clusters import TWO_DRIVERS
-from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_internal,
-                                       njit_merged, njit_step, njit_step_merged)
+from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_step,
+                                       njit_step_callable, njit_step_merged)
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard,
                                      count_crossed, crossed, event_guards, first_crossed,
                                      graze_dense, kinematic_dip, kinematic_guards,
@@ -59,8 +62,7 @@ from shroudnet.engine.dynamics import (cluster_accelerations, coupling_forces,
                                        interface_kinematics, prescribed_acceleration,
                                        resultant_forces, static_friction)
 from shroudnet.engine.locate import bracket_after, bracket_start, next_trial
-from shroudnet.engine.records import (finish, last_sample, new_events, new_output, new_state,
-                                      new_tangent, new_work)
+from shroudnet.engine.records import last_sample, new_switching, new_tangent, new_work
 from shroudnet.engine.regroup import project_velocities, regroup, same_stuck
 from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches, piling_up,
                                       relative_acceleration)
@@ -386,8 +388,8 @@ def linearise_at(t, x, v, modes, s, tangent0):
     """``linearise`` and the vector field's Jacobian at (t, x, v) in ``modes``, callable
     from Python for tests: returns (J, ẍ), J = ∂(ẋ, ẍ)/∂(x, ẋ) (2 n_blades square)."""
     n = len(x)
-    g = new_tangent(tangent0, len(modes), len(s.motion_amplitude), 1)
-    topology = regroup(s, modes)
+    g = new_tangent(tangent0, len(modes), 1, new_work(n, len(modes), len(s.motion_amplitude)))
+    topology = regroup(s, modes, new_switching(n, len(modes)))
     linearise(t, x, v, modes, topology, s, g)
     jacobian = np.zeros((2 * n, 2 * n))
     for r in range(2 * n):
@@ -472,15 +474,14 @@ def crossings_coincide(t, crossing, time_rate, state, topology, s, w):
     return coincide
 
 
-@njit_internal
-def crossed_gradients(t, state, topology, s, w):
+@njit_step
+def crossed_gradients(t, state, topology, s, w, sw):
     """Every interface whose guard crossed at t, the gradient n of its guard (one row
-    each) and its rate nᵀ f⁻ + ∂g/∂t (``guard_gradient``), for ``apply_saltations``."""
+    each) and its rate nᵀ f⁻ + ∂g/∂t (``guard_gradient``), into sw.crossings,
+    sw.crossing_normals and sw.crossing_rates, for ``apply_saltations``; returns their
+    number."""
     g = state.tangent
-    count = count_crossed(state, w)
-    crossings = np.empty(count, dtype=np.int64)
-    normals = np.empty((count, len(g.guard_normal)))
-    rates = np.empty(count)
+    crossings, normals, rates = sw.crossings, sw.crossing_normals, sw.crossing_rates
     k = 0
     for e in range(len(state.modes)):
         if not (crossed(state.contact_before[e], w.contact[e])
@@ -493,7 +494,7 @@ def crossed_gradients(t, state, topology, s, w):
         crossings[k] = e
         rates[k] = rate
         k += 1
-    return crossings, normals, rates
+    return k
 
 
 # ---- detect: switches hidden inside a step ------------------------------------------------
@@ -591,7 +592,7 @@ def graze_fixed(t, h, state, topology, s, w, tolerance):
     return first
 
 
-# ---- resolve and regroup: a switch (allocates: once per event) ----------------------------
+# ---- resolve and regroup: a switch, in storage allocated once per run ------------------
 
 @njit_inlined
 def overconstrained(topology, candidates, modes, s):
@@ -605,12 +606,12 @@ def overconstrained(topology, candidates, modes, s):
     return -1
 
 
-@njit_merged
-def settle(t, state, candidates, topology, s, w):
+@njit_step_merged
+def settle(t, state, topology, s, w, sw):
     """Release stuck interfaces until every one holds: a terminating mode-selection rule.
 
     ``state.modes`` holds the tentative set, with every candidate for stick
-    (``candidates``) and every held interface in STICK. Each round projects the velocities
+    (``sw.candidates``) and every held interface in STICK. Each round projects the velocities
     onto the clusters, computes the static friction, and releases the stuck interface that
     exceeds μ_s N by the largest ratio, to slip in the direction its friction pushed
     (|f| > μ_s N with f > 0 means the relative motion starts positive). A released
@@ -633,15 +634,18 @@ def settle(t, state, candidates, topology, s, w):
     ``topology`` is that of the modes before the switch, kept while the set of stuck
     interfaces stays the same. Returns (status, kinetic energy lost to the projection,
     topology, the interface that made the set inconsistent or −1); state.v is projected.
+    Regroups into ``sw``, and takes its scratch from there.
     """
-    modes, x, v = state.modes, state.x, state.v
+    modes, x, v, candidates = state.modes, state.x, state.v, sw.candidates
     n = len(modes)
-    tried = np.zeros(n, dtype=np.int64)  # per interface: bit 1 slip +, bit 2 slip − tried
-    v_trial = np.empty(len(v))
+    tried = sw.tried  # per interface: bit 1 slip +, bit 2 slip − tried
+    for e in range(n):
+        tried[e] = 0
+    v_trial = sw.v_trial
     any_candidate = candidates.any()
     for _ in range(4 * n + 2):
         if not same_stuck(topology, modes):
-            topology = regroup(s, modes)
+            topology = regroup(s, modes, sw)
         if HAS_PRESCRIBED:
             tie = overconstrained(topology, candidates, modes, s)
             if tie >= 0:  # a candidate would tie motions that differ: it slips, a way untried
@@ -685,15 +689,17 @@ def settle(t, state, candidates, topology, s, w):
             return FINISHED, lost, topology, -1
         tried[restick] |= direction_bit(modes[restick])
         modes[restick] = STICK
-    return INCONSISTENT, 0.0, regroup(s, modes), -1
+    return INCONSISTENT, 0.0, regroup(s, modes, sw), -1
 
 
-@njit_merged
-def resolve(t, state, topology, s, w):
+@njit_step_merged
+def resolve(t, state, topology, s, w, sw):
     """The new modes after the guards in w crossed, from those of ``topology``; returns what
     ``settle`` returns."""
     modes = state.modes
-    candidates = np.zeros(len(modes), dtype=np.bool_)
+    candidates = sw.candidates
+    for e in range(len(modes)):
+        candidates[e] = False
     for e in range(len(modes)):
         if crossed(state.contact_before[e], w.contact[e]):
             if modes[e] == OPEN:
@@ -703,11 +709,11 @@ def resolve(t, state, topology, s, w):
         elif crossed(state.motion_before[e], w.motion[e]) and modes[e] != STICK:
             modes[e] = STICK  # slip velocity reached zero: try to stick
             candidates[e] = True
-    return settle(t, state, candidates, topology, s, w)
+    return settle(t, state, topology, s, w, sw)
 
 
-@njit_merged
-def switch(t, state, topology, s, w, events, controls):
+@njit_step_merged
+def switch(t, state, topology, s, w, sw, events, controls):
     """Resolve the switch located at t (the state there, its guards in w; ``topology`` that
     of the modes before it), log it and restart there.
 
@@ -716,24 +722,22 @@ def switch(t, state, topology, s, w, events, controls):
     the run or −1, topology). A switch that changes no mode is counted in ``events.idle``;
     ``MAX_IDLE_SWITCHES`` of them in a row stop the run (NO_PROGRESS).
     """
-    old = np.empty(len(state.modes), dtype=np.int64)
+    old = sw.modes_before
     for e in range(len(old)):
         old[e] = state.modes[e]
     crossing = first_crossed(state, w)
     tangent = HAS_TANGENT and state.tangent.matrix.shape[1] > 0 and crossing >= 0
     time_rate = 0.0
     several = False
-    crossings = np.empty(0, dtype=np.int64)
-    normals = np.empty((0, 0))
-    rates = np.empty(0)
+    n_crossed = 0
     if tangent:
         time_rate = guard_gradient(t, crossing, state, topology, s, w)
         several = count_crossed(state, w) > 1 and not crossings_coincide(
             t, crossing, time_rate, state, topology, s, w)
         if several:
-            crossings, normals, rates = crossed_gradients(t, state, topology, s, w)
+            n_crossed = crossed_gradients(t, state, topology, s, w, sw)
             guard_gradient(t, crossing, state, topology, s, w)
-    status, lost, topology, culprit = resolve(t, state, topology, s, w)
+    status, lost, topology, culprit = resolve(t, state, topology, s, w, sw)
     state.energy[PROJECTION] += lost
     last = log_switches(t, old, state.modes, events)
     events.idle[0] = events.idle[0] + 1 if last < 0 else 0
@@ -752,7 +756,7 @@ def switch(t, state, topology, s, w, events, controls):
         for i in range(len(state.x)):
             g.f_plus[i] = state.v[i]
             g.f_plus[len(state.x) + i] = w.a_start[i]
-        if not (several and apply_saltations(t, crossings, normals, rates, s, topology, g)):
+        if not (several and apply_saltations(t, n_crossed, s, topology, g, sw)):
             apply_saltation(t, crossing, time_rate, several, s, topology, g)
     if status == FINISHED and not is_finite(state):
         status = NOT_FINITE
@@ -768,26 +772,22 @@ def start(t, state, topology, s, w):
     keep_guards(state, w)
 
 
-@njit_merged
-def begin(s, x0, v0, tangent0, controls, n_samples):
-    """Everything a driver needs at t0: work arrays, output, log, state, status, topology.
+@njit_step_merged
+def begin(state, s, w, sw, controls, out):
+    """The start at t0: consistent modes, velocities projected onto their clusters, the
+    first sample. Returns (status, topology).
 
-    The tangent starts from ``tangent0`` with its velocity rows projected as the state's
-    are (the derivative of the start's projection)."""
-    n_nodes, n_interfaces, n_prescribed = len(s.mass), len(s.gap), len(s.motion_amplitude)
-    w = new_work(n_nodes, n_interfaces, n_prescribed)
-    out = new_output(n_samples, n_nodes, n_interfaces)
-    events = new_events(controls.event_capacity, controls.zeno_events)
-    state = new_state(x0, v0, new_tangent(tangent0, n_interfaces, n_prescribed, n_samples))
-    candidates = initial_modes(state, s, w)
-    status, lost, topology, _ = settle(controls.t0, state, candidates,
-                                       regroup(s, state.modes), s, w)
+    The tangent's velocity rows are projected as the state's are (the derivative of the
+    start's projection)."""
+    initial_modes(state, s, w, sw.candidates)
+    status, lost, topology, _ = settle(controls.t0, state, regroup(s, state.modes, sw), s, w,
+                                       sw)
     state.energy[PROJECTION] += lost
     if HAS_TANGENT:
         project_tangent(s, topology, state.tangent)
     start(controls.t0, state, topology, s, w)
     record(out, np.int64(0), controls.t0, state.x, state.v, state.modes, state.energy, w)
-    return w, out, events, state, status, topology
+    return status, topology
 
 
 # ---- locate: the switch inside a step ----------------------------------------------------
@@ -900,7 +900,7 @@ def record_dense(sample, t, t_to, h, state, topology, s, w, controls, out):
 
 # ---- the drivers --------------------------------------------------------------------------
 
-@njit_step
+@njit_step_merged
 def advance_fixed(k, t, state, topology, s, w, controls, out, sample):
     """RK4 steps along the grid t0 + k·step, recording samples, until a guard crosses.
 
@@ -937,17 +937,18 @@ def advance_fixed(k, t, state, topology, s, w, controls, out, sample):
     return k, t, sample, FINISHED, False
 
 
-@njit_entry
-def run_fixed_step(s, x0, v0, tangent0, controls):
-    """Integrate fixed RK4 steps of ``controls.step`` from (t0, x0, v0) to the last sample,
-    locating every switch; returns a ``records.Run``.
+@njit_step_callable
+def run_fixed_step(state, s, w, sw, events, controls, out):
+    """Integrate fixed RK4 steps of ``controls.step`` from the state at t0 to the last
+    sample, locating every switch, in the records ``records.allocate`` made; returns
+    (status, the time it stopped at, the interface that stopped it or −1, steps, samples),
+    for ``records.finish``.
 
     Steps stay on the grid t0 + k·step: after a switch inside a step, the rest of the step
     is integrated in the new modes. Samples are taken every ``steps_per_sample`` steps.
     Zeno guard: ``zeno_events`` switches within ``zeno_window`` seconds stop the run.
     """
-    w, out, events, state, status, topology = begin(s, x0, v0, tangent0, controls,
-                                                    controls.n_samples)
+    status, topology = begin(state, s, w, sw, controls, out)
     k, t, sample = np.int64(0), controls.t0, np.int64(1)
     stop_interface = -1
     while status == FINISHED:
@@ -956,16 +957,17 @@ def run_fixed_step(s, x0, v0, tangent0, controls):
         if not switched or status != FINISHED:
             break
         t_end = controls.t0 + (k + 1) * controls.step
-        status, stop_interface, topology = switch(t, state, topology, s, w, events, controls)
+        status, stop_interface, topology = switch(t, state, topology, s, w, sw, events,
+                                                  controls)
         if t == t_end:
             k += 1
             if k % controls.steps_per_sample == 0:
                 record(out, sample, t, state.x, state.v, state.modes, state.energy, w)
                 sample += 1
-    return finish(status, t, stop_interface, k, out, sample, events, state.tangent)
+    return status, t, stop_interface, k, sample
 
 
-@njit_step
+@njit_step_merged
 def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
     """Dormand–Prince steps from t, recording samples, until a guard crosses or the end.
 
@@ -1021,18 +1023,17 @@ def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
     return t, h, sample, steps, FINISHED, False
 
 
-@njit_entry
-def run_adaptive(s, x0, v0, tangent0, controls):
-    """Integrate by Dormand–Prince 5(4) from (t0, x0, v0) to the last sample; returns a
-    ``records.Run``.
+@njit_step_callable
+def run_adaptive(state, s, w, sw, events, controls, out):
+    """Integrate by Dormand–Prince 5(4) from the state at t0 to the last sample, in the
+    records ``records.allocate`` made; returns what ``run_fixed_step`` returns.
 
     Steps are accepted when the scaled local error (``dp5_step``) is at most 1, and the next
     step follows from the controller (``advance.next_step``), capped at h_max. Samples at
     t0 + k·sample_step and the guards inside a step come from the step's dense output, so
     steps never shorten to meet them. A step below h_min stops the run (STEP_TOO_SMALL).
     """
-    w, out, events, state, status, topology = begin(s, x0, v0, tangent0, controls,
-                                                    controls.n_samples)
+    status, topology = begin(state, s, w, sw, controls, out)
     # np.int64, not literals: a literal argument would compile the callee twice
     t, h, sample, steps = controls.t0, min(controls.step, controls.h_max), np.int64(1), \
         np.int64(0)
@@ -1042,5 +1043,6 @@ def run_adaptive(s, x0, v0, tangent0, controls):
                                                                  topology, s, w, controls, out)
         if not switched or status != FINISHED:
             break
-        status, stop_interface, topology = switch(t, state, topology, s, w, events, controls)
-    return finish(status, t, stop_interface, steps, out, sample, events, state.tangent)
+        status, stop_interface, topology = switch(t, state, topology, s, w, sw, events,
+                                                  controls)
+    return status, t, stop_interface, steps, sample
