@@ -163,7 +163,8 @@ def integrate(scene: Scene, periods: int, *,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
         orthonormalise=orthonormalise)
     arrays = kernel_scene(scene)
-    state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls)
+    state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
+                                                      flow=tangent is not None)
     arguments = (state, arrays, work, switching, events, controls, output)
     driver, compile_seconds = compiled(driver, arguments)
     status, time, interface, steps, samples = driver(*arguments)

@@ -48,7 +48,7 @@ Controls = namedtuple("Controls", [
 #: The integrator's state between steps: displacements x [m] and velocities ẋ [m/s] by
 #: blade, the cumulative work columns [J] (``codes.WorkColumn``), each interface's mode,
 #: and its contact and motion guards where the last step ended (``detect.event_guards``),
-#: the reference a switch is detected against; and its ``Tangent`` (no columns unless a
+#: the reference a switch is detected against; and its ``Tangent`` (a ``NoTangent`` unless a
 #: run asks for the tangent flow).
 State = namedtuple("State", ["x", "v", "energy", "modes", "contact_before", "motion_before",
                              "tangent"])
@@ -73,6 +73,10 @@ Tangent = namedtuple("Tangent", [
     "imbalance", "q_rate", "guard_normal", "f_minus", "f_plus", "singular", "singular_time",
     "singular_interface", "work", "acceleration",
 ])
+
+#: The tangent of a run that integrates none, in a kernel compiled without the tangent
+#: flow: a matrix with no columns, and nothing else to carry through every call.
+NoTangent = namedtuple("NoTangent", ["matrix"])
 
 #: Stick clusters of a set of modes (``regroup``): which interfaces are stuck, each node's
 #: cluster, whether each cluster's motion is given (``clusters.cluster_labels``: grounded)
@@ -167,7 +171,6 @@ def new_switching(n_nodes, n_interfaces):
                      np.zeros(n, dtype=np.int64), np.zeros(m))
 
 
-@njit_internal
 def new_events(capacity, zeno_events):
     return Events(np.empty(capacity), np.empty(capacity, dtype=np.int64),
                   np.empty(capacity, dtype=np.int8), np.zeros(N_EVENT_KINDS, dtype=np.int64),
@@ -175,7 +178,6 @@ def new_events(capacity, zeno_events):
                   np.zeros(1, dtype=np.int64))
 
 
-@njit_internal
 def new_output(n_samples, n_blades, n_interfaces):
     return Output(np.empty(n_samples), np.empty((n_samples, n_blades)),
                   np.empty((n_samples, n_blades)), np.empty((n_samples, n_interfaces)),
@@ -199,29 +201,27 @@ def new_tangent(tangent0, n_interfaces, n_samples, work):
                    np.full(1, -1, dtype=np.int64), work, np.zeros(b))
 
 
-@njit_internal
-def new_state(x0, v0, tangent):
-    x, v = np.empty(len(x0)), np.empty(len(v0))
-    for i in range(len(x0)):
-        x[i], v[i] = x0[i], v0[i]
-    n_interfaces = len(tangent.normal_u)
-    return State(x, v, np.zeros(N_WORK), np.zeros(n_interfaces, np.int64),
-                 np.empty(n_interfaces), np.empty(n_interfaces), tangent)
+def new_state(x0, v0, tangent, n_interfaces):
+    return State(np.array(x0, dtype=float), np.array(v0, dtype=float), np.zeros(N_WORK),
+                 np.zeros(n_interfaces, np.int64), np.empty(n_interfaces),
+                 np.empty(n_interfaces), tangent)
 
 
-def allocate(s, x0, v0, tangent0, controls):
+def allocate(s, x0, v0, tangent0, controls, flow):
     """Every record a driver works in, allocated once, here in Python, so that the
     compiled loop allocates nothing and runs without reference counting: (state, work
     arrays, the switches' storage, event log, output), with the tangent from ``tangent0``
-    (2 n_nodes × k)."""
+    (2 n_nodes × k) for a kernel with the tangent ``flow``, else a ``NoTangent``."""
     n_nodes, n_interfaces, n_prescribed = len(s.mass), len(s.gap), len(s.motion_amplitude)
-    tangent = _in_python(new_tangent)(tangent0, n_interfaces, controls.n_samples,
-                                      _in_python(new_work)(n_nodes, n_interfaces, n_prescribed))
-    return (_in_python(new_state)(x0, v0, tangent),
+    tangent = _in_python(new_tangent)(
+        tangent0, n_interfaces, controls.n_samples,
+        _in_python(new_work)(n_nodes, n_interfaces, n_prescribed)) if flow \
+        else NoTangent(tangent0.copy())
+    return (new_state(x0, v0, tangent, n_interfaces),
             _in_python(new_work)(n_nodes, n_interfaces, n_prescribed),
             _in_python(new_switching)(n_nodes, n_interfaces),
-            _in_python(new_events)(controls.event_capacity, controls.zeno_events),
-            _in_python(new_output)(controls.n_samples, n_nodes, n_interfaces))
+            new_events(controls.event_capacity, controls.zeno_events),
+            new_output(controls.n_samples, n_nodes, n_interfaces))
 
 
 def _in_python(allocator):
@@ -237,5 +237,6 @@ def finish(status, time, interface, steps, out, n_samples, events, tangent) -> R
     output = Output(*(column[:n_samples] for column in out))
     logged = events._replace(time=events.time[:n], interface=events.interface[:n],
                              kind=events.kind[:n])
-    return Run(int(status), float(time), int(interface), int(steps), output, logged,
-               tangent._replace(history=tangent.history[:n_samples]))
+    if isinstance(tangent, Tangent):
+        tangent = tangent._replace(history=tangent.history[:n_samples])
+    return Run(int(status), float(time), int(interface), int(steps), output, logged, tangent)

@@ -730,7 +730,7 @@ def switch(t, state, topology, s, w, sw, events, controls):
     time_rate = 0.0
     several = False
     n_crossed = 0
-    if tangent:
+    if HAS_TANGENT and tangent:
         time_rate = guard_gradient(t, crossing, state, topology, s, w)
         several = count_crossed(state, w) > 1 and not crossings_coincide(
             t, crossing, time_rate, state, topology, s, w)
@@ -751,7 +751,7 @@ def switch(t, state, topology, s, w, sw, events, controls):
         status = ZENO
         stop_interface = last
     start(t, state, topology, s, w)
-    if tangent:
+    if HAS_TANGENT and tangent:
         g = state.tangent
         for i in range(len(state.x)):
             g.f_plus[i] = state.v[i]
@@ -862,12 +862,13 @@ def locate_dense(t, h, theta, sample, state, topology, s, w, controls, out):
     dp5_step_apart(t, t_event - t, state, topology, s, w, controls)
     tangent = HAS_TANGENT and state.tangent.matrix.shape[1] > 0
     if any_crossed(state, w):
-        if tangent:
+        if HAS_TANGENT and tangent:
             tangent_step(t, t_event - t, state, topology, s, w, controls)
             commit_tangent(state.tangent, s, controls.orthonormalise)
     else:  # the whole step again, for its dense output at hi
         t_event = t + hi * h
-        if tangent:  # the tangent of a step to hi, which the dense state matches to its error
+        # the tangent of a step to hi, which the dense state matches to its error
+        if HAS_TANGENT and tangent:
             dp5_step_apart(t, hi * h, state, topology, s, w, controls)
             tangent_step(t, hi * h, state, topology, s, w, controls)
             commit_tangent(state.tangent, s, controls.orthonormalise)
@@ -990,7 +991,7 @@ def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
             return t, h, sample, steps, status, False
         error = dp5_step(t, h, state, topology, s, w, controls)
         tangent = HAS_TANGENT and state.tangent.matrix.shape[1] > 0
-        if tangent and error <= 1.0:
+        if HAS_TANGENT and tangent and error <= 1.0:
             error = max(error, tangent_step(t, h, state, topology, s, w, controls))
         if not error <= 1.0:
             h = retry_step(h, error)
@@ -1011,7 +1012,7 @@ def advance_adaptive(t, h, sample, steps, state, topology, s, w, controls, out):
                                          out)
                 return t, h, sample, steps, FINISHED, True
         t_new = t_final if last else t + h
-        if tangent:
+        if HAS_TANGENT and tangent:
             commit_tangent(state.tangent, s, controls.orthonormalise)
         keep_guards(state, w)
         sample = record_dense(sample, t, t_new, h, state, topology, s, w, controls, out)
