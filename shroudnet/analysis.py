@@ -276,10 +276,13 @@ def broadband_fraction(spectrum: Spectrum, lines: int = 20) -> float:
     if total == 0.0:
         return 0.0
     inside = np.zeros(len(power), dtype=bool)
-    peaks = [k for k in range(len(power))
-             if (k == 0 or power[k] >= power[k - 1])
-             and (k == len(power) - 1 or power[k] >= power[k + 1])]
-    for k in sorted(peaks, key=lambda k: power[k], reverse=True)[:lines]:
+    rises = np.ones(len(power), dtype=bool)   # power[k] >= power[k - 1]
+    rises[1:] = power[1:] >= power[:-1]
+    falls = np.ones(len(power), dtype=bool)   # power[k] >= power[k + 1]
+    falls[:-1] = power[:-1] >= power[1:]
+    peaks = np.flatnonzero(rises & falls)
+    strongest = peaks[np.argsort(-power[peaks], kind="stable")[:lines]]
+    for k in strongest:
         inside[max(k - 2, 0):k + 3] = True
     return float(power[~inside].sum() / total)
 
