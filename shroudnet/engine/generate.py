@@ -46,8 +46,8 @@ _TEMPLATE = _ENGINE / "template.py"
 #: About how long compiling one driver of a kernel takes on a 2-core machine [s], with
 #: the engine's own compiled code in the cache, and without (the very first run); and
 #: the driver with its tangent flow.
-COMPILE_ESTIMATE = 40
-FIRST_COMPILE_ESTIMATE = 45
+COMPILE_ESTIMATE = 30
+FIRST_COMPILE_ESTIMATE = 35
 TANGENT_COMPILE_ESTIMATE = 60
 
 
