@@ -52,7 +52,7 @@ from shroudnet.engine.codes import (FINISHED, INCONSISTENT, MAX_IDLE_SWITCHES, N
                                     STALLED, STEP_TOO_SMALL, STICK, ZENO)
 from shroudnet.engine.clusters import TWO_DRIVERS
 from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_step,
-                                       njit_step_callable, njit_step_merged)
+                                       njit_step_callable, njit_step_exact, njit_step_merged)
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard,
                                      count_crossed, crossed, event_guards, first_crossed,
                                      graze_dense, kinematic_dip, kinematic_guards,
@@ -474,7 +474,7 @@ def crossings_coincide(t, crossing, time_rate, state, topology, s, w):
     return coincide
 
 
-@njit_step
+@njit_step_exact
 def crossed_gradients(t, state, topology, s, w, sw):
     """Every interface whose guard crossed at t, the gradient n of its guard (one row
     each) and its rate nᵀ f⁻ + ∂g/∂t (``guard_gradient``), into sw.crossings,
@@ -712,7 +712,7 @@ def resolve(t, state, topology, s, w, sw):
     return settle(t, state, topology, s, w, sw)
 
 
-@njit_step_merged
+@njit_step_exact
 def switch(t, state, topology, s, w, sw, events, controls):
     """Resolve the switch located at t (the state there, its guards in w; ``topology`` that
     of the modes before it), log it and restart there.
@@ -772,7 +772,7 @@ def start(t, state, topology, s, w):
     keep_guards(state, w)
 
 
-@njit_step_merged
+@njit_step_exact
 def begin(state, s, w, sw, controls, out):
     """The start at t0: consistent modes, velocities projected onto their clusters, the
     first sample. Returns (status, topology).
