@@ -273,8 +273,8 @@ def rk4_guarded(t, h, state, topology, s, w):
 
 
 # The step loops merge the steps they take every step (a function compiled on its own takes
-# the records as some 430 machine words of arguments, and passing them cost more than the
-# three blades' forces); the paths taken once per switch call these, compiled once each.
+# the records as hundreds of machine words of arguments, and passing them cost more than
+# the three blades' forces); the paths taken once per switch call these, compiled once each.
 
 @njit_step
 def rk4_step_apart(t, h, state, topology, s, w):
