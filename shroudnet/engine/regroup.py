@@ -20,10 +20,18 @@ from .records import Topology, new_switching
 @njit_entry
 def cluster_mass(mass, labels, n_clusters):
     """Σ m [kg] of each stick cluster."""
-    total = np.zeros(n_clusters)
+    total = np.empty(n_clusters)
+    fill_cluster_mass(mass, labels, n_clusters, total)
+    return total
+
+
+@njit_step_exact
+def fill_cluster_mass(mass, labels, n_clusters, total):
+    """``cluster_mass`` into the first ``n_clusters`` entries of ``total``."""
+    for c in range(n_clusters):
+        total[c] = 0.0
     for i in range(len(mass)):
         total[labels[i]] += mass[i]
-    return total
 
 
 @njit_entry
@@ -186,10 +194,7 @@ def fill_groups(s, modes, g):
     n_blades = len(s.mass) - len(s.motion_amplitude)
     n_clusters = label_clusters(n_blades, s.left, s.right, g.stuck, g.parent, g.labels,
                                 g.grounded, g.driver)
-    for c in range(n_clusters):
-        g.masses[c] = 0.0
-    for i in range(len(s.mass)):
-        g.masses[g.labels[i]] += s.mass[i]
+    fill_cluster_mass(s.mass, g.labels, n_clusters, g.masses)
     n_stuck = fill_operator(n_blades, s.left, s.right, s.cos_angle, g, n_clusters)
     return n_clusters, n_stuck
 

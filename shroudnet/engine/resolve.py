@@ -5,7 +5,6 @@ needs the laws; here are the initial modes, the kinds of events, the event log a
 Zeno guard.
 """
 
-
 from .codes import (BREAKAWAY, CLOSING, OPEN, REVERSAL, SEPARATION, SLIP_NEGATIVE,
                     SLIP_POSITIVE, STICK, STICKING)
 from .compiled import njit_inlined, njit_step

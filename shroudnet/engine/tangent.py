@@ -38,7 +38,6 @@ saltation matrix.
 
 import math
 
-
 from .codes import OPEN
 from .compiled import njit_inlined, njit_step, njit_step_exact
 from .dynamics import cluster_accelerations, excitation_rate, prescribed_acceleration

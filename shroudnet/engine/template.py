@@ -15,7 +15,10 @@ The header defines, for the law classes of a scene:
   and with prescribed-motion nodes (all of these are set in the kernel shared by the
   built-in laws, whose code then checks each effect at run time), and ``HAS_TANGENT``,
   set only in the kernels of runs that integrate the tangent flow (``tangent``), so that
-  other runs carry none of its code.
+  other runs carry none of its code. Their state holds a ``records.NoTangent``, which has
+  none of the tangent's fields: code that reads them sits behind ``if HAS_TANGENT and
+  ...`` at each branch, since numba removes a branch on the flag itself, not on a
+  variable computed from it.
 
 A step reads as five phases, each with a module of its own for what does not need the
 laws: advance (one Runge–Kutta step with fixed modes; ``advance``), detect (a guard
