@@ -298,9 +298,14 @@ def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window)
                           smallest_step=SMALLEST_STEP)
 
 
+#: Nodes and weights of 16-point Gauss–Legendre quadrature on [−1, 1] (computing them
+#: takes longer than a short run's whole energy ledger).
+_GAUSS_LEGENDRE = np.polynomial.legendre.leggauss(16)
+
+
 def _contact_energy(law, penetration):
     """∫₀^δ N(s, 0) ds [J] by 16-point Gauss–Legendre quadrature."""
-    nodes, weights = np.polynomial.legendre.leggauss(16)
+    nodes, weights = _GAUSS_LEGENDRE
     s = 0.5 * penetration * (nodes + 1.0)
     return 0.5 * penetration * sum(w * law(si, 0.0) for si, w in zip(s, weights))
 
