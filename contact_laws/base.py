@@ -18,6 +18,11 @@ DIFFERENCE_STEP = 6e-6
 PENETRATION_SCALE = 1e-6
 RATE_SCALE = 1e-3
 SPEED_SCALE = 1e-3
+#: The slip speed [m/s] at which an interface that slips at zero speed takes its friction
+#: law: the smallest positive double. A slip mode's friction at |v| = 0 is the limit
+#: μ(0⁺) of its slip side, not μ(0) = μ_s, the stuck side's limit; they differ for a law
+#: that jumps at 0. For a law continuous at 0, μ at this speed rounds to μ(0).
+ZERO_PLUS_SPEED = 2.2250738585072014e-308
 
 
 def central_difference(function: Callable[[float], float], at: float, scale: float) -> float:

@@ -1,6 +1,7 @@
 """Friction laws μ(|v|): the friction coefficient as a function of the slip speed.
 
-While slipping, f = μ(|v|) N sgn(v) (paper eqs. 5–6); while stuck, |f| ≤ μ(0) N.
+While slipping, f = μ(|v|) N sgn(v) (paper eqs. 5–6); while stuck, |f| ≤ μ(0) N. An
+interface that slips at |v| = 0 (just broken away) takes μ(0⁺), its slip side's limit.
 """
 
 from __future__ import annotations

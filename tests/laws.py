@@ -58,6 +58,24 @@ class RationalWeakening(cl.FrictionLaw):
         return mu_kinetic + (mu_static - mu_kinetic) / (1.0 + slip_speed / speed)
 
 
+@dataclass(frozen=True, kw_only=True)
+class StaticKinetic(cl.FrictionLaw):
+    """A user's own textbook friction: μ_s at rest, μ_k < μ_s as soon as it slips, so the
+    friction jumps down at breakaway (μ(0⁺) = μ_k)."""
+
+    mu_static: float
+    mu_kinetic: float
+
+    def __post_init__(self):
+        mu_s = cl.check_real("StaticKinetic", "mu_static", self.mu_static, low=0.0)
+        cl.check_real("StaticKinetic", "mu_kinetic", self.mu_kinetic, low=0.0, high=mu_s,
+                      high_label="mu_static")
+
+    @staticmethod
+    def coefficient(slip_speed, mu_static, mu_kinetic):
+        return mu_kinetic if slip_speed > 0.0 else mu_static
+
+
 def normal_laws(stiffness=st.floats(1e4, 1e7)):
     return st.one_of(
         st.builds(cl.LinearSpring, stiffness=stiffness),

@@ -35,16 +35,18 @@ DIFFERENCE = 1e-5
 AGREEMENT = 1e-6
 
 
-def stroboscopic_map(scene, periods, y):
+def stroboscopic_map(scene, periods, y, event_tolerance=1e-10):
     """The state after ``periods`` periods from y = (x, ẋ), by ``simulate``."""
     n = len(y) // 2
     run = simulate(scene, periods, method=EXACT, samples_per_period=1,
-                   initial=(y[:n], y[n:]), event_capacity=0)
+                   initial=(y[:n], y[n:]), event_capacity=0,
+                   event_tolerance=event_tolerance)
     return np.concatenate([run.x[-1], run.v[-1]])
 
 
-def differenced_monodromy(scene, periods, y, scale):
-    """∂(map)/∂y by fourth-order central differences, step ``DIFFERENCE``·scale_j."""
+def differenced_monodromy(scene, periods, y, scale, event_tolerance=1e-10):
+    """∂(map)/∂y by fourth-order central differences, step ``DIFFERENCE``·scale_j, of runs
+    that locate their switches to ``event_tolerance`` [s]."""
     columns = []
     for j in range(len(y)):
         step = DIFFERENCE * scale[j]
@@ -52,7 +54,7 @@ def differenced_monodromy(scene, periods, y, scale):
         for k in (-2, -1, 1, 2):
             moved = y.copy()
             moved[j] += k * step
-            values[k] = stroboscopic_map(scene, periods, moved)
+            values[k] = stroboscopic_map(scene, periods, moved, event_tolerance)
         columns.append((8.0 * (values[1] - values[-1]) - (values[2] - values[-2]))
                        / (12.0 * step))
     return np.array(columns).T

@@ -12,6 +12,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from contact_laws.base import ZERO_PLUS_SPEED
+
 from ..scene import Scene, SceneArrays
 from .clusters import TWO_DRIVERS, cluster_labels
 from .codes import OPEN, SLIP_POSITIVE, STICK, Mode
@@ -27,8 +29,9 @@ def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
 
     Open interfaces carry nothing; stuck ones carry N and no sliding friction (their static
     friction comes from ``static_friction``). Exact laws slip with f = σ μ(σv) N, σ = ±1 by
-    the sign of the mode (paper eqs. 5–6), continued past the mode's end (σv < 0) by
-    μ(|v|) + 2 μ'(|v|) σv, as the compiled loop does (``sliding_coefficient``);
+    the sign of the mode (paper eqs. 5–6), with μ(0⁺) at v = 0, continued past the mode's
+    end (σv < 0) by μ(|v|) + 2 μ'(|v|) σv, as the compiled loop does
+    (``sliding_coefficient``);
     regularised ones with f = μ(|v|) N tanh(v/v_ε).
     This is the plain-Python evaluation of the laws; it calls each law object.
     """
@@ -46,7 +49,7 @@ def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
                 * math.tanh(slip_velocity[e] / arrays.regularisation[e])
             continue
         sign = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
-        speed = sign * slip_velocity[e]
+        speed = sign * slip_velocity[e] if slip_velocity[e] != 0.0 else ZERO_PLUS_SPEED
         mu = friction_law(speed) if speed >= 0.0 else (
             friction_law(speed) + 2.0 * friction_law.slope(speed) * speed)
         friction[e] = sign * mu * normal[e]

@@ -45,6 +45,7 @@ import math
 
 import numpy as np
 
+from contact_laws.base import ZERO_PLUS_SPEED
 from shroudnet.engine.advance import (dense_motion, dense_state, is_finite, keep_guards,
                                       move_state, next_step, record, retry_step, set_powers,
                                       stage_sum, take_step)
@@ -92,9 +93,10 @@ def sliding_mu(kind, params, speed):
     leaves s = 0 with the slope μ'(0⁺) that the slip side arrives with. The mode's vector
     field thus continues across the switching surface with a continuous slope, where
     μ(|s|) would have a kink: stages beyond the kink made the tangent flow converge at
-    first order only. A law whose μ jumps at 0 (μ(0⁺) ≠ μ_s) is continued from μ(0⁺), the
-    value the slip side has. The slope is evaluated only for s < 0."""
-    size = abs(speed)
+    first order only. A law whose μ jumps at 0 (μ(0⁺) ≠ μ_s) slips with μ(0⁺), the value
+    the slip side has, at s = 0 too (``ZERO_PLUS_SPEED``): an interface just broken away
+    from stick, whose slip is exactly 0. The slope is evaluated only for s < 0."""
+    size = max(abs(speed), ZERO_PLUS_SPEED)
     mu = friction_coefficient(kind, params, size)
     if speed >= 0.0:
         return mu
@@ -105,7 +107,8 @@ def sliding_mu(kind, params, speed):
 def sliding_coefficient(kind, params, speed):
     """``sliding_mu`` and dμ/ds: μ'(|s|) (for s < 0 the slope of the continuation,
     μ'(|s|) − 2 μ''(|s|) s, is taken as μ'(|s|): s is within a tolerance of 0)."""
-    return sliding_mu(kind, params, speed), friction_slope(kind, params, abs(speed))
+    return sliding_mu(kind, params, speed), friction_slope(kind, params,
+                                                          max(abs(speed), ZERO_PLUS_SPEED))
 
 
 @njit_step
