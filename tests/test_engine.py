@@ -2,7 +2,9 @@
 
 import importlib
 import math
+import re
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -304,6 +306,17 @@ def test_a_change_in_a_laws_helper_module_gives_a_new_kernel(tmp_path, monkeypat
         names.append(generate.load_kernel(three_blade_paper(normal=law)).__name__)
         assert f"** {exponent}" in generate.law_sources(type(law), "normal")
     assert names[0] != names[1]
+
+
+def test_the_cache_key_covers_every_module_the_template_imports():
+    """A constant the template takes from another module is compiled into the kernel, so
+    that module's source is part of the key."""
+    template, sources = generate.template_sources()
+    imported = re.findall(r"^from ([\w.]+) import", template, flags=re.MULTILINE)
+    ours = [name for name in imported if name.split(".")[0] in ("shroudnet", "contact_laws")]
+    assert "contact_laws.base" in ours
+    for name in ours:
+        assert Path(importlib.import_module(name).__file__).read_text() in sources, name
 
 
 def test_every_combination_of_built_in_laws_shares_one_kernel():

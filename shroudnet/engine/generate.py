@@ -33,6 +33,7 @@ import numpy as np
 
 from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz, HuntCrossley,
                           KelvinVoigt, LinearSpring, Stribeck)
+from contact_laws import base as law_base
 from contact_laws.base import PENETRATION_SCALE, RATE_SCALE, SPEED_SCALE
 
 from ..scene import Scene
@@ -203,10 +204,10 @@ def header(normal_classes, friction_classes, effect_flags) -> str:
 
 @functools.cache
 def template_sources() -> tuple[str, str]:
-    """The template's source, and the sources of the engine modules it is built on (read
-    once per process)."""
-    engine = "\n".join(path.read_text() for path in sorted(_ENGINE.glob("*.py"))
-                       if path != _TEMPLATE)
+    """The template's source, and the sources of the modules it is built on: the engine's,
+    and ``contact_laws.base``, whose constants it takes (read once per process)."""
+    paths = [path for path in sorted(_ENGINE.glob("*.py")) if path != _TEMPLATE]
+    engine = "\n".join(path.read_text() for path in paths + [Path(law_base.__file__)])
     return _TEMPLATE.read_text(), engine
 
 
