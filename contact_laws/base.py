@@ -111,7 +111,9 @@ class FrictionLaw:
     2. ``__post_init__`` that validates every field, naming it and its allowed range;
     3. a ``@staticmethod coefficient(slip_speed, *parameters)`` taking ``|v| ≥ 0`` and the
        fields in declaration order and returning μ ≥ 0, written in plain arithmetic that numba
-       can compile. It must not exceed its value at zero speed: μ(0) is the static limit;
+       can compile. It must not exceed its value at zero speed: μ(0) is the static limit.
+       It may jump at zero speed (``mu_kinetic if slip_speed > 0.0 else mu_static``): an
+       interface that has just broken away slips with μ(0⁺), the limit from above;
     4. optionally a ``@staticmethod coefficient_slope(slip_speed, *parameters)`` returning
        dμ/d|v| [s/m], in the same plain arithmetic, for tangent dynamics; a law without it
        is differentiated by central differences of ``coefficient``.
