@@ -26,6 +26,7 @@ from shroudnet import (Adaptive, Blade, BladeGroup, Excitation, Interface, Scene
 from shroudnet.engine.generate import kernel_scene, load_kernel
 from shroudnet.scenes import three_blade_paper
 from tests.groups import states
+from tests.laws import StaticKinetic
 from tests.test_physics_references import BLADE, IDLE, IDLE_BLADE, facing_pads
 
 #: The trajectories the differences are taken of: as exact as the integrator goes.
@@ -250,6 +251,12 @@ CASES = {
                                                                    mu_kinetic=0.4,
                                                                    stribeck_velocity=0.05))),
                             (0.0, 0.0), 20),
+    # stick and breakaway with a friction that drops from μ_s to μ_k as it slips (μ(0⁺)
+    # = μ_k): the breakaway saltation's jump term (0.41 off while f⁺ took μ(0))
+    "friction dropping at breakaway": (
+        pads_scene(Interface(gap=0.0, angle=0.5, normal=ConstantLoad(force=40.0),
+                             friction=StaticKinetic(mu_static=0.6, mu_kinetic=0.4))),
+        (0.0, 0.0), 20),
     # the paper's group: impacts and slip on two coupled interfaces
     "paper group": (three_blade_paper(), None, 50),
 }
@@ -268,6 +275,7 @@ def test_monodromy_agrees_with_differences_of_the_trajectory(case):
                       initial=np.split(y, 2)).events.counts
     expected_kinds = {"impact": ("closing", "separation"), "slip reversal": ("reversal",),
                       "stick and breakaway": ("sticking", "breakaway"),
+                      "friction dropping at breakaway": ("sticking", "breakaway"),
                       "paper group": ("closing", "separation", "reversal")}[case]
     assert all(counts[kind] > 0 for kind in expected_kinds), counts
     scale = state_scale(y)
