@@ -167,9 +167,7 @@ def integrate(scene: Scene, periods: int, *,
                                                       flow=tangent is not None)
     arguments = (state, arrays, work, switching, events, controls, output)
     driver, compile_seconds = compiled(driver, arguments)
-    status, time, interface, steps, samples = driver(*arguments)
-    run = _blades_only(finish(status, time, interface, steps, output, samples, events,
-                              state.tangent), n)
+    run = _blades_only(finish(driver(*arguments), output, events, state.tangent), n)
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,

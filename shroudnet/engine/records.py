@@ -230,9 +230,10 @@ def _in_python(allocator):
     return getattr(allocator, "py_func", allocator)
 
 
-def finish(status, time, interface, steps, out, n_samples, events, tangent) -> Run:
-    """The driver's ``Run``: what it returned, the samples taken and the events logged,
-    trimmed."""
+def finish(returned, out, events, tangent) -> Run:
+    """The driver's ``Run``: what it ``returned`` (status, time, interface, steps, samples
+    taken), the samples taken and the events logged, trimmed."""
+    status, time, interface, steps, n_samples = returned
     n = min(int(events.n_events[0]), len(events.time))
     output = Output(*(column[:n_samples] for column in out))
     logged = events._replace(time=events.time[:n], interface=events.interface[:n],
