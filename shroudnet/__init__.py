@@ -31,7 +31,6 @@ Units are SI throughout, except rotating speeds, given in rev/min where a name e
 shrouded group blades with rubbing and impact*.
 """
 
-from . import progress as _progress
 from . import scenes as scenes
 from . import sweep as _sweeps  # the module; below, ``sweep`` names its function
 from .analysis import Campbell as Campbell
@@ -104,7 +103,15 @@ def _open_sweep_store(folder):
     return open_sweep_store(folder)
 
 
+def _terminal_progress(progress):
+    """``progress.progress_callback(progress)``, imported when a sweep first asks for a
+    display: importing shroudnet, or the computation, loads no terminal code."""
+    from .progress import progress_callback
+
+    return progress_callback(progress)
+
+
 # What sweep(save_to=FOLDER) and sweep(progress="auto" or True) stand for: the computation
 # (shroudnet.sweep) imports no file code and draws no terminal display of its own.
 _sweeps.folder_store = _open_sweep_store
-_sweeps.terminal_progress = _progress.progress_callback
+_sweeps.terminal_progress = _terminal_progress

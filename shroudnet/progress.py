@@ -1,37 +1,18 @@
-"""Progress of long runs on a terminal: points done, rate and time left, on one line."""
+"""Progress of long runs on a terminal: points done, rate and time left, on one line.
+
+The displays implement ``shroudnet.reporting.ProgressReporter``, the protocol the
+computation reports to; it and ``SweepWarning`` are named here too.
+"""
 
 from __future__ import annotations
 
 import sys
 import time
-import warnings
 from collections.abc import Callable
 from typing import TextIO
 
-
-class SweepWarning(UserWarning):
-    """A notice of a sweep given as a warning: a failed point, a saved file computed again."""
-
-
-class ProgressReporter:
-    """What a long run reports to, for those who want more than the counts.
-
-    1. ``reporter(done, total)`` after each point (and once before the first, with the
-       points already done);
-    2. ``reporter.notice(message)`` for what deserves a line of its own: a point whose
-       simulation failed, a saved file that is damaged and computed again.
-
-    Subclass it and override both. A plain callable ``progress(done, total)`` receives the
-    counts only; its run issues the notices as ``SweepWarning`` warnings, as this class
-    does by default.
-    """
-
-    def __call__(self, done: int, total: int) -> None:
-        """Called with the points done so far out of ``total``."""
-
-    def notice(self, message: str) -> None:
-        """Called with one line worth telling; by default, a ``SweepWarning``."""
-        warnings.warn(message, SweepWarning, stacklevel=2)
+from .reporting import ProgressReporter as ProgressReporter
+from .reporting import SweepWarning as SweepWarning
 
 
 class TerminalProgress(ProgressReporter):

@@ -44,7 +44,7 @@ from .analysis import Classification
 from .continuation import Bifurcation, Branch
 from .engine.codes import EventKind
 from .orbits import PeriodicOrbit
-from .progress import SweepWarning
+from .reporting import SweepWarning
 from .simulation import EnergyLedger, EventLog, Simulation, Sweep, SweepPoint
 
 #: Version of the file layout, stored in every file.

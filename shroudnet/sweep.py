@@ -12,9 +12,9 @@ input and stops the sweep.
 The computation imports no file or terminal code. Where the points are kept, to resume an
 interrupted sweep, comes from the caller as a ``store`` (``StoreOpener``; the folders of
 ``shroudnet.results`` are one), and so does the progress display (``ProgressCallback``;
-those of ``shroudnet.progress`` draw on a terminal). What ``save_to=FOLDER`` and
-``progress="auto"`` stand for is supplied by the package: ``folder_store`` and
-``terminal_progress``.
+those of ``shroudnet.progress`` draw on a terminal; the sweep knows only the protocol of
+``shroudnet.reporting``). What ``save_to=FOLDER`` and ``progress="auto"`` stand for is
+supplied by the package: ``folder_store`` and ``terminal_progress``.
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ import numpy as np
 from .analysis import classify, friction_loss_per_cycle
 from .stability import LYAPUNOV_BLOCKS, lyapunov
 from .methods import Accuracy, Adaptive, FixedStep
-from .progress import ProgressReporter, SweepWarning
+from .reporting import ProgressReporter, SweepWarning
 from .scene import Scene
 from .simulate import simulate
 from .simulation import SimulationError, Sweep, SweepFailure, SweepPoint
@@ -66,7 +66,7 @@ class StoreOpener(Protocol):
 class ProgressCallback(Protocol):
     """What ``sweep(progress=...)`` takes: called with the points done so far out of
     ``total``, once before the first point and after each. A
-    ``shroudnet.progress.ProgressReporter`` also hears the notices (``notice(message)``)."""
+    ``shroudnet.reporting.ProgressReporter`` also hears the notices (``notice(message)``)."""
 
     def __call__(self, done: int, total: int) -> None: ...
 
@@ -78,8 +78,9 @@ folder_store: Callable[[str | os.PathLike], StoreOpener] | None = None
 
 #: What ``progress="auto"`` and ``progress=True`` stand for: the display
 #: ``terminal_progress(progress)`` (None: none). The package sets it
-#: (``shroudnet/__init__.py``) to ``shroudnet.progress.progress_callback``, so that the
-#: computation never decides to write to the terminal itself.
+#: (``shroudnet/__init__.py``) to ``shroudnet.progress.progress_callback``, imported only
+#: when a sweep asks for a display, so that the computation never decides to write to the
+#: terminal itself.
 terminal_progress: Callable[[str | bool], ProgressCallback | None] | None = None
 
 
@@ -155,7 +156,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         (True: always; the display is ``terminal_progress``'s, supplied by the package);
         False or None is silent. Notices (a failed point, a saved file that is damaged and
         computed again) go to ``progress.notice(message)`` when ``progress`` is a
-        ``shroudnet.progress.ProgressReporter`` (as the terminal display is), else they are
+        ``shroudnet.reporting.ProgressReporter`` (as the terminal display is), else they are
         issued as ``SweepWarning`` warnings.
     save_to : path of a folder, optional
         Save each point there as it finishes (``shroudnet.results``). If the folder holds

@@ -539,22 +539,21 @@ def imported_modules(path: Path) -> set[str]:
 
 
 def test_the_sweep_computation_imports_no_file_terminal_or_figure_code():
-    """Importing the sweep loads neither results nor the command line nor the figures (in a
-    fresh process), and sweep.py names none of them, even inside a function; the records
+    """Importing shroudnet, or the sweep, loads neither results nor the terminal displays
+    nor the command line nor the figures (in a fresh process), and sweep.py names none of
+    them, even inside a function: it reports to the protocol of ``reporting``. The records
     that runs return live beside ``Simulation``, so results does not import the sweep."""
+    front = ("results", "progress", "cli", "figures")
     code = ("import shroudnet.sweep, sys; print([m for m in sys.modules if m in "
-            "('shroudnet.results', 'shroudnet.cli', 'shroudnet.figures')])")
+            f"{tuple('shroudnet.' + name for name in front)}])")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
                           text=True, check=True)
     assert done.stdout.strip() == "[]"
     package = ROOT / "shroudnet"
-    assert not imported_modules(package / "sweep.py") & {"results", "cli", "figures"}
+    assert not imported_modules(package / "sweep.py") & set(front)
     assert "sweep" not in imported_modules(package / "results.py")
-    progress_names = {alias.name for node in ast.walk(ast.parse((package / "sweep.py")
-                                                                .read_text()))
-                      if isinstance(node, ast.ImportFrom) and node.module == "progress"
-                      for alias in node.names}
-    assert progress_names <= {"ProgressReporter", "SweepWarning"}  # no display of its own
+    assert ProgressReporter.__module__ == SweepWarning.__module__ == "shroudnet.reporting"
+    assert not imported_modules(package / "reporting.py")
     from shroudnet import SweepFailure, SweepPoint
     assert {Sweep.__module__, SweepPoint.__module__, SweepFailure.__module__} == {
         "shroudnet.simulation"}
