@@ -34,7 +34,7 @@ shrouded group blades with rubbing and impact*.
 from . import scenes as scenes
 from . import sweep as _sweeps  # the module; below, ``sweep`` names its function
 from .analysis import Campbell as Campbell
-from .analysis import Classification as Classification
+from .classification import Classification as Classification
 from .analysis import Spectrum as Spectrum
 from .analysis import amplitude_spectrum as amplitude_spectrum
 from .analysis import campbell as campbell

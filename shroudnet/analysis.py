@@ -15,14 +15,10 @@ from scipy.optimize import brentq
 
 from contact_laws import check_int
 
+from .classification import CHAOTIC, QUASI_PERIODIC, UNDETERMINED, Classification
 from .methods import Adaptive
 from .simulation import Simulation
 from .stability import LYAPUNOV_BLOCKS, lyapunov
-
-#: Labels besides "p1" … "pN".
-QUASI_PERIODIC = "quasi-periodic"
-CHAOTIC = "chaotic"
-UNDETERMINED = "undetermined"
 
 
 @dataclass(frozen=True)
@@ -124,42 +120,6 @@ def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
     k_values = np.where(flat, 0.0, np.clip(dev @ lag_dev / np.where(flat, 1.0, scale),
                                            -1.0, 1.0))
     return float(np.median(k_values))
-
-
-@dataclass(frozen=True)
-class Classification:
-    """The kind of a steady motion, with the evidence for it.
-
-    ``label`` is "p1", "p2", … "pN" (the response repeats after N excitation periods),
-    "quasi-periodic", "chaotic", or "undetermined" when the record cannot tell (``reason``
-    says why). ``period`` is N, or None. ``mismatch`` is the largest distance between
-    Poincaré points N periods apart relative to the attractor's size (for the best N tried
-    when none repeats). ``lyapunov`` is the largest Lyapunov exponent λ_max per period and
-    ``lyapunov_error`` its standard error (``stability.lyapunov``; NaN where it was not
-    computed): the main evidence between chaos and quasi-periodicity. ``zero_one`` is the
-    0–1 test's K on the Poincaré displacements (near 1: chaos; near 0: regular), NaN with
-    too few points; ``broadband`` is the fraction of the spectrum's power outside its 20
-    strongest lines: both secondary evidence.
-    """
-
-    label: str
-    period: int | None
-    n_points: int
-    tolerance: float
-    mismatch: float
-    zero_one: float
-    broadband: float
-    lyapunov: float = math.nan
-    lyapunov_error: float = math.nan
-    reason: str = ""
-
-    def __str__(self) -> str:
-        exponent = "" if math.isnan(self.lyapunov) else (
-            f"λ_max = {self.lyapunov:+.3g} ± {self.lyapunov_error:.1g} per period, ")
-        why = f" ({self.reason})" if self.reason else ""
-        return (f"{self.label}{why}: {self.n_points} Poincaré points, repeat mismatch "
-                f"{self.mismatch:.1e} (tolerance {self.tolerance:g}), {exponent}0-1 test K = "
-                f"{self.zero_one:.2f}, broadband fraction {self.broadband:.1e}")
 
 
 def classify_section(points, *, scale=None, tolerance: float = 1e-5, max_period: int = 64,

@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from . import scenefile
-from .analysis import Classification
+from .classification import Classification
 from .continuation import Bifurcation, Branch
 from .engine.codes import EventKind
 from .orbits import PeriodicOrbit

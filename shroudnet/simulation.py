@@ -6,16 +6,13 @@ from __future__ import annotations
 import math
 from collections.abc import Hashable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from contact_laws import check_int
 
+from .classification import Classification
 from .scene import Scene
-
-if TYPE_CHECKING:
-    from .analysis import Classification
 
 
 class SimulationError(RuntimeError):
@@ -125,10 +122,6 @@ class Simulation:
         return float(np.trapezoid(x * x, t) / (t[-1] - t[0]))
 
 
-#: The label of a failed point's classification.
-FAILED = "failed"
-
-
 @dataclass(frozen=True)
 class SweepPoint:
     """The steady response at one value of the swept parameter.
@@ -161,14 +154,10 @@ class SweepPoint:
     @classmethod
     def failure(cls, value: float, message: str, tolerance: float = math.nan) -> SweepPoint:
         """The failed point at ``value``, with the message of what stopped it."""
-        from .analysis import Classification  # analysis reads Simulation from this module
-
         nothing = np.empty(0)
         return cls(value=float(value), poincare=np.empty((0, 2)), energy_density=math.nan,
                    friction_loss_per_cycle=math.nan,
-                   classification=Classification(label=FAILED, period=None, n_points=0,
-                                                 tolerance=tolerance, mismatch=math.nan,
-                                                 zero_one=math.nan, broadband=math.nan),
+                   classification=Classification.failed(tolerance),
                    final_state=(nothing, nothing.copy()), error=str(message))
 
 
