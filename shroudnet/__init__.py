@@ -32,9 +32,7 @@ shrouded group blades with rubbing and impact*.
 """
 
 from . import scenes as scenes
-from . import sweep as _sweeps  # the module; below, ``sweep`` names its function
 from .analysis import Campbell as Campbell
-from .classification import Classification as Classification
 from .analysis import Spectrum as Spectrum
 from .analysis import amplitude_spectrum as amplitude_spectrum
 from .analysis import campbell as campbell
@@ -47,6 +45,7 @@ from .blade import Blade as Blade
 from .blade import ConstantFrequency as ConstantFrequency
 from .blade import FrequencyTable as FrequencyTable
 from .blade import Southwell as Southwell
+from .classification import Classification as Classification
 from .continuation import Bifurcation as Bifurcation
 from .continuation import Branch as Branch
 from .continuation import continuation as continuation
@@ -93,25 +92,3 @@ from .simulation import Sweep as Sweep
 from .simulation import SweepFailure as SweepFailure
 from .simulation import SweepPoint as SweepPoint
 from .sweep import sweep as sweep
-
-
-def _open_sweep_store(folder):
-    """``results.open_sweep_store(folder)``, imported when a sweep first saves: importing
-    shroudnet, or the computation, loads no file code."""
-    from .results import open_sweep_store
-
-    return open_sweep_store(folder)
-
-
-def _terminal_progress(progress):
-    """``progress.progress_callback(progress)``, imported when a sweep first asks for a
-    display: importing shroudnet, or the computation, loads no terminal code."""
-    from .progress import progress_callback
-
-    return progress_callback(progress)
-
-
-# What sweep(save_to=FOLDER) and sweep(progress="auto" or True) stand for: the computation
-# (shroudnet.sweep) imports no file code and draws no terminal display of its own.
-_sweeps.folder_store = _open_sweep_store
-_sweeps.terminal_progress = _terminal_progress

@@ -9,12 +9,13 @@ step, a non-finite state) does not stop the sweep: it is kept as a *failed point
 the diagram, with its message (``Sweep.failures``). Every other exception is a bug or bad
 input and stops the sweep.
 
-The computation imports no file or terminal code. Where the points are kept, to resume an
-interrupted sweep, comes from the caller as a ``store`` (``StoreOpener``; the folders of
-``shroudnet.results`` are one), and so does the progress display (``ProgressCallback``;
-those of ``shroudnet.progress`` draw on a terminal; the sweep knows only the protocol of
-``shroudnet.reporting``). What ``save_to=FOLDER`` and ``progress="auto"`` stand for is
-supplied by the package: ``folder_store`` and ``terminal_progress``.
+Where the points are kept, to resume an interrupted sweep, comes from the caller as a
+``store`` (``StoreOpener``; the folders of ``shroudnet.results`` are one), and so does the
+progress display (``ProgressCallback``; those of ``shroudnet.progress`` draw on a terminal;
+the sweep knows only the protocol of ``shroudnet.reporting``). Importing the sweep, or
+running one in a worker, loads no file or terminal code: only what ``save_to=FOLDER`` and
+``progress="auto"`` stand for, ``folder_store`` and ``terminal_progress``, import it, when a
+sweep first asks for it.
 """
 
 from __future__ import annotations
@@ -71,17 +72,28 @@ class ProgressCallback(Protocol):
     def __call__(self, done: int, total: int) -> None: ...
 
 
-#: What ``save_to=FOLDER`` stands for: ``store=folder_store(FOLDER)``. The package sets it
-#: (``shroudnet/__init__.py``) to ``shroudnet.results.open_sweep_store``, imported only when
-#: a sweep saves, so that the computation imports no file code.
-folder_store: Callable[[str | os.PathLike], StoreOpener] | None = None
+def folder_store(folder: str | os.PathLike) -> StoreOpener:
+    """What ``save_to=FOLDER`` stands for: ``store=results.open_sweep_store(FOLDER)``.
 
-#: What ``progress="auto"`` and ``progress=True`` stand for: the display
-#: ``terminal_progress(progress)`` (None: none). The package sets it
-#: (``shroudnet/__init__.py``) to ``shroudnet.progress.progress_callback``, imported only
-#: when a sweep asks for a display, so that the computation never decides to write to the
-#: terminal itself.
-terminal_progress: Callable[[str | bool], ProgressCallback | None] | None = None
+    The file code is imported here, when a sweep first saves, so that importing the sweep
+    (or running its points in a worker) loads none of it.
+    """
+    from .results import open_sweep_store
+
+    return open_sweep_store(folder)
+
+
+def terminal_progress(progress: str | bool) -> ProgressCallback | None:
+    """What ``progress="auto"`` and ``progress=True`` stand for: the display of
+    ``progress.progress_callback(progress)`` on standard error ("auto": only when it is a
+    terminal; None when there is none).
+
+    The terminal code is imported here, when a sweep first asks for a display, so that the
+    computation never decides to write to the terminal itself.
+    """
+    from .progress import progress_callback
+
+    return progress_callback(progress)
 
 
 def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient: int,
@@ -153,9 +165,9 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     progress : "auto", bool, None or callable
         ``progress(done, total)`` after each point (failed points count as done); "auto"
         shows points done, rate and time left on standard error when it is a terminal
-        (True: always; the display is ``terminal_progress``'s, supplied by the package);
-        False or None is silent. Notices (a failed point, a saved file that is damaged and
-        computed again) go to ``progress.notice(message)`` when ``progress`` is a
+        (True: always; the display is ``terminal_progress``'s); False or None is silent.
+        Notices (a failed point, a saved file that is damaged and computed again) go to
+        ``progress.notice(message)`` when ``progress`` is a
         ``shroudnet.reporting.ProgressReporter`` (as the terminal display is), else they are
         issued as ``SweepWarning`` warnings.
     save_to : path of a folder, optional
@@ -201,7 +213,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
                 "scenes": _source(scene_at)}
     points: list[SweepPoint | None] = [None] * len(values)
     if save_to is not None:
-        store = _folder_store(save_to)
+        store = folder_store(save_to)
     kept = None
     if store is not None:
         kept = store({"parameter": parameter, "blade": blade, "values": values,
@@ -272,21 +284,13 @@ def _reporter(progress) -> ProgressCallback | None:
     """The callback ``progress`` asks for: ``terminal_progress``'s display for "auto" or
     True, none for False or None, else ``progress`` itself."""
     if (isinstance(progress, str) and progress == "auto") or progress is True:
-        return None if terminal_progress is None else terminal_progress(progress)
+        return terminal_progress(progress)
     if progress is None or progress is False:
         return None
     if callable(progress):
         return progress
     raise ValueError(f"progress must be 'auto', True, False, None or a callable "
                      f"progress(done, total), got {progress!r}")
-
-
-def _folder_store(save_to) -> StoreOpener:
-    """The store that ``save_to=`` names: ``folder_store(save_to)``."""
-    if folder_store is None:
-        raise TypeError("sweep: save_to needs a folder store, and none is supplied here; "
-                        "pass store=results.open_sweep_store(folder) instead")
-    return folder_store(save_to)
 
 
 def _notifier(report) -> Callable[[str], None]:

@@ -137,3 +137,12 @@ def test_a_run_imports_no_study(module):
     """Not directly and not through another module: a run record is read, saved and loaded
     without any study, and the studies are free to read runs."""
     assert reachable(import_graph(), module).isdisjoint(STUDIES)
+
+
+def test_importing_the_package_only_imports():
+    """``shroudnet/__init__.py`` names the public API and does nothing else: no module's
+    attributes are set from outside it, nothing runs (STYLE §6)."""
+    tree = ast.parse((PACKAGE / "__init__.py").read_text())
+    docstring, *statements = tree.body
+    assert isinstance(docstring, ast.Expr) and isinstance(docstring.value, ast.Constant)
+    assert [s for s in statements if not isinstance(s, ast.Import | ast.ImportFrom)] == []

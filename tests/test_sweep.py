@@ -522,11 +522,13 @@ def test_notice_lines_write_only_the_notices():
 
 # ---- module boundaries --------------------------------------------------------------------
 
-def imported_modules(path: Path) -> set[str]:
-    """The shroudnet modules the source at ``path`` imports anywhere (functions included),
-    by their name in the package ("results", "engine.codes", ...)."""
+def imported_modules(source: Path | ast.AST) -> set[str]:
+    """The shroudnet modules the source at ``source`` (a path, or a parsed part of a file)
+    imports anywhere (functions included), by their name in the package ("results",
+    "engine.codes", ...)."""
+    tree = ast.parse(source.read_text()) if isinstance(source, Path) else source
     found = set()
-    for node in ast.walk(ast.parse(path.read_text())):
+    for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom) and node.level == 1:
             found.update([node.module] if node.module else
                          [alias.name for alias in node.names])
@@ -540,9 +542,11 @@ def imported_modules(path: Path) -> set[str]:
 
 def test_the_sweep_computation_imports_no_file_terminal_or_figure_code():
     """Importing shroudnet, or the sweep, loads neither results nor the terminal displays
-    nor the command line nor the figures (in a fresh process), and sweep.py names none of
-    them, even inside a function: it reports to the protocol of ``reporting``. The records
-    that runs return live beside ``Simulation``, so results does not import the sweep."""
+    nor the command line nor the figures (in a fresh process). sweep.py names results and
+    progress only inside the two functions that stand for ``save_to=FOLDER`` and
+    ``progress="auto"``, called when a sweep asks for them; otherwise it reports to the
+    protocol of ``reporting``. The records that runs return live beside ``Simulation``, so
+    results does not import the sweep."""
     front = ("results", "progress", "cli", "figures")
     code = ("import shroudnet.sweep, sys; print([m for m in sys.modules if m in "
             f"{tuple('shroudnet.' + name for name in front)}])")
@@ -550,7 +554,13 @@ def test_the_sweep_computation_imports_no_file_terminal_or_figure_code():
                           text=True, check=True)
     assert done.stdout.strip() == "[]"
     package = ROOT / "shroudnet"
-    assert not imported_modules(package / "sweep.py") & set(front)
+    tree = ast.parse((package / "sweep.py").read_text())
+    naming = {node.name: imported_modules(node) & set(front) for node in ast.walk(tree)
+              if isinstance(node, ast.FunctionDef) and imported_modules(node) & set(front)}
+    assert naming == {"folder_store": {"results"}, "terminal_progress": {"progress"}}
+    outside_functions = ast.Module([node for node in tree.body
+                                    if not isinstance(node, ast.FunctionDef)], [])
+    assert not imported_modules(outside_functions) & set(front)
     assert "sweep" not in imported_modules(package / "results.py")
     assert ProgressReporter.__module__ == SweepWarning.__module__ == "shroudnet.reporting"
     assert not imported_modules(package / "reporting.py")
