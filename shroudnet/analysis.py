@@ -219,9 +219,11 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *, tolerance: fl
                 f"no period repeats in {recorded} recorded periods, and λ_max needs at "
                 f"least {LYAPUNOV_BLOCKS}"))
         start = rows.start
+        # The tangent flow to the run's rtol; after a fixed-step run, to the default one.
+        run = sim.settings.method
+        rtol = run.rtol if isinstance(run, Adaptive) else Adaptive().rtol
         result = lyapunov(sim.scene, recorded, transient=0,
-                          initial=(sim.x[start], sim.v[start]),
-                          method=Adaptive(rtol=sim.settings.get("rtol", Adaptive().rtol)))
+                          initial=(sim.x[start], sim.v[start]), method=Adaptive(rtol=rtol))
     return classify_section(points, scale=scale, tolerance=tolerance, max_period=max_period,
                             broadband=broadband, exponent=result)
 

@@ -2,12 +2,14 @@
 
 ``FixedStep`` and ``Adaptive`` choose the integrator and its knobs; ``Accuracy`` asks for a
 relative error and becomes the ``Adaptive`` settings that deliver it on a scene;
-``ZenoGuard`` says when a run whose switches pile up stops.
+``ZenoGuard`` says when a run whose switches pile up stops. ``SimulationSettings`` records
+what a run used, every knob resolved.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Iterator, Mapping
+from dataclasses import asdict, dataclass, fields
 
 from contact_laws import check_int, check_real
 
@@ -158,3 +160,103 @@ class ZenoGuard:
 #: The default Zeno window, in event tolerances, and its upper limit in periods.
 ZENO_WINDOW_TOLERANCES = 1e6
 ZENO_WINDOW_LIMIT = 1e-3
+
+
+#: The integrators a run may record, by the name its settings table gives them.
+RECORDED_METHODS = {"FixedStep": FixedStep, "Adaptive": Adaptive}
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class SimulationSettings(Mapping):
+    """How a simulation was run, every knob as used (``Simulation.settings``).
+
+    It also reads as the flat table it is saved as (``as_dict``), so
+    ``settings["rtol"]`` and ``settings["event_tolerance"]`` work as they did when it
+    was a dict; two settings, or settings and such a table, are equal when their tables
+    are.
+
+    Parameters
+    ----------
+    method : FixedStep or Adaptive
+        The integrator: ``Accuracy`` resolved, and ``Adaptive``'s default atol filled in.
+    periods : int
+        Excitation periods simulated, ≥ 1.
+    samples_per_period : int
+        Output samples per period, ≥ 1.
+    event_tolerance : float
+        Width of the time bracket of each located switch, in excitation periods, > 0.
+    zeno : ZenoGuard
+        The Zeno guard, its window [periods] as used.
+    """
+
+    method: FixedStep | Adaptive
+    periods: int
+    samples_per_period: int
+    event_tolerance: float
+    zeno: ZenoGuard
+
+    def __post_init__(self):
+        if not isinstance(self.method, FixedStep | Adaptive):
+            raise TypeError(f"SimulationSettings.method must be FixedStep(...) or "
+                            f"Adaptive(...), got {self.method!r}")
+        if not isinstance(self.zeno, ZenoGuard):
+            raise TypeError(f"SimulationSettings.zeno must be a ZenoGuard, got {self.zeno!r}")
+        for name in ("periods", "samples_per_period"):
+            object.__setattr__(self, name,
+                               check_int("SimulationSettings", name, getattr(self, name), low=1))
+        object.__setattr__(self, "event_tolerance",
+                           check_real("SimulationSettings", "event_tolerance",
+                                      self.event_tolerance, low=0.0, low_open=True,
+                                      unit="periods"))
+
+    def as_dict(self) -> dict:
+        """The table a results file keeps: the method's name and knobs, flat, beside the
+        periods, samples per period and event tolerance, and the Zeno guard's table."""
+        return {"method": type(self.method).__name__, **asdict(self.method),
+                "periods": self.periods, "samples_per_period": self.samples_per_period,
+                "event_tolerance": self.event_tolerance,
+                "zeno": {"events": self.zeno.events, "window": self.zeno.window}}
+
+    @classmethod
+    def from_dict(cls, table: Mapping) -> SimulationSettings:
+        """The settings of a table written by ``as_dict`` (a results file's).
+
+        Raises ``ValueError`` naming a key that is missing or not known, and what the
+        records raise on a bad value.
+        """
+        if not isinstance(table, Mapping):
+            raise TypeError(f"settings must be a table (a dict), got {table!r}")
+        name = table.get("method")
+        if name not in RECORDED_METHODS:
+            raise ValueError(f"settings.method must be one of {sorted(RECORDED_METHODS)}, "
+                             f"got {name!r}")
+        method = RECORDED_METHODS[name]
+        knobs = [field.name for field in fields(method)]
+        wanted = ["method", *knobs, "periods", "samples_per_period", "event_tolerance", "zeno"]
+        missing = [key for key in wanted if key not in table]
+        unknown = [key for key in table if key not in wanted]
+        if missing or unknown:
+            raise ValueError(f"settings of a {name} run need the keys {wanted}; "
+                             + (f"missing {missing}" if missing else f"unknown {unknown}"))
+        zeno = table["zeno"]
+        if not isinstance(zeno, Mapping) or set(zeno) != {"events", "window"}:
+            raise ValueError(f"settings.zeno must be a table of events and window, got {zeno!r}")
+        return cls(method=method(**{knob: table[knob] for knob in knobs}),
+                   periods=table["periods"], samples_per_period=table["samples_per_period"],
+                   event_tolerance=table["event_tolerance"], zeno=ZenoGuard(**zeno))
+
+    def __getitem__(self, key: str):
+        return self.as_dict()[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.as_dict())
+
+    def __len__(self) -> int:
+        return len(self.as_dict())
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, Mapping):
+            return NotImplemented
+        return self.as_dict() == dict(other)
+
+    __hash__ = None  # equal to a dict, so unhashable as a dict is

@@ -45,6 +45,7 @@ from .continuation import Bifurcation, Branch
 from .engine.codes import EventKind
 from .orbits import PeriodicOrbit
 from .reporting import SweepWarning
+from .methods import SimulationSettings
 from .simulation import EnergyLedger, EventLog, Simulation, Sweep, SweepPoint
 
 #: Version of the file layout, stored in every file.
@@ -246,7 +247,7 @@ class SimulationArrays:
 
     path: Path
     document: dict           # the scene (and run settings), as ``scenefile.read`` takes it
-    settings: dict
+    settings: SimulationSettings
     t: np.ndarray            # (n_t,) [s]
     x: np.ndarray            # (n_t × n_blades) [m]
     v: np.ndarray            # (n_t × n_blades) [m/s]
@@ -273,7 +274,7 @@ def save_simulation(path: str | Path, sim: Simulation,
     Raises ``ResultsError`` when ``path`` cannot be written (a folder, or under a file).
     """
     meta = {"format": FORMAT, "kind": "simulation",
-            "scene": scenefile.document(sim.scene, run), "settings": sim.settings,
+            "scene": scenefile.document(sim.scene, run), "settings": sim.settings.as_dict(),
             "energy": asdict(sim.energy), "event_counts": sim.events.counts,
             "samples_per_period": sim.samples_per_period, "steps": sim.steps}
     arrays = {"t": sim.t, "x": sim.x, "v": sim.v, "normal_force": sim.normal_force,
@@ -305,7 +306,11 @@ def load_arrays(path: str | Path) -> SimulationArrays:
                                          ("friction_force", interfaces, "interfaces"),
                                          ("modes", interfaces, "interfaces"))}
     work = _shape(path, arrays, "work", (n, None), f"{n} samples × work columns")
-    return SimulationArrays(path=path, document=meta["scene"], settings=meta["settings"],
+    try:
+        settings = SimulationSettings.from_dict(meta["settings"])
+    except (TypeError, ValueError) as error:
+        raise ResultsError(f"{path}: meta.settings is damaged ({error})") from None
+    return SimulationArrays(path=path, document=meta["scene"], settings=settings,
                             t=samples, work=work, events=_events(path, arrays, meta,
                                                                  interfaces),
                             energy=EnergyLedger(**meta["energy"]),

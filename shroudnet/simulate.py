@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +14,7 @@ from .engine.codes import EventKind, Mode, Status, WorkColumn
 from .engine.dynamics import interface_kinematics
 from .engine.generate import compiled, kernel_scene, load_kernel
 from .engine.records import Controls, Run, allocate, finish
-from .methods import Accuracy, Adaptive, FixedStep, ZenoGuard
+from .methods import Accuracy, Adaptive, FixedStep, SimulationSettings, ZenoGuard
 from .motion import motion_span
 from .scene import Scene, edge_matrix
 from .simulation import EnergyLedger, EventLog, Simulation, SimulationError
@@ -73,10 +73,10 @@ def simulate(scene: Scene, periods: int, *,
                       kind=run.events.kind,
                       counts={k.name.lower(): int(run.events.counts[k]) for k in EventKind})
     ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy)
-    settings = {"method": type(method).__name__, **asdict(method), "periods": periods,
-                "samples_per_period": samples_per_period,
-                "event_tolerance": done.event_tolerance,
-                "zeno": {"events": zeno.events, "window": done.zeno_window}}
+    settings = SimulationSettings(method=method, periods=periods,
+                                  samples_per_period=samples_per_period,
+                                  event_tolerance=done.event_tolerance,
+                                  zeno=replace(zeno, window=done.zeno_window))
     return Simulation(scene=scene, settings=settings, t=out.t, x=out.x, v=out.v,
                       normal_force=out.normal, friction_force=out.friction, modes=out.modes,
                       events=events, energy=ledger, work=out.energy,

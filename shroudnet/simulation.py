@@ -12,6 +12,7 @@ import numpy as np
 from contact_laws import check_int
 
 from .classification import Classification
+from .methods import SimulationSettings
 from .scene import Scene
 
 
@@ -65,10 +66,12 @@ class Simulation:
 
     Arrays have one row per sample: ``x``, ``v`` by blade position (n_t × n_blades),
     ``normal_force``, ``friction_force`` and ``modes`` by interface (n_t × n_interfaces).
+    ``settings`` says how the run was made; a table in its saved layout
+    (``SimulationSettings.as_dict``) is taken too.
     """
 
     scene: Scene
-    settings: dict
+    settings: SimulationSettings
     t: np.ndarray
     x: np.ndarray
     v: np.ndarray
@@ -81,6 +84,10 @@ class Simulation:
     samples_per_period: int
     steps: int               # Runge–Kutta steps taken (accepted ones, for Adaptive)
     compile_seconds: float = 0.0  # spent compiling the integrator, or loading it, first
+
+    def __post_init__(self):
+        if not isinstance(self.settings, SimulationSettings):
+            object.__setattr__(self, "settings", SimulationSettings.from_dict(self.settings))
 
     def _steady(self, skip: int, owner: str) -> slice:
         """The rows from t = skip T_e on; ``skip`` is a whole number of periods (an int, a

@@ -148,6 +148,12 @@ def replacing(name, value):
     (replacing("event_counts", {"closing": "many"}), r"meta\.event_counts must be a table"),
     (replacing("scene", "paper"), r"meta\.scene must be a scene document"),
     (replacing("settings", None), r"meta\.settings must be a JSON object"),
+    (replacing("settings", {"method": "test"}),
+     r"meta\.settings is damaged \(settings\.method must be one of"),
+    (lambda meta: {**meta, "settings": {k: v for k, v in meta["settings"].items()
+                                        if k != "event_tolerance"}},
+     r"meta\.settings is damaged \(settings of a \w+ run need the keys .*; missing "
+     r"\['event_tolerance'\]\)"),
     (replacing("scene", {"blades": 3}), r"its scene document has no list of blades"),
 ])
 def test_a_header_of_the_wrong_shape_is_named(saved, tmp_path, change, message):

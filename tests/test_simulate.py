@@ -8,9 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from contact_laws import Coulomb, ExponentialFriction, KelvinVoigt, LinearSpring, Regularised
-from shroudnet import (Adaptive, Blade, BladeGroup, EventKind, Excitation, FixedStep,
-                       Interface, Mode, Scene, SimulationError, Southwell, ZenoGuard,
-                       simulate)
+from shroudnet import (Accuracy, Adaptive, Blade, BladeGroup, EventKind, Excitation,
+                       FixedStep, Interface, Mode, Scene, SimulationError, Southwell,
+                       ZenoGuard, simulate)
+from shroudnet.methods import SimulationSettings
 from shroudnet.scenes import three_blade_paper
 
 
@@ -291,3 +292,39 @@ def test_method_knobs_are_checked():
         FixedStep(steps_per_period=4)
     with pytest.raises(ValueError, match=r"ZenoGuard\.events must be an int >= 2"):
         ZenoGuard(events=1)
+
+
+def test_the_settings_of_a_run_are_a_record_every_knob_resolved_that_reads_as_its_table():
+    scene = three_blade_paper()
+    sim = simulate(scene, 2, method=Accuracy(target=1e-4), samples_per_period=10)
+    settings = sim.settings
+    assert isinstance(settings, SimulationSettings)
+    assert settings.method == Adaptive(rtol=1e-6, atol=1e-6 * scene.arrays.static_deflection)
+    assert (settings.periods, settings.samples_per_period) == (2, 10)
+    assert settings.event_tolerance == 1e-10 and settings.zeno.window == 1e-4
+    table = settings.as_dict()
+    assert table == {"method": "Adaptive", "rtol": 1e-6, "atol": settings.method.atol,
+                     "max_step": 0.05, "periods": 2, "samples_per_period": 10,
+                     "event_tolerance": 1e-10, "zeno": {"events": 200, "window": 1e-4}}
+    # as a mapping, as it was when it was a dict; its table gives it back
+    assert settings["rtol"] == 1e-6 and dict(settings) == table and settings == table
+    assert SimulationSettings.from_dict(table) == settings
+    fixed = SimulationSettings(method=FixedStep(), periods=1, samples_per_period=1,
+                               event_tolerance=1e-8, zeno=ZenoGuard(window=1e-3))
+    assert SimulationSettings.from_dict(fixed.as_dict()) == fixed != settings
+
+
+@pytest.mark.parametrize("change, error, message", [
+    (lambda t: {**t, "method": "Euler"}, ValueError,
+     r"settings\.method must be one of \['Adaptive', 'FixedStep'\], got 'Euler'"),
+    (lambda t: {k: v for k, v in t.items() if k != "rtol"}, ValueError, r"missing \['rtol'\]"),
+    (lambda t: {**t, "steps_per_period": 100}, ValueError, r"unknown \['steps_per_period'\]"),
+    (lambda t: {**t, "zeno": 200}, ValueError, r"settings\.zeno must be a table"),
+    (lambda t: {**t, "periods": 0}, ValueError, r"SimulationSettings\.periods must be an int"),
+    (lambda t: [1, 2], TypeError, r"settings must be a table"),
+])
+def test_a_settings_table_that_describes_no_run_is_refused_by_name(change, error, message):
+    table = SimulationSettings(method=Adaptive(atol=1e-12), periods=2, samples_per_period=4,
+                               event_tolerance=1e-10, zeno=ZenoGuard(window=1e-4)).as_dict()
+    with pytest.raises(error, match=message):
+        SimulationSettings.from_dict(change(table))
