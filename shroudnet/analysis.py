@@ -15,7 +15,8 @@ from scipy.optimize import brentq
 
 from contact_laws import check_int
 
-from .classification import CHAOTIC, QUASI_PERIODIC, UNDETERMINED, Classification
+from .classification import (CHAOTIC, QUASI_PERIODIC, REPEAT_TOLERANCE, UNDETERMINED,
+                             Classification)
 from .methods import Adaptive
 from .simulation import Simulation
 from .stability import LYAPUNOV_BLOCKS, lyapunov
@@ -122,9 +123,9 @@ def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
     return float(np.median(k_values))
 
 
-def classify_section(points, *, scale=None, tolerance: float = 1e-5, max_period: int = 64,
-                     chaos_threshold: float = 0.5, broadband: float = math.nan,
-                     exponent=None) -> Classification:
+def classify_section(points, *, scale=None, tolerance: float = REPEAT_TOLERANCE,
+                     max_period: int = 64, chaos_threshold: float = 0.5,
+                     broadband: float = math.nan, exponent=None) -> Classification:
     """Classify a motion from its Poincaré points (rows (x, ẋ), one per forcing period).
 
     The motion is pN for the smallest N ≤ ``max_period`` with every point within
@@ -191,8 +192,9 @@ def exponent_label(exponent) -> tuple[str, str]:
                           "repeating: a longer period, or a transient not yet settled")
 
 
-def classify(sim: Simulation, blade: Hashable | int, skip: int, *, tolerance: float = 1e-5,
-             max_period: int = 64, exponent: bool = True) -> Classification:
+def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
+             tolerance: float = REPEAT_TOLERANCE, max_period: int = 64,
+             exponent: bool = True) -> Classification:
     """Classify the motion of a blade after ``skip`` transient periods.
 
     See ``classify_section``. Distances are relative to the largest |x| and |ẋ| of the

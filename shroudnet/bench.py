@@ -43,7 +43,7 @@ import numpy as np
 from .baseline import solve_ivp_baseline
 from .continuation import continuation
 from .group import BladeGroup
-from .methods import Adaptive, FixedStep
+from .methods import TRANSIENT, Adaptive, FixedStep
 from .orbits import periodic_orbit
 from .progress import progress_callback
 from .scene import Scene
@@ -158,7 +158,7 @@ def baseline_comparison(gammas=(1.0, 2.2, 3.5), periods: int = 50, repeats: int 
     return rows
 
 
-def diagram(values, *, workers, transient=300, record=100, progress=False):
+def diagram(values, *, workers, transient=TRANSIENT, record=100, progress=False):
     """A Fig. 6-class sweep of γ1; returns (wall time [s], the sweep)."""
     start = time.perf_counter()
     result = sweep(gamma_scene, values, parameter="gamma1", transient=transient,
@@ -261,7 +261,7 @@ def main(argv=None) -> None:
                                      description=__doc__.split("\n\n")[0])
     parser.add_argument("--points", type=int, default=400,
                         help="values of γ1 in the diagram (default 400)")
-    parser.add_argument("--transient", type=int, default=300)
+    parser.add_argument("--transient", type=int, default=TRANSIENT)
     parser.add_argument("--record", type=int, default=100)
     parser.add_argument("--scaling-points", type=int, default=None,
                         help="values per run of the worker scaling (default 8 per core)")

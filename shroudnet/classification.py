@@ -17,6 +17,11 @@ UNDETERMINED = "undetermined"
 #: The label of a failed sweep point's classification.
 FAILED = "failed"
 
+#: The default tolerance of a repeat (``classify``, ``classify_section``, ``sweep``):
+#: Poincaré points N periods apart closer than this, relative to the steady response's
+#: largest |x| and |ẋ|, make the motion pN.
+REPEAT_TOLERANCE = 1e-5
+
 
 @dataclass(frozen=True)
 class Classification:

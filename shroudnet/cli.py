@@ -36,6 +36,7 @@ from .analysis import classify
 from .continuation import LARGEST_STEP, Branch, continuation
 from .engine.cache import cache_folder, cache_size, clear_cache
 from .linear import CONTACTS, linear_modes
+from .methods import TRANSIENT
 from .mistuning import mistuning_study
 from .progress import ProgressReporter, TerminalProgress
 from .simulate import simulate
@@ -231,8 +232,8 @@ def _parser() -> argparse.ArgumentParser:
                            "START:STOP:COUNT")
     mistuning.add_argument("--seed", type=_whole(0), default=0,
                            help="of the random patterns (default 0)")
-    mistuning.add_argument("--transient", type=_whole(0), default=300,
-                           help="periods before the peak is read (default 300)")
+    mistuning.add_argument("--transient", type=_whole(0), default=TRANSIENT,
+                           help=f"periods before the peak is read (default {TRANSIENT})")
     mistuning.add_argument("--workers", type=_whole(1),
                            help="worker processes (default: every core)")
     mistuning.add_argument("--output", "-o", type=Path, default=Path("."),

@@ -26,7 +26,7 @@ import numpy as np
 
 from contact_laws import check_int, check_real
 
-from .methods import Accuracy, Adaptive
+from .methods import EVENT_TOLERANCE, Accuracy, Adaptive
 from .orbits import (ORBIT_TOLERANCE, UNIT_CIRCLE, ConvergenceError, PeriodicOrbit,
                      least_squares, orbit_at, periodic_orbit, state_weights)
 from .scene import Scene
@@ -140,7 +140,8 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
                  periods: int = 1, guess=None, step: float | None = None,
                  max_step: float = LARGEST_STEP, max_points: int = 1000,
                  method: Adaptive | Accuracy = TANGENT_METHOD,
-                 tolerance: float = ORBIT_TOLERANCE, event_tolerance: float = 1e-10,
+                 tolerance: float = ORBIT_TOLERANCE,
+                 event_tolerance: float = EVENT_TOLERANCE,
                  transient: int = 100, from_bifurcation: Bifurcation | None = None,
                  parameter: str = "value", progress: Callable | None = None) -> Branch:
     """The branch of periodic orbits of ``scene_at(p)`` from p = ``start`` towards ``stop``.

@@ -15,6 +15,18 @@ from contact_laws import check_int, check_real
 
 from .scene import Scene
 
+#: The default width of the time bracket of each located switch, in excitation periods,
+#: of every entry point that locates switches (``simulate``, ``monodromy``, ``lyapunov``,
+#: ``periodic_orbit``, ``continuation``, a scene file's ``[run]``). Its error on the
+#: results is 0.3–6 times this (README, "What accuracy costs"): below the integrators'
+#: own at their default tolerances.
+EVENT_TOLERANCE = 1e-10
+
+#: The default number of excitation periods run and left out before a steady response is
+#: read (``sweep``, ``lyapunov``, ``mistuning_study``, the work-precision regimes, a scene
+#: file's ``[run]``, the command line): the transient of the paper's §3.1 figures.
+TRANSIENT = 300
+
 
 @dataclass(frozen=True, kw_only=True)
 class FixedStep:

@@ -27,7 +27,7 @@ from contact_laws import check_int, check_real
 
 from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
 from .group import BladeGroup
-from .methods import Adaptive
+from .methods import TRANSIENT, Adaptive
 from .scene import Scene
 from .simulation import SimulationError
 from .sweep import sweep
@@ -142,7 +142,7 @@ def _scaled_blade(blade: Blade, factor: float) -> Blade:
 
 def mistuning_study(scene: Scene, *, spread: float, samples: int,
                     speeds_rpm: Sequence[float], blades: Sequence[Hashable] | None = None,
-                    patterns=None, seed: int = 0, transient: int = 300, record: int = 10,
+                    patterns=None, seed: int = 0, transient: int = TRANSIENT, record: int = 10,
                     samples_per_period: int = 100, method=Adaptive(),
                     workers: int | None = None, executor=None,
                     progress="auto") -> MistuningStudy:

@@ -15,7 +15,7 @@ import numpy as np
 from contact_laws import check_int, check_real
 
 from .engine.codes import EventKind
-from .methods import Accuracy, Adaptive
+from .methods import EVENT_TOLERANCE, Accuracy, Adaptive
 from .scene import Scene
 from .simulate import simulate
 from .simulation import EventLog, Simulation, SimulationError
@@ -108,7 +108,8 @@ class PeriodicOrbit:
 
 def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
                    method: Adaptive | Accuracy = TANGENT_METHOD, transient: int = 100,
-                   tolerance: float = ORBIT_TOLERANCE, event_tolerance: float = 1e-10,
+                   tolerance: float = ORBIT_TOLERANCE,
+                   event_tolerance: float = EVENT_TOLERANCE,
                    samples_per_period: int = 100, history: bool = False) -> PeriodicOrbit:
     """The periodic orbit of ``periods`` excitation periods nearest ``guess``, by Newton.
 

@@ -27,7 +27,7 @@ import numpy as np
 from contact_laws import Regularised
 
 from .group import BladeGroup
-from .methods import Accuracy, Adaptive, FixedStep
+from .methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive, FixedStep
 from .scene import Scene
 from .scenes import three_blade_paper
 from .simulate import simulate
@@ -48,7 +48,7 @@ class Regime:
     chaotic: bool
 
 
-def paper_regimes(*, transient: int = 300, record: int = 100,
+def paper_regimes(*, transient: int = TRANSIENT, record: int = 100,
                   chaotic_record: int = 2000) -> list[Regime]:
     """The paper's group at γ1 = 1 (p1), 3.5 (p3) and 8.8 (chaotic), 6000 rpm, q1 = 50 N."""
     return [
@@ -69,7 +69,7 @@ class Setting:
     family: str
     label: str
     method: FixedStep | Adaptive | Accuracy
-    event_tolerance: float = 1e-10
+    event_tolerance: float = EVENT_TOLERANCE
     regularisation: float | None = None
 
 

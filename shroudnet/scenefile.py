@@ -97,7 +97,7 @@ from .excitation import (NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation,
                          ExplicitPhases, TravellingWave)
 from .group import BladeGroup
 from .interface import Interface
-from .methods import Accuracy, Adaptive, FixedStep
+from .methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive, FixedStep
 from .motion import ConstantVelocity, HarmonicMotion, MotionTable
 from .scene import Scene
 
@@ -112,9 +112,9 @@ class RunSettings:
 
     method: FixedStep | Adaptive | Accuracy = Adaptive()
     periods: int = 400
-    transient: int = 300
+    transient: int = TRANSIENT
     samples_per_period: int = 100
-    event_tolerance: float = 1e-10
+    event_tolerance: float = EVENT_TOLERANCE
     blade: str | int = 1
 
     def __post_init__(self):

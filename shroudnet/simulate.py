@@ -14,7 +14,8 @@ from .engine.codes import EventKind, Mode, Status, WorkColumn
 from .engine.dynamics import interface_kinematics
 from .engine.generate import compiled, kernel_scene, load_kernel
 from .engine.records import Controls, Run, allocate, finish
-from .methods import Accuracy, Adaptive, FixedStep, SimulationSettings, ZenoGuard
+from .methods import (EVENT_TOLERANCE, Accuracy, Adaptive, FixedStep, SimulationSettings,
+                      ZenoGuard)
 from .motion import motion_span
 from .scene import Scene, edge_matrix
 from .simulation import EnergyLedger, EventLog, Simulation, SimulationError
@@ -22,7 +23,8 @@ from .simulation import EnergyLedger, EventLog, Simulation, SimulationError
 
 def simulate(scene: Scene, periods: int, *,
              method: FixedStep | Adaptive | Accuracy = Adaptive(),
-             samples_per_period: int = 100, event_tolerance: float = 1e-10,
+             samples_per_period: int = 100,
+             event_tolerance: float = EVENT_TOLERANCE,
              zeno: ZenoGuard = ZenoGuard(), initial=None,
              event_capacity: int = 1_000_000) -> Simulation:
     """Integrate ``scene`` over ``periods`` excitation periods T_e = 2π/(l Ω).
@@ -45,8 +47,8 @@ def simulate(scene: Scene, periods: int, *,
         Output samples per period; with ``FixedStep`` it must divide the steps per period.
     event_tolerance : float
         Width of the time bracket of each located switch, in excitation periods. Its
-        error on the results is 0.3–6 times this; the default 1e-10 stays below the
-        integrators' own.
+        error on the results is 0.3–6 times this; the default ``EVENT_TOLERANCE``
+        (1e-10) stays below the integrators' own.
     zeno : ZenoGuard
         When to stop a run whose switches pile up.
     initial : (x0, v0), optional
@@ -99,7 +101,7 @@ class Integration:
 
 def integrate(scene: Scene, periods: int, *,
               method: FixedStep | Adaptive | Accuracy = Adaptive(),
-              samples_per_period: int = 100, event_tolerance: float = 1e-10,
+              samples_per_period: int = 100, event_tolerance: float = EVENT_TOLERANCE,
               zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
               tangent: np.ndarray | None = None,
               orthonormalise: bool = False) -> Integration:

@@ -12,7 +12,7 @@ import numpy as np
 
 from contact_laws import check_int
 
-from .methods import Accuracy, Adaptive
+from .methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive
 from .scene import Scene
 from .simulate import integrate
 from .simulation import SimulationError
@@ -27,7 +27,7 @@ LYAPUNOV_BLOCKS = 10
 
 def monodromy(scene: Scene, periods: int = 1, initial=None, *,
               method: Adaptive | Accuracy = TANGENT_METHOD,
-              event_tolerance: float = 1e-10) -> np.ndarray:
+              event_tolerance: float = EVENT_TOLERANCE) -> np.ndarray:
     """The Jacobian of the ``periods``-period stroboscopic map at the start ``initial``.
 
     The map takes the state (x, ẋ) at t = 0 to the state at t = periods·T_e. Its Jacobian
@@ -100,7 +100,7 @@ class StroboscopicStep:
 
 def stroboscopic_step(scene: Scene, periods: int, initial=None, *,
                       method: Adaptive | Accuracy = TANGENT_METHOD,
-                      event_tolerance: float = 1e-10) -> StroboscopicStep:
+                      event_tolerance: float = EVENT_TOLERANCE) -> StroboscopicStep:
     """φ and its Jacobian from ``initial`` = (x0, v0) (default at rest), in one run of the
     state with the 2N × 2N tangent flow. Arguments as ``monodromy``."""
     n = len(scene.blades)
@@ -143,9 +143,9 @@ class LyapunovExponents:
         return bool(self.per_period[0] > 2.0 * self.error[0])
 
 
-def lyapunov(scene: Scene, periods: int, *, transient: int = 300, exponents: int = 1,
+def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponents: int = 1,
              initial=None, method: Adaptive | Accuracy = Adaptive(),
-             event_tolerance: float = 1e-10, seed: int = 0) -> LyapunovExponents:
+             event_tolerance: float = EVENT_TOLERANCE, seed: int = 0) -> LyapunovExponents:
     """The ``exponents`` largest Lyapunov exponents, by the QR (Benettin) method.
 
     After ``transient`` periods from ``initial`` (default at rest), ``exponents`` random

@@ -38,7 +38,8 @@ import numpy as np
 
 from .analysis import classify, friction_loss_per_cycle
 from .stability import LYAPUNOV_BLOCKS, lyapunov
-from .methods import Accuracy, Adaptive, FixedStep
+from .classification import REPEAT_TOLERANCE
+from .methods import TRANSIENT, Accuracy, Adaptive, FixedStep
 from .reporting import ProgressReporter, SweepWarning
 from .scene import Scene
 from .simulate import simulate
@@ -98,7 +99,8 @@ def terminal_progress(progress: str | bool) -> ProgressCallback | None:
 
 def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient: int,
                  record: int, method=Adaptive(), samples_per_period: int = 50,
-                 initial=None, tolerance: float = 1e-5, exponent: bool = False) -> SweepPoint:
+                 initial=None, tolerance: float = REPEAT_TOLERANCE,
+                 exponent: bool = False) -> SweepPoint:
     """Run ``transient`` periods unrecorded, then ``record`` periods, and reduce them
     (``classify``, with λ_max when ``exponent``)."""
     start = initial
@@ -117,9 +119,9 @@ def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient
 
 
 def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
-          parameter: str = "value", blade: Hashable | int = 1, transient: int = 300,
+          parameter: str = "value", blade: Hashable | int = 1, transient: int = TRANSIENT,
           record: int = 100, method=Adaptive(), samples_per_period: int = 50,
-          continuation: bool = False, initial=None, tolerance: float = 1e-5,
+          continuation: bool = False, initial=None, tolerance: float = REPEAT_TOLERANCE,
           lyapunov: bool = False, workers: int | None = None, executor=None, progress="auto",
           save_to: str | os.PathLike | None = None, store: StoreOpener | None = None,
           retry_failed: bool = False) -> Sweep:
