@@ -18,7 +18,7 @@ from contact_laws import check_int
 from .classification import (CHAOTIC, QUASI_PERIODIC, REPEAT_TOLERANCE, UNDETERMINED,
                              Classification)
 from .methods import Adaptive
-from .simulation import Simulation
+from .simulation import Simulation, steady_rows
 from .stability import LYAPUNOV_BLOCKS, lyapunov
 
 
@@ -72,18 +72,8 @@ def spectrum(sim: Simulation, blade: Hashable | int, skip: int, *,
              window: str = "hann") -> Spectrum:
     """Amplitude spectrum of a blade's displacement over whole periods after ``skip``."""
     i = sim.scene.blade_position(blade)
-    x = sim.x[_steady_rows(sim, skip), i][:-1]  # whole periods: drop the closing sample
+    x = sim.x[steady_rows(sim, skip, "spectrum"), i][:-1]  # whole periods: drop the last
     return amplitude_spectrum(x, sim.samples_per_period, window=window)
-
-
-def _steady_rows(sim: Simulation, skip: int) -> slice:
-    """Rows from t = skip T_e on: ``skip`` is a whole number of periods in [0, periods), an
-    int, a numpy integer or a float of integral value (as ``Simulation.poincare`` takes)."""
-    skip = check_int("", "skip", skip, whole_floats=True)
-    if not 0 <= skip < sim.periods:
-        raise ValueError(f"skip must be a whole number of periods in [0, {sim.periods}), "
-                         f"got {skip!r}")
-    return slice(skip * sim.samples_per_period, None)
 
 
 def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
@@ -207,11 +197,11 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
     an exponent.
     """
     i = sim.scene.blade_position(blade)
-    rows = _steady_rows(sim, skip)
+    rows = steady_rows(sim, skip, "classify")
     scale = (np.abs(sim.x[rows, i]).max(), np.abs(sim.v[rows, i]).max())
     points = sim.poincare(blade, skip=skip)
     broadband = broadband_fraction(spectrum(sim, blade, skip))
-    recorded = sim.periods - skip
+    recorded = sim.periods - rows.start // sim.samples_per_period  # skip as a checked int
     result = None
     if exponent and repeat_period(points, scale, tolerance, max_period)[0] is None:
         if recorded < LYAPUNOV_BLOCKS:
@@ -256,7 +246,7 @@ def friction_loss_per_cycle(sim: Simulation, skip: int) -> float:
 
     Sliding friction work plus the kinetic energy lost as slipping blades lock together.
     """
-    rows = _steady_rows(sim, skip)
+    rows = steady_rows(sim, skip, "friction_loss_per_cycle")
     work = sim.work[rows]
     return float((work[-1, 2] + work[-1, 4] - work[0, 2] - work[0, 4])
                  / (sim.periods - skip))

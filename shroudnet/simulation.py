@@ -89,14 +89,6 @@ class Simulation:
         if not isinstance(self.settings, SimulationSettings):
             object.__setattr__(self, "settings", SimulationSettings.from_dict(self.settings))
 
-    def _steady(self, skip: int, owner: str) -> slice:
-        """The rows from t = skip T_e on; ``skip`` is a whole number of periods (an int, a
-        numpy integer or a float of integral value) in [0, periods]."""
-        skip = check_int(owner, "skip", skip, whole_floats=True)
-        if not 0 <= skip <= self.periods:
-            raise ValueError(f"skip must be in [0, {self.periods}] periods, got {skip}")
-        return slice(skip * self.samples_per_period, None)
-
     @property
     def periods(self) -> int:
         """Number of excitation periods simulated."""
@@ -105,11 +97,11 @@ class Simulation:
     def poincare(self, blade: Hashable | int, skip: int = 0) -> np.ndarray:
         """Stroboscopic points (x [m], ẋ [m/s]) of a blade at t = k T_e, k ≥ skip.
 
-        ``blade`` is a name or a 0-based position; ``skip`` a whole number of periods in
-        [0, periods]. Returns an array (n_points × 2).
+        ``blade`` is a name or a 0-based position; ``skip`` as ``steady_rows`` takes it.
+        Returns an array (n_points × 2), periods − skip + 1 points.
         """
         i = self.scene.blade_position(blade)
-        rows = slice(self._steady(skip, "Simulation.poincare").start, None,
+        rows = slice(steady_rows(self, skip, "Simulation.poincare").start, None,
                      self.samples_per_period)
         return np.column_stack([self.x[rows, i], self.v[rows, i]])
 
@@ -117,16 +109,39 @@ class Simulation:
         """E_ρ = ∫ x² dt / (t2 − t1) [m²] of a blade after ``skip`` periods (the paper's §3.2).
 
         ``skip``, the transient periods left out, is required: a mean square that includes
-        the transient is not the steady response's. It is a whole number of periods in
-        [0, periods − 1] (an int, a numpy integer or a float of integral value); give 0 for a
-        run that starts on the steady state.
+        the transient is not the steady response's. It is taken as ``steady_rows`` takes it;
+        give 0 for a run that starts on the steady state.
         """
         i = self.scene.blade_position(blade)
-        rows = self._steady(skip, "Simulation.energy_density")
+        rows = steady_rows(self, skip, "Simulation.energy_density")
         t, x = self.t[rows], self.x[rows, i]
-        if len(t) < 2:
-            raise ValueError("energy_density needs at least two samples after skip")
         return float(np.trapezoid(x * x, t) / (t[-1] - t[0]))
+
+
+def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:
+    """The rows of ``sim`` from t = skip·T_e on: what is left after ``skip`` transient periods.
+
+    ``skip`` is a whole number of periods (an int, a numpy integer or a float of integral
+    value) in [0, periods): at least one whole period is left, so that each reading of it
+    (Poincaré points, E_ρ, the spectrum, the friction loss per cycle, the classification)
+    has something to read. Every reading of a steady response takes ``skip`` through here.
+
+    Raises
+    ------
+    TypeError
+        ``skip`` is not a whole number.
+    ValueError
+        ``skip`` is outside [0, periods).
+
+    Both messages name ``owner.skip`` (``owner``: the reading that was given it) and what
+    it allows.
+    """
+    skip = check_int(owner, "skip", skip, whole_floats=True)
+    if not 0 <= skip < sim.periods:
+        raise ValueError(f"{owner}.skip must be a whole number of periods in "
+                         f"[0, {sim.periods}) (the run's {sim.periods} periods, at least one "
+                         f"left to read), got {skip}")
+    return slice(skip * sim.samples_per_period, None)
 
 
 @dataclass(frozen=True)

@@ -8,6 +8,7 @@ ND = l mod N, and each blade's force is scaled by its ``excitation_scale``.
 """
 
 import math
+import re
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,7 +18,7 @@ import pytest
 
 import contact_laws as cl
 from shroudnet import (AntiPhase, Blade, BladeGroup, Excitation, ExplicitPhases, FixedStep,
-                       Interface, Mode, Scene, TravellingWave, ZenoGuard, assemble,
+                       Interface, Mode, Scene, TravellingWave, ZenoGuard, assemble, classify,
                        friction_loss_per_cycle, simulate, spectrum)
 from shroudnet.baseline import solve_ivp_baseline
 from shroudnet.excitation import ENGINE_ORDER_MAX, EngineOrderWave
@@ -482,6 +483,33 @@ def test_poincare_energy_density_and_spectra_take_the_same_whole_periods(free_ru
     assert free_run.energy_density("blade1", skip=skip) == reference
     assert spectrum(free_run, "blade1", skip).resolution == 0.25
     assert friction_loss_per_cycle(free_run, skip) == 0.0
+
+
+READINGS = {
+    "Simulation.poincare": lambda sim, skip: sim.poincare("blade1", skip=skip),
+    "Simulation.energy_density": lambda sim, skip: sim.energy_density("blade1", skip=skip),
+    "spectrum": lambda sim, skip: spectrum(sim, "blade1", skip),
+    "friction_loss_per_cycle": lambda sim, skip: friction_loss_per_cycle(sim, skip),
+    "classify": lambda sim, skip: classify(sim, "blade1", skip, exponent=False),
+}
+
+
+@pytest.mark.parametrize("owner", READINGS)
+def test_every_reading_of_a_steady_response_takes_skip_from_0_to_the_last_period(free_run,
+                                                                               owner):
+    """One range for all: the 6 periods of the run leave 0 … 5 to skip, the last one
+    leaving one whole period to read; 6 and −1 are refused, naming the reading, the field
+    and the range."""
+    read = READINGS[owner]
+    for skip in (0, 5, np.int64(5), 5.0):
+        read(free_run, skip)
+    assert free_run.poincare("blade1", skip=5).shape == (2, 2)
+    for skip in (6, -1, 6.0):
+        message = (rf"{re.escape(owner)}\.skip must be a whole number of periods in "
+                   rf"\[0, 6\) \(the run's 6 periods, at least one left to read\), "
+                   rf"got {int(skip)}")
+        with pytest.raises(ValueError, match=message):
+            read(free_run, skip)
 
 
 @pytest.mark.parametrize("skip", [2.5, "2", True, None])
