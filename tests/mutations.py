@@ -6,9 +6,20 @@ the tests run past the time limit, and *survived* when they all pass. A survivin
 mutation is a bug the test suite cannot see::
 
     python tests/mutations.py                 # every mutation
-    python tests/mutations.py stick-limit     # those whose name contains a word
+    python tests/mutations.py stick-limit     # those whose name (or layer) holds a word
+    python tests/mutations.py ledger          # every mutation of the ledger layer
     python tests/mutations.py --list
+    python tests/mutations.py --check         # does every mutation plant? (no tests run)
     python tests/mutations.py --source DIR    # plant into another checkout's tree
+    python tests/mutations.py laws --tests tests/test_contact_laws.py   # other tests
+
+A mutation names the text it replaces, not the file: the one file under ``shroudnet/`` or
+``contact_laws/`` that holds the text is found at each run, so the list survives code
+moving between files. A mutation whose text is in no file, in several, or more than once
+in its file cannot be planted: that fails the run before any test runs (a bug list that
+quietly shrinks would report ever fewer survivors), and ``--check`` finds it in seconds.
+It also checks that every layer in ``LAYERS`` has a mutation and that every test a
+mutation aims at exists.
 
 Each run first runs the tests on an unchanged copy (skip it with ``--no-control``): a
 test that fails there would kill every mutation and prove nothing.
@@ -23,15 +34,23 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import shutil
 import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+
+#: The folders a mutation's text is looked for in.
+SOURCE_FOLDERS = ("shroudnet", "contact_laws")
+
+#: The parts of the code the mutations must reach, each by at least one: the contact laws,
+#: the scene's model, the compiled loop (forces, events, modes) and the energy ledger.
+LAYERS = ("laws", "model", "loop", "ledger")
 
 #: Tests that check the physics, run against every mutation unless it names its own.
 PHYSICS_TESTS = (
@@ -45,68 +64,181 @@ PHYSICS_TESTS = (
     "tests/test_baseline_and_bench.py",
 )
 
-
 @dataclass(frozen=True)
 class Mutation:
-    """Replace ``old`` by ``new`` (each must occur exactly once) in ``path``."""
+    """Replace ``old`` by ``new`` in the one source file that holds ``old`` (once).
+
+    ``layer``: the part of the code it reaches, one of ``LAYERS``. ``tests``: what to run
+    against it, pytest paths or node ids; the tests aimed at the bug, so that its run is
+    short, or by default ``PHYSICS_TESTS``.
+    """
 
     name: str
-    path: str
+    layer: str
     old: str
     new: str
     why: str
+    tests: tuple[str, ...] = PHYSICS_TESTS
 
 
 MUTATIONS = (
-    Mutation("stick-limit-1.2", "shroudnet/scene.py",
-             "f.static_coefficient for f in frictions",
-             "1.2 * f.static_coefficient for f in frictions",
-             "stuck interfaces hold 20 % more than μ_s N"),
-    Mutation("contact-strain-energy-doubled", "shroudnet/simulate.py",
-             "return 0.5 * penetration * sum(", "return penetration * sum(",
-             "the ledger books twice the contact strain energy"),
-    Mutation("stick-rule-slack-0.05", "shroudnet/engine/template.py",
-             "if candidates[e] else limit):", "if candidates[e] else 1.05 * limit):",
-             "the mode rule keeps a stick the breakaway guard has released"),
-    Mutation("friction-slack-0.05", "shroudnet/engine/template.py",
-             "FRICTION_SLACK = 1e-9", "FRICTION_SLACK = 0.05",
-             "a slip that reaches zero sticks while it needs up to 1.05 μ_s N"),
-    Mutation("friction-sign-negative-slip", "shroudnet/engine/template.py",
-             "            w.friction[e] = -sliding", "            w.friction[e] = sliding",
-             "friction pushes along a negative slip instead of against it"),
-    Mutation("projection-loss-dropped", "shroudnet/engine/template.py",
-             "    state.energy[PROJECTION] += lost\n    last = log_switches",
-             "    last = log_switches",
-             "the kinetic energy lost as blades lock together is not booked (expected to "
-             "survive: at stick onset it is about m (a τ)², some 1e-20 J)"),
-    Mutation("breakaway-logged-as-reversal", "shroudnet/engine/resolve.py",
-             "    if before == STICK:\n        return BREAKAWAY",
-             "    if before == STICK:\n        return REVERSAL",
-             "a breakaway is logged as a slip reversal"),
-    Mutation("static-friction-normal-push-sign", "shroudnet/engine/dynamics.py",
-             "            imbalance[left[e]] -= push", "            imbalance[left[e]] += push",
-             "the normal force's push is added, not taken, in the stuck equilibrium"),
-    Mutation("hertz-exponent", "contact_laws/normal.py",
+    # ---- laws ----------------------------------------------------------------------------
+    Mutation("hertz-exponent", "laws",
              "    stiffness: float\n    exponent: float = 1.5\n\n    def __post_init__(self):\n"
              "        check_real(\"Hertz\"",
              "    stiffness: float\n    exponent: float = 1.4\n\n    def __post_init__(self):\n"
              "        check_real(\"Hertz\"",
              "Hertz contact with the wrong default exponent"),
-    Mutation("exponential-friction-decay", "contact_laws/friction.py",
-             "math.exp(-beta * slip_speed)", "math.exp(-beta * slip_speed * 0.5)",
-             "the paper's eq. (4) decays at half the rate"),
-    Mutation("kelvin-voigt-damping-sign", "contact_laws/normal.py",
-             "stiffness * penetration + damping * rate",
-             "stiffness * penetration - damping * rate",
+    Mutation("exponential-friction-decay", "laws",
+             "return mu_kinetic + (mu_static - mu_kinetic) * math.exp(-beta * slip_speed)",
+             "return mu_kinetic + (mu_static - mu_kinetic) * math.exp(-beta * slip_speed * 0.5)",
+             "the paper's eq. (4) decays at half the rate (its slope still at the full one)"),
+    Mutation("kelvin-voigt-damping-sign", "laws",
+             "return max(0.0, stiffness * penetration + damping * rate)",
+             "return max(0.0, stiffness * penetration - damping * rate)",
              "the contact damper pushes with the closing rate's opposite sign"),
-    Mutation("hunt-crossley-damping-dropped", "contact_laws/normal.py",
+    Mutation("hunt-crossley-damping-dropped", "laws",
              "** exponent * (1.0 + damping * rate)", "** exponent * (1.0 + 0.0 * rate)",
              "Hunt–Crossley contact without its damping"),
-    Mutation("damping-power-halved", "shroudnet/engine/template.py",
+    # ---- model ---------------------------------------------------------------------------
+    Mutation("stick-limit-1.2", "model",
+             "f.static_coefficient for f in frictions",
+             "1.2 * f.static_coefficient for f in frictions",
+             "stuck interfaces hold 20 % more than μ_s N"),
+    # ---- loop ----------------------------------------------------------------------------
+    Mutation("stick-rule-slack-0.05", "loop",
+             "if candidates[e] else limit):", "if candidates[e] else 1.05 * limit):",
+             "the mode rule keeps a stick the breakaway guard has released"),
+    Mutation("friction-slack-0.05", "loop",
+             "FRICTION_SLACK = 1e-9", "FRICTION_SLACK = 0.05",
+             "a slip that reaches zero sticks while it needs up to 1.05 μ_s N"),
+    Mutation("friction-sign-negative-slip", "loop",
+             "            w.friction[e] = sign * normal * sliding_mu(",
+             "            w.friction[e] = normal * sliding_mu(",
+             "friction pushes along a negative slip instead of against it"),
+    Mutation("breakaway-logged-as-reversal", "loop",
+             "    if before == STICK:\n        return BREAKAWAY",
+             "    if before == STICK:\n        return REVERSAL",
+             "a breakaway is logged as a slip reversal"),
+    Mutation("static-friction-normal-push-sign", "loop",
+             "            imbalance[left[e]] -= push", "            imbalance[left[e]] += push",
+             "the normal force's push is added, not taken, in the stuck equilibrium"),
+    # ---- ledger --------------------------------------------------------------------------
+    Mutation("contact-strain-energy-doubled", "ledger",
+             "return 0.5 * penetration * sum(", "return penetration * sum(",
+             "the ledger books twice the contact strain energy"),
+    Mutation("projection-loss-dropped", "ledger",
+             "    state.energy[PROJECTION] += lost\n    last = log_switches",
+             "    last = log_switches",
+             "the kinetic energy lost as blades lock together is not booked (expected to "
+             "survive: at stick onset it is about m (a τ)², some 1e-20 J)"),
+    Mutation("damping-power-halved", "ledger",
              "damping += s.damping[i] * v[i] * v[i]",
              "damping += 0.5 * s.damping[i] * v[i] * v[i]",
              "the ledger books half the viscous loss"),
 )
+
+
+class NotPlanted(Exception):
+    """A mutation's text is not once in exactly one source file."""
+
+
+def locate(mutation: Mutation, tree: Path) -> Path:
+    """The one file under ``SOURCE_FOLDERS`` of ``tree`` that holds ``mutation.old``,
+    where it occurs once; else ``NotPlanted`` saying where it is (or that it is nowhere)."""
+    holders = {}
+    for folder in SOURCE_FOLDERS:
+        for path in sorted((tree / folder).rglob("*.py")):
+            count = path.read_text().count(mutation.old)
+            if count:
+                holders[path] = count
+    if not holders:
+        raise NotPlanted(f"its text is in no file under {', '.join(SOURCE_FOLDERS)}: the "
+                         f"code it mutates changed; find the lines that now say the same")
+    names = ", ".join(f"{path.relative_to(tree)} ({count}x)" for path, count in holders.items())
+    if len(holders) > 1:
+        raise NotPlanted(f"its text is in several files: {names}; give more of the line")
+    (path, count), = holders.items()
+    if count > 1:
+        raise NotPlanted(f"its text is {count} times in {names}; give more of the line")
+    return path
+
+
+def where(mutation: Mutation, tree: Path) -> str:
+    """``file:line`` of the mutation's text in ``tree`` (``locate`` must succeed)."""
+    path = locate(mutation, tree)
+    line = path.read_text().split(mutation.old)[0].count("\n") + 1
+    return f"{path.relative_to(tree)}:{line}"
+
+
+def plant(mutation: Mutation, tree: Path) -> None:
+    """Apply ``mutation`` to ``tree``; ``NotPlanted`` when its text is not where it must be."""
+    if mutation is CONTROL:
+        return
+    path = locate(mutation, tree)
+    path.write_text(path.read_text().replace(mutation.old, mutation.new))
+
+
+def missing_tests(mutation: Mutation, tree: Path) -> list[str]:
+    """The tests ``mutation`` names that ``tree`` lacks: a file that is not there, a node
+    id whose test function the file does not define, or whose parameters it never names."""
+    missing = []
+    for test in mutation.tests:
+        file, _, node = test.partition("::")
+        path = tree / file
+        function, _, case = node.partition("[")
+        text = path.read_text() if path.is_file() else ""
+        if not text or (function and not re.search(rf"^def {re.escape(function)}\(", text,
+                                                    flags=re.MULTILINE)) \
+                or case.removesuffix("]") not in text:
+            missing.append(test)
+    return missing
+
+
+def problems(mutations, tree: Path, every_layer: bool) -> dict[str, str]:
+    """By mutation name (or "layers"), what stops a mutation from meaning anything."""
+    found = {}
+    for m in mutations:
+        reasons = []
+        if m.layer not in LAYERS:
+            reasons.append(f"layer {m.layer!r} is not one of {', '.join(LAYERS)}")
+        if m.old == m.new:
+            reasons.append("it changes nothing")
+        try:
+            locate(m, tree)
+        except NotPlanted as error:
+            reasons.append(f"cannot be planted: {error}")
+        missing = missing_tests(m, tree)
+        if missing:
+            reasons.append(f"its tests are not there: {', '.join(missing)}")
+        if reasons:
+            found[m.name] = "; ".join(reasons)
+    names = [m.name for m in mutations]
+    for name in sorted({n for n in names if names.count(n) > 1}):
+        found[name] = "the name is given to several mutations"
+    uncovered = [layer for layer in LAYERS if every_layer
+                 and not any(m.layer == layer for m in mutations)]
+    if uncovered:
+        found["layers"] = f"no mutation reaches {', '.join(uncovered)}"
+    return found
+
+
+def check(mutations, tree: Path, every_layer: bool) -> int:
+    """Print where each mutation plants, or why it cannot; 0 when all is well, else 1."""
+    found = problems(mutations, tree, every_layer)
+    for m in mutations:
+        place = "-" if m.name in found else where(m, tree)
+        verdict = found.get(m.name, "plants")
+        print(f"{m.name:44s} {m.layer:12s} {place:34s} {verdict}")
+    if "layers" in found:
+        print(found["layers"])
+    counts = ", ".join(f"{layer} {sum(m.layer == layer for m in mutations)}"
+                       for layer in LAYERS)
+    print(f"{len(mutations)} mutations by layer: {counts}")
+    if found:
+        print(f"{len(found)} problem(s): fix them before any run means anything")
+        return 1
+    return 0
 
 
 def _copy_tree(source: Path, target: Path) -> None:
@@ -124,30 +256,19 @@ def _copy_tree(source: Path, target: Path) -> None:
 CONTROL = Mutation("control", "", "", "", "the unchanged source")
 
 
-def plant(mutation: Mutation, tree: Path) -> bool:
-    """Apply ``mutation`` to ``tree``; False when its line is not there (the code moved)."""
-    if mutation is CONTROL:
-        return True
-    path = tree / mutation.path
-    text = path.read_text() if path.exists() else ""
-    if text.count(mutation.old) != 1:
-        return False
-    path.write_text(text.replace(mutation.old, mutation.new))
-    return True
-
-
 def run(mutation: Mutation, source: Path, tests, limit: float, cache: Path) -> tuple[str, str]:
     """(verdict, the first failing test or a note) for one mutation."""
     with tempfile.TemporaryDirectory(prefix="shroudnet-mutant-") as folder:
         tree = Path(folder)
         _copy_tree(source, tree)
-        if not plant(mutation, tree):
-            return "not planted", f"{mutation.old!r} is not once in {mutation.path}"
-        present = [t for t in tests if (tree / t).exists()]
+        try:
+            plant(mutation, tree)
+        except NotPlanted as error:
+            return "not planted", str(error)
         environment = {**os.environ, "PYTHONPATH": str(tree), "SHROUDNET_CACHE": str(cache),
                        "PYTHONDONTWRITEBYTECODE": "1"}
         command = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider",
-                   "-o", "addopts=", "-o", f"timeout={int(limit)}", *present]
+                   "-o", "addopts=", "-o", f"timeout={int(limit)}", *tests]
         try:
             done = subprocess.run(command, cwd=tree, env=environment, capture_output=True,
                                   text=True, timeout=limit)
@@ -161,37 +282,66 @@ def run(mutation: Mutation, source: Path, tests, limit: float, cache: Path) -> t
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("words", nargs="*", help="run the mutations whose name holds a word")
+    parser.add_argument("words", nargs="*",
+                        help="run the mutations whose name or layer holds a word")
     parser.add_argument("--list", action="store_true", help="list the mutations and stop")
+    parser.add_argument("--check", action="store_true",
+                        help="check that every mutation plants and its tests exist; run none")
     parser.add_argument("--source", type=Path, default=ROOT,
                         help="the tree to plant into (default: this checkout)")
     parser.add_argument("--limit", type=float, default=900.0,
                         help="seconds the tests of one mutation may take (default 900)")
     parser.add_argument("--no-control", action="store_true",
                         help="skip the first run on the unchanged source")
+    parser.add_argument("--tests", nargs="+", metavar="TEST",
+                        help="run these tests (paths or node ids) against every chosen "
+                             "mutation instead of its own")
     args = parser.parse_args(argv)
-    chosen = [m for m in MUTATIONS if not args.words or any(w in m.name for w in args.words)]
+    source = args.source.resolve()
+    chosen = [m for m in MUTATIONS
+              if not args.words or any(w in m.name or w == m.layer for w in args.words)]
+    if args.tests:
+        chosen = [replace(m, tests=tuple(args.tests)) for m in chosen]
+    if not chosen:
+        print(f"no mutation's name or layer holds {' or '.join(args.words)} (see --list)")
+        return 2
     if args.list:
         for m in chosen:
-            print(f"{m.name:34s} {m.path:26s} {m.why}")
+            print(f"{m.name:44s} {m.layer:12s} {m.why}")
         return 0
+    if args.check:
+        return check(chosen, source, every_layer=not args.words)
+    found = problems(chosen, source, every_layer=False)
+    if found:
+        for name, reason in found.items():
+            print(f"{name}: {reason}")
+        print(f"{len(found)} of {len(chosen)} mutations cannot mean anything as they stand; "
+              f"nothing was run (python tests/mutations.py --check lists them all)")
+        return 2
     cache = Path(os.environ.get("SHROUDNET_MUTATION_CACHE")
                  or Path.home() / ".cache" / "shroudnet-mutations")
     if not args.no_control:
-        verdict, note = run(CONTROL, args.source.resolve(), PHYSICS_TESTS, args.limit, cache)
+        tests = list(dict.fromkeys(t for m in chosen for t in m.tests))
+        began = time.perf_counter()
+        verdict, note = run(CONTROL, source, tests, args.limit, cache)
         if verdict != "survived":
             print(f"the tests fail on the unchanged source ({verdict}: {note}); fix that first")
             return 2
-        print("control: the unchanged source passes", flush=True)
-    survivors = 0
+        print(f"control: the unchanged source passes ({time.perf_counter() - began:.0f} s)",
+              flush=True)
+    verdicts = []
     for m in chosen:
         began = time.perf_counter()
-        verdict, note = run(m, args.source.resolve(), PHYSICS_TESTS, args.limit, cache)
-        survivors += verdict in ("survived", "hung")
-        print(f"{m.name:34s} {verdict:11s} {time.perf_counter() - began:6.0f} s  {note}",
+        verdict, note = run(m, source, m.tests, args.limit, cache)
+        verdicts.append(verdict)
+        print(f"{m.name:44s} {verdict:11s} {time.perf_counter() - began:6.0f} s  {note}",
               flush=True)
-    print(f"{survivors} of {len(chosen)} mutations survived or hung")
-    return 1 if survivors else 0
+    survivors = sum(v in ("survived", "hung") for v in verdicts)
+    unplanted = verdicts.count("not planted")
+    print(f"{survivors} of {len(chosen)} mutations survived or hung"
+          + (f"; {unplanted} could not be planted, so this run proves less than it "
+             f"lists" if unplanted else ""))
+    return 1 if survivors or unplanted else 0
 
 
 if __name__ == "__main__":
