@@ -74,6 +74,25 @@ def test_newton_finds_an_unstable_orbit_that_transients_leave():
     assert relative_distance(orbit, transient_states(scene, 400, 10)) > 1e-3
 
 
+def test_newton_solves_a_linear_scene_in_one_step():
+    """Without contact the stroboscopic map is affine, φ(y) = M y + b, so Newton's step
+    (M − I) Δy = −(φ(y) − y) lands on its fixed point from any start, here rest: the
+    forced response in closed form, x_i(0) = Im(q1 e^{iφ_i} / (k − mω² + icω)). Plain
+    iteration of the map would take some 150 periods to get there (|μ| = 0.885); a step
+    with the wrong matrix, several."""
+    scene = three_blade_paper(gap=1.0)
+    orbit = periodic_orbit(scene, 1, transient=0, tolerance=1e-8)
+    assert orbit.iterations == 1
+    a = scene.arrays
+    omega = a.excitation_frequency
+    response = 50.0 * np.exp(1j * scene.excitation.blade_phases(3)) / (
+        a.stiffness - a.mass * omega**2 + 1j * a.damping * omega)
+    np.testing.assert_allclose(orbit.initial[0], response.imag,
+                               atol=1e-8 * np.abs(response).max())
+    np.testing.assert_allclose(orbit.initial[1], (1j * omega * response).imag,
+                               atol=1e-8 * omega * np.abs(response).max())
+
+
 def test_a_newton_that_cannot_converge_says_why():
     with pytest.raises(ConvergenceError, match=r"residual .* last"):
         periodic_orbit(three_blade_paper(gamma1=8.8), 1, transient=0, tolerance=1e-14)
