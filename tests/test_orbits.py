@@ -215,6 +215,28 @@ def test_a_hardening_contact_folds_the_response_and_the_folds_are_the_jumps_of_s
     assert "grazing" in kinds
 
 
+def test_a_folded_branch_turns_back_at_its_folds():
+    """The hardening pad's branch, without the sweeps: the parameter of its points turns
+    back twice, and a fold is reported at each turn and nowhere else, located beyond the
+    points around it (the branch's extreme parameter), with a real multiplier at +1; the
+    orbits between the folds are unstable, those outside stable."""
+    branch = continuation(pad_at(PAD, 1.0), 7000.0, 14000.0)
+    p = branch.parameter
+    step = np.sign(np.diff(p))
+    turns = np.flatnonzero(step[1:] != step[:-1]) + 1  # p[i] is the discrete extreme
+    folds = sorted((b for b in branch.bifurcations if b.kind == "fold"),
+                   key=lambda b: b.index)
+    assert len(turns) == len(folds) == 2, (turns, [b.index for b in folds])
+    for turn, fold in zip(turns, folds):
+        assert turn in (fold.index, fold.index + 1)
+        around = p[fold.index:fold.index + 2]
+        upper = step[fold.index - 1] > 0  # the parameter rose to this fold
+        assert (fold.parameter >= around.max()) if upper else (fold.parameter <= around.min())
+        assert fold.multiplier == pytest.approx(1.0, abs=1e-5)
+    between = (np.arange(len(p)) > folds[0].index) & (np.arange(len(p)) <= folds[1].index)
+    assert not branch.stable[between].any() and branch.stable[~between].all()
+
+
 def test_a_period_doubling_starts_a_doubled_branch_that_a_transient_lands_on():
     """A blade touching a stiff pad (a bilinear oscillator), forced above its resonance:
     the period-1 orbit loses stability as a real multiplier passes −1, and a stable
