@@ -239,6 +239,12 @@ CASES = {
     # a blade knocking on a frictionless spring pad: impacts only
     "impact": (pads_scene(Interface(gap=1e-4, angle=1.2, normal=LinearSpring(stiffness=1e7))),
                (0.0, 0.0), 30),
+    # knocking on a damped pad: the force jumps by c δ̇ sin α as the contact closes, so
+    # the closing saltation has a jump term, and the contact guard's gradient counts (on a
+    # spring pad N(0) = 0, and both vanish)
+    "damped impact": (pads_scene(Interface(gap=1e-4, angle=1.2,
+                                           normal=KelvinVoigt(stiffness=1e7, damping=100.0))),
+                      (0.0, 0.0), 30),
     # pressed against its pad and slipping to and fro: slip reversals
     "slip reversal": (pads_scene(Interface(gap=0.0, angle=0.5, normal=ConstantLoad(force=5.0),
                                            friction=ExponentialFriction(
@@ -273,7 +279,9 @@ def test_monodromy_agrees_with_differences_of_the_trajectory(case):
         y = np.concatenate([run.x[-1], run.v[-1]])
     counts = simulate(scene, 1, method=EXACT, samples_per_period=1,
                       initial=np.split(y, 2)).events.counts
-    expected_kinds = {"impact": ("closing", "separation"), "slip reversal": ("reversal",),
+    expected_kinds = {"impact": ("closing", "separation"),
+                      "damped impact": ("closing", "separation"),
+                      "slip reversal": ("reversal",),
                       "stick and breakaway": ("sticking", "breakaway"),
                       "friction dropping at breakaway": ("sticking", "breakaway"),
                       "paper group": ("closing", "separation", "reversal")}[case]
@@ -283,7 +291,15 @@ def test_monodromy_agrees_with_differences_of_the_trajectory(case):
     n = len(y) // 2
     matrix = monodromy(scene, 1, initial=(y[:n], y[n:]), method=EXACT)
     reference = differenced_monodromy(scene, 1, y, scale)
-    assert scaled_error(matrix, reference, scale) <= AGREEMENT
+    assert scaled_error(matrix, reference, scale) <= LOOSER.get(case, AGREEMENT)
+
+
+#: Cases whose differences are noisier than the monodromy matrix's error. The damped pad's
+#: force is clipped at 0 just before the contact opens (k δ + c δ̇ = 0), a kink in the
+#: vector field that the steps are not located at: the differenced runs carry an error that
+#: moves with their start, and their differences are off by 3.5e-5 (1.5e-4 at rtol 1e-10,
+#: 5e-6 at 1e-13, converging on the monodromy matrix). A wrong saltation is off by O(1).
+LOOSER = {"damped impact": 1e-4}
 
 
 def gripped_ring(preload):
