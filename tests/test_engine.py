@@ -5,6 +5,7 @@ import math
 import re
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -15,7 +16,7 @@ from numba import njit
 from scipy.integrate._ivp.rk import RK45
 
 from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz,
-                          LinearSpring, Regularised, Stribeck)
+                          LinearSpring, NormalLaw, Regularised, Stribeck, check_real)
 from shroudnet import Mode, Simulation, simulate
 from shroudnet.engine import codes, generate, locate, tableau
 from shroudnet.engine.cache import cache_size, clear_cache
@@ -315,6 +316,7 @@ def test_the_header_dispatches_on_each_law_class_with_its_parameters():
 
 
 _LAW_MODULE = '''
+from dataclasses import dataclass
 from contact_laws import NormalLaw
 from lawhelper import spring
 
@@ -378,10 +380,31 @@ def test_every_combination_of_built_in_laws_shares_one_kernel():
                                                                           "ExponentialFriction")
 
 
+@dataclass(frozen=True, kw_only=True)
+class SquareSpring(NormalLaw):
+    """A user's own normal law, written in this module and calling nothing: N = k δ²."""
+
+    stiffness: float
+
+    def __post_init__(self):
+        check_real("SquareSpring", "stiffness", self.stiffness, low=0.0, low_open=True,
+                   unit="N/m²")
+
+    @staticmethod
+    def normal_force(penetration, rate, stiffness):
+        return stiffness * max(penetration, 0.0) ** 2
+
+
 def test_a_user_law_without_a_helper_keeps_one_kernel():
-    law = LinearSpring(stiffness=2e5)
-    assert (generate.load_kernel(three_blade_paper(normal=law)).__name__
-            == generate.load_kernel(three_blade_paper()).__name__)
+    """A law class of the user's own gets a kernel of its own, one whatever the values of
+    its parameters, and its key covers the one module the class is written in."""
+    kernel, other = (generate.load_kernel(three_blade_paper(normal=SquareSpring(stiffness=k)))
+                     for k in (1e9, 3e9))
+    assert kernel.__name__ == other.__name__
+    assert kernel.__name__ != generate.load_kernel(three_blade_paper()).__name__
+    assert not kernel.SHARED and kernel.LAWS == ("SquareSpring", "ExponentialFriction")
+    assert re.findall(r"^# (\S+)$", generate.law_sources(SquareSpring, "normal"),
+                      flags=re.MULTILINE) == [__name__]
 
 
 # ---- the cache ------------------------------------------------------------------------------
