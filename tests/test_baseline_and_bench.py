@@ -1,14 +1,17 @@
 """The plain solve_ivp implementation agrees with the compiled loop; the benchmark runs;
 compiled kernels are cached for the next process."""
 
+import math
+import re
 import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-from shroudnet import Adaptive, simulate
+from shroudnet import Adaptive, FixedStep, simulate
 from shroudnet.baseline import solve_ivp_baseline
+from shroudnet.bench import POINT
 from shroudnet.bench import main as bench_main
 from shroudnet.scenes import three_blade_paper
 
@@ -29,16 +32,112 @@ def test_plain_solve_ivp_and_the_compiled_loop_follow_the_same_trajectory(scene)
     assert plain.switches == sum(compiled.events.counts.values()) > 10
 
 
+#: A figure as the benchmark prints it: 1,234.5, 0.97, 6.542e-08, -4.2e-10.
+N = r"(-?[\d,]*\.?\d+(?:e[-+]?\d+)?)"
+
+
+def figures(pattern, text, count=None):
+    """Each match of ``pattern`` in ``text``, its groups as numbers (``N``) or strings
+    (other groups); checks there are ``count`` of them (else at least one), each finite."""
+    found = []
+    for match in re.finditer(pattern, text, flags=re.MULTILINE):
+        row = []
+        for group in match.groups():
+            try:
+                row.append(float(group.replace(",", "")))
+            except ValueError:
+                row.append(group)
+        found.append(row)
+    assert len(found) == count if count is not None else found, (pattern, found)
+    assert all(math.isfinite(x) for row in found for x in row if isinstance(x, float))
+    return found
+
+
+def event_total(scene, periods, method, **options):
+    return sum(simulate(scene, periods, method=method, **options).events.counts.values())
+
+
 @pytest.mark.timeout(1500)  # compiles in fresh processes, then every kind of kernel
-def test_the_benchmark_runs_and_prints_every_section(capsys):
+def test_the_benchmark_prints_every_section_with_figures_that_hold_together(capsys):
+    """``--quick`` prints every section, and its figures are what they say: parts no larger
+    than their wholes, rates that are the quotients they claim, the events of a plain run
+    of the scene measured, the linear multiplier every orbit of three identical blades
+    has (all three moving alike, their contacts never see it: |μ| = e^(−c kT/2m)), a
+    positive exponent for the paper's chaotic case and its torus bifurcation near 6120 rpm."""
     bench_main(["--quick"])
     out = capsys.readouterr().out
-    for heading in ("1. Integration speed", "2. Effects", "3. Against plain",
+    for heading in ("0. First run", "1. Integration speed", "2. Effects", "3. Against plain",
                     "4. Sweeps", "Fig. 6-class diagram", "peak resident memory",
-                    "5. The tangent flow"):
+                    "5. The tangent flow", "6. Steady states", "wall time of the benchmark"):
         assert heading in out
-    assert "steps/s" in out and "x per trajectory" in out and "speed-up" in out
-    assert "λ_max =" in out
+    for wall, compiling in figures(rf"\): {N} s, of which {N} s compiling$", out, 2):
+        assert 0.0 <= compiling <= wall
+
+    # 1. each integrator's rate, and the events of a plain run of the same scene
+    scene, periods = three_blade_paper(**POINT), 20
+    rates = figures(rf": {N} steps/s, {N} steps/period, {N} periods/s", out, 2)
+    ledgers = figures(rf"events: {N} \(([^)]*)\); energy ledger residual {N} J against "
+                      rf"friction loss {N} J$", out, 2)
+    for (rate, per_period, per_second), (total, counts, residual, loss), method in zip(
+            rates, ledgers, (FixedStep(), Adaptive())):
+        assert rate > 0.0 and per_second == pytest.approx(rate / per_period, rel=0.01)
+        plain = simulate(scene, periods, method=method).events.counts
+        assert {kind: int(n) for kind, n in (c.split() for c in counts.split(", "))} == plain
+        assert total == sum(plain.values()) > 0
+        assert loss > 0.0 and abs(residual) <= 1e-6 * loss
+    assert figures(r"fixed-step RK4, 1000 steps/period: [\d,]+ steps/s, 1,000 steps/period",
+                   out, 1)
+
+    # 2. effects: no contact, no events; the paper's scene as in section 1
+    events = {label: total for label, total in figures(
+        r"^   ([^:]+): [\d,]+ fixed, [\d,]+ adaptive steps/s, (\d+) events$", out, 4)}
+    assert events["no interfaces"] == events["contact that never closes (gap 1 m)"] == 0.0
+    assert events["frictional contact (the paper's)"] == ledgers[0][0]
+    assert events["frictionless contact"] == event_total(
+        three_blade_paper(**POINT, friction=None), periods, FixedStep())
+
+    # 3. against solve_ivp: both accurate, the ratio the quotient of the times
+    for ours, error, plain, plain_error, switches, ratio in figures(
+            rf"shroudnet {N} ms \(error {N}\), solve_ivp {N} s \(error {N}\), {N} "
+            rf"switches: {N}x$", out, 1):
+        assert max(error, plain_error) < 1e-5 and switches > 0
+        assert ratio == pytest.approx(plain / (ours * 1e-3), rel=0.03)
+
+    # 4. sweeps
+    scaling = figures(rf"worker\(s\), {N} values: +{N} s, {N} s per point, speed-up {N} "
+                      rf"\(efficiency {N}%\)$", out, 2)
+    assert scaling[0][3] == 1.0
+    for values, seconds, per_point, _, _ in scaling:
+        assert per_point == pytest.approx(seconds / values, abs=0.005 / values + 5e-4)
+    ((points, seconds, per_point),) = figures(
+        rf"diagram, {N} values on \d+ workers: {N} s wall .*, {N} s per point$", out, 1)
+    assert per_point == pytest.approx(seconds / points, abs=0.05 / points + 5e-4)
+    assert all(mb > 0.0 for mb in figures(rf"memory of the first run: {N} MB in its main "
+                                          rf"process, {N} MB", out, 1)[0])
+
+    # 5. the tangent flow: the ratios are the quotients; γ1 = 8.8 is chaotic
+    ((plain, one, one_ratio, every, every_ratio),) = figures(
+        rf"paper group, 3 blades: {N}, {N} \({N}x\), {N} \({N}x\)$", out, 1)
+    assert plain > 0.0
+    assert one_ratio == pytest.approx(one / plain, abs=0.06)
+    assert every_ratio == pytest.approx(every / plain, abs=0.06)
+    ((exponent, error),) = figures(rf"λ_max = {N} ± {N} per period", out, 1)
+    assert exponent > 0.0 <= error
+
+    # 6. steady states: stable orbits, each with the blades' common multiplier
+    a = scene.arrays
+    for k, _, _, largest in figures(
+            rf"period {N}: {N} ms \({N} steps\), \|μ\|max = {N}(?:, .*)?$", out, 2):
+        common = math.exp(-a.damping[0] / (2 * a.mass[0]) * k * scene.excitation_period)
+        assert common * (1 - 1e-3) <= largest < 1.0
+    ((orbits, seconds, per_orbit),) = figures(
+        rf"5800–7200 rpm: {N} orbits in {N} s \({N} ms per orbit\)", out, 1)
+    assert per_orbit == pytest.approx(seconds / orbits * 1e3, rel=0.01)
+    (torus,) = figures(rf"torus at {N} rpm", out, 1)[0]
+    assert 6100.0 < torus < 6150.0
+    ((swept, ratio),) = figures(rf"speeds \(.*\): {N} s, {N}x the continuation's time",
+                                out, 1)
+    assert ratio == pytest.approx(swept / seconds, abs=0.06)
 
 
 def test_a_second_process_loads_the_compiled_kernel_instead_of_compiling():
