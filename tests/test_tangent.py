@@ -257,6 +257,14 @@ CASES = {
                                                                    mu_kinetic=0.4,
                                                                    stribeck_velocity=0.05))),
                             (0.0, 0.0), 20),
+    # pressed by a preloaded spring pad: stick and breakaway where the normal force moves
+    # with the blade, so the breakaway guard μ_s N − |f| changes with N too (with a
+    # constant load it does not)
+    "stick and breakaway on a spring pad": (
+        pads_scene(Interface(gap=-1e-4, angle=0.5, normal=LinearSpring(stiffness=1e6),
+                             friction=Stribeck(mu_static=0.6, mu_kinetic=0.4,
+                                               stribeck_velocity=0.05)), amplitudes=(0.0, 10.0)),
+        (0.0, 0.0), 20),
     # stick and breakaway with a friction that drops from μ_s to μ_k as it slips (μ(0⁺)
     # = μ_k): the breakaway saltation's jump term (0.41 off while f⁺ took μ(0))
     "friction dropping at breakaway": (
@@ -283,6 +291,7 @@ def test_monodromy_agrees_with_differences_of_the_trajectory(case):
                       "damped impact": ("closing", "separation"),
                       "slip reversal": ("reversal",),
                       "stick and breakaway": ("sticking", "breakaway"),
+                      "stick and breakaway on a spring pad": ("sticking", "breakaway"),
                       "friction dropping at breakaway": ("sticking", "breakaway"),
                       "paper group": ("closing", "separation", "reversal")}[case]
     assert all(counts[kind] > 0 for kind in expected_kinds), counts
