@@ -253,6 +253,7 @@ def test_monodromy_through_stick_and_breakaway_on_a_shaker_agrees_with_differenc
     assert_monodromy_agrees_with_differences(scene)
 
 
+@pytest.mark.slow  # compiles a kernel for its law (shared with test_tangent's case)
 def test_monodromy_of_friction_that_drops_at_breakaway_on_a_shaker_agrees_with_differences():
     """With μ(0) = μ_s and μ(0⁺) = μ_k < μ_s, the friction drops by (μ_s − μ_k) N as the
     blade breaks away from the shaker: the breakaway saltation gets a jump term,
