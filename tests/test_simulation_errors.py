@@ -43,28 +43,22 @@ class GrippingOnceSliding(cl.FrictionLaw):
 
 
 @dataclass(frozen=True, kw_only=True)
-class TabulatedSpring(cl.NormalLaw):
-    """N = k δ up to the end of its table at δ = ``reach``; NaN beyond, as an interpolation
-    table outside its range gives."""
+class FaultySpring(cl.NormalLaw):
+    """N = k δ, with the faults a law of one's own may have: NaN beyond δ = ``reach``, as an
+    interpolation table read past its end gives, and a force that jumps by ``jump`` where δ
+    passes ``step``. Each test gives it the fault it needs, the others left out (an
+    infinite reach or step): one class, so that they share one kernel, where a class for
+    each fault would compile one each."""
 
     stiffness: float
-    reach: float
+    reach: float = math.inf
+    step: float = math.inf
+    jump: float = 0.0
 
     @staticmethod
-    def normal_force(penetration, rate, stiffness, reach):
-        return stiffness * penetration if penetration <= reach else math.nan
-
-
-@dataclass(frozen=True, kw_only=True)
-class SteppedSpring(cl.NormalLaw):
-    """N = k δ, plus a force that jumps by ``jump`` where δ passes ``step``."""
-
-    stiffness: float
-    step: float
-    jump: float
-
-    @staticmethod
-    def normal_force(penetration, rate, stiffness, step, jump):
+    def normal_force(penetration, rate, stiffness, reach, step, jump):
+        if penetration > reach:
+            return math.nan
         return stiffness * penetration + (jump if penetration > step else 0.0)
 
 
@@ -102,6 +96,7 @@ def test_the_same_scene_with_a_consistent_rule_sticks_and_breaks_away():
     assert sim.events.counts["breakaway"] > 0
 
 
+@pytest.mark.slow  # compiles a kernel for its law
 def test_friction_that_grips_harder_once_sliding_has_no_consistent_mode(unchecked_laws):
     """μ(0⁺) > μ_s: past μ_s N the interface cannot stick, and slipping either way is
     opposed by more friction than the force that drives it (the Painlevé situation).
@@ -113,38 +108,42 @@ def test_friction_that_grips_harder_once_sliding_has_no_consistent_mode(unchecke
         simulate(scene, 20)
 
 
+@pytest.mark.slow  # compiles a kernel for its law (one FaultySpring kernel for the file)
 def test_a_law_that_gives_nan_stops_the_adaptive_run_as_not_finite(unchecked_laws):
     """A table law read past its end gives NaN: the adaptive step shrinks in front of it
     until it collapses, and the run says a law gave a non-finite force, not that the
     tolerances are too tight."""
-    scene = three_blade_paper(normal=TabulatedSpring(stiffness=3e5, reach=1e-6))
+    scene = three_blade_paper(normal=FaultySpring(stiffness=3e5, reach=1e-6))
     with pytest.raises(SimulationError, match=r"non-finite at t = .*law returned inf or NaN"):
         simulate(scene, 5, method=Adaptive())
 
 
+@pytest.mark.slow  # compiles the fixed-step driver of the FaultySpring kernel
 def test_a_law_that_gives_nan_stops_the_fixed_step_run_as_not_finite(unchecked_laws):
-    scene = three_blade_paper(normal=TabulatedSpring(stiffness=3e5, reach=1e-6))
+    scene = three_blade_paper(normal=FaultySpring(stiffness=3e5, reach=1e-6))
     with pytest.raises(SimulationError, match=r"non-finite at t = .*law returned inf or NaN"):
         simulate(scene, 5, method=FixedStep(steps_per_period=200))
 
 
+@pytest.mark.slow  # compiles a kernel for its law (one FaultySpring kernel for the file)
 def test_a_force_jump_the_tolerances_cannot_follow_collapses_the_step():
     """A jump J in the normal force at δ = δ1: a step of h across it errs by about
     h J / m in velocity, against atol·lΩ ≈ 1.3e-9 m/s at atol = 1e-12 m. With J = 1e9 N
     that is still 500 times too much at the smallest step (1e-14 periods = 5e-17 s), so
     the step collapses as it closes in on δ1."""
-    scene = three_blade_paper(normal=SteppedSpring(stiffness=3e5, step=1e-6, jump=1e9))
+    scene = three_blade_paper(normal=FaultySpring(stiffness=3e5, step=1e-6, jump=1e9))
     with pytest.raises(SimulationError, match=r"adaptive step fell below 1e-14 periods at "
                                               r"t = .*jump in a contact law"):
         simulate(scene, 5, method=Adaptive(atol=1e-12))
 
 
+@pytest.mark.slow  # compiles a kernel for its law (one FaultySpring kernel for the file)
 def test_motion_chattering_across_a_force_jump_stops_the_run_instead_of_hanging():
     """With a looser atol the same jump does not collapse the step: the 1e9 N throws the
     blades back each time δ passes δ1, and the steps, some 1e-16 s each, cross it and come
     back, accepted, without end (the run used to hang here). No guard sees the jump, so
     no event is located; the run stops once the steps stay that small."""
-    scene = three_blade_paper(normal=SteppedSpring(stiffness=3e5, step=1e-6, jump=1e9))
+    scene = three_blade_paper(normal=FaultySpring(stiffness=3e5, step=1e-6, jump=1e9))
     with pytest.raises(SimulationError, match=r"adaptive steps stayed below 1e-09 periods for "
                                               r"10000 steps in a row at t = .*"
                                               r"chatter across it"):
