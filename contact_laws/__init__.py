@@ -22,3 +22,9 @@ from .normal import Hertz as Hertz
 from .normal import HuntCrossley as HuntCrossley
 from .normal import KelvinVoigt as KelvinVoigt
 from .normal import LinearSpring as LinearSpring
+
+#: The built-in laws, registered here and nowhere else: the compiled engine shares one
+#: kernel among every combination of them (an exact friction law; ``Regularised`` wraps
+#: one of these). A new built-in law is added to one of these tuples.
+BUILT_IN_NORMAL = (LinearSpring, Hertz, KelvinVoigt, HuntCrossley, ConstantLoad)
+BUILT_IN_FRICTION = (Coulomb, ExponentialFriction, Stribeck)

@@ -12,6 +12,7 @@ from contact_laws import check_int, check_real
 
 from .engine.codes import EventKind, Mode, Status, WorkColumn
 from .engine.dynamics import interface_kinematics
+from .engine.controller import SMALLEST_STEP, first_step, smallest_step
 from .engine.generate import compiled, kernel_scene, load_kernel
 from .engine.records import Controls, Run, allocate, finish
 from .methods import (EVENT_TOLERANCE, Accuracy, Adaptive, FixedStep, SimulationSettings,
@@ -144,23 +145,22 @@ def integrate(scene: Scene, periods: int, *,
     x0, v0 = np.concatenate([x0, x_p]), np.concatenate([v0, v_p])
     tangent0 = _with_prescribed(tangent0, n, len(x_p))
 
-    kernel = load_kernel(scene, tangent=tangent is not None)
+    kernel = load_kernel(scene, tangent=tangent is not None,
+                         adaptive=not isinstance(method, FixedStep))
     zeno_window = zeno.window_at(event_tolerance)
     n_samples = periods * samples_per_period + 1
     if isinstance(method, FixedStep):
-        driver, step, rtol, atol = (kernel.run_fixed_step, period / method.steps_per_period,
-                                    0.0, 0.0)
+        step, rtol, atol = period / method.steps_per_period, 0.0, 0.0
         steps_per_sample = method.steps_per_period // samples_per_period
     else:
         method = replace(method, atol=method.absolute_tolerance(scene))  # as recorded
-        driver, step, rtol, atol = (kernel.run_adaptive, INITIAL_STEP * period, method.rtol,
-                                    method.atol)
+        step, rtol, atol = first_step(period), method.rtol, method.atol
         steps_per_sample = 0
     controls = Controls(
         t0=0.0, sample_step=period / samples_per_period,
         n_samples=n_samples, step=step, steps_per_sample=steps_per_sample, rtol=rtol,
         atol_x=atol, atol_v=atol * scene.arrays.excitation_frequency,
-        h_max=getattr(method, "max_step", 1.0) * period, h_min=SMALLEST_STEP * period,
+        h_max=getattr(method, "max_step", 1.0) * period, h_min=smallest_step(period),
         event_tolerance=event_tolerance * period, zeno_events=zeno.events,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
         orthonormalise=orthonormalise)
@@ -168,7 +168,7 @@ def integrate(scene: Scene, periods: int, *,
     state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
                                                       flow=tangent is not None)
     arguments = (state, arrays, work, switching, events, controls, output)
-    driver, compile_seconds = compiled(driver, arguments)
+    driver, compile_seconds = compiled(kernel.run, arguments)
     run = _blades_only(finish(driver(*arguments), output, events, state.tangent), n)
     status = Status(run.status)
     if status != Status.FINISHED:
@@ -211,10 +211,6 @@ def _blades_only(run: Run, n: int) -> Run:
                         tangent=g._replace(matrix=g.matrix[rows]))
 
 
-#: An adaptive step below this many excitation periods stops the run.
-SMALLEST_STEP = 1e-14
-#: The first trial step of an adaptive run, in excitation periods.
-INITIAL_STEP = 1e-3
 
 #: A run may claim at most this fraction of the memory available when it starts.
 MEMORY_FRACTION = 0.5

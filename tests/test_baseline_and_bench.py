@@ -148,7 +148,7 @@ def test_a_second_process_loads_the_compiled_kernel_instead_of_compiling():
         "from shroudnet.scenes import three_blade_paper\n"
         "scene = three_blade_paper()\n"
         "simulate(scene, 1)\n"
-        "stats = load_kernel(scene).run_adaptive.stats\n"
+        "stats = load_kernel(scene).run.stats\n"
         "print(sum(stats.cache_hits.values()), sum(stats.cache_misses.values()))\n")
     done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
                           check=True)

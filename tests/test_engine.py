@@ -348,13 +348,13 @@ def test_a_change_in_a_laws_helper_module_gives_a_new_kernel(tmp_path, monkeypat
     assert names[0] != names[1]
 
 
-def test_the_cache_key_covers_every_module_the_template_imports():
-    """A constant the template takes from another module is compiled into the kernel, so
+def test_the_cache_key_covers_every_module_the_phases_import():
+    """A constant a phase module takes from another module is compiled into the kernel, so
     that module's source is part of the key."""
-    template, sources = generate.template_sources()
-    imported = re.findall(r"^from ([\w.]+) import", template, flags=re.MULTILINE)
+    phases, sources = generate.phase_sources()
+    imported = re.findall(r"^from ([\w.]+) import", "\n".join(phases), flags=re.MULTILINE)
     ours = [name for name in imported if name.split(".")[0] in ("shroudnet", "contact_laws")]
-    assert "contact_laws.base" in ours
+    assert "contact_laws.base" in ours and "shroudnet.engine.controller" in ours
     for name in ours:
         assert Path(importlib.import_module(name).__file__).read_text() in sources, name
 
@@ -421,7 +421,7 @@ def test_the_cache_reports_its_size_and_clears(tmp_path, monkeypatch):
 @pytest.mark.slow  # compiles a kernel in a cache of its own
 def test_a_compile_is_announced_once_and_timed_apart(tmp_path, monkeypatch, capsys):
     monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
-    generate._kernel.cache_clear()
+    generate.forget_kernels()
     scene = three_blade_paper(normal=LinearSpring(stiffness=3e5))
     try:
         first = simulate(scene, 1)
@@ -429,7 +429,7 @@ def test_a_compile_is_announced_once_and_timed_apart(tmp_path, monkeypatch, caps
         second = simulate(scene, 1)
         again = capsys.readouterr().err
     finally:
-        generate._kernel.cache_clear()
+        generate.forget_kernels()
     assert "compiling the adaptive integrator for every built-in contact law" in \
         announced and "once" in announced
     assert again == ""

@@ -66,15 +66,15 @@ class FaultySpring(cl.NormalLaw):
 def planted_friction_slack(monkeypatch, tmp_path):
     """Kernels whose stick rule keeps |f| up to 1.05 μ_s N, while their breakaway guard
     fires at μ_s N: guards and mode rule disagree."""
-    template, engine = generate.template_sources()
-    planted = template.replace("if candidates[e] else limit):",
-                               "if candidates[e] else 1.05 * limit):")
-    assert planted != template, "the stick rule's threshold moved: plant it where it is now"
-    monkeypatch.setattr(generate, "template_sources", lambda: (planted, engine))
+    phases, engine = generate.phase_sources()
+    planted = tuple(source.replace("if candidates[e] else limit):",
+                                   "if candidates[e] else 1.05 * limit):") for source in phases)
+    assert planted != phases, "the stick rule's threshold moved: plant it where it is now"
+    monkeypatch.setattr(generate, "phase_sources", lambda: (planted, engine))
     monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
-    generate._kernel.cache_clear()
+    generate.forget_kernels()
     yield
-    generate._kernel.cache_clear()
+    generate.forget_kernels()
 
 
 @pytest.mark.slow  # compiles a kernel with the planted rule

@@ -1,24 +1,15 @@
 """Advance: the parts of a Runge–Kutta step that do not evaluate forces.
 
-Stage sums, the Dormand–Prince dense output, the step-size controller, and moving the
-state to the end of a step. The steps themselves (``rk4_step``, ``dp5_step``) evaluate the
-scene's laws and live in the kernel template.
+The Dormand–Prince dense output, moving the state to the end of a step, and recording a
+sample. The steps themselves (``kernel.step``) evaluate the scene's laws; the step-size
+controller is ``controller``.
 """
 
 import math
 
 from .codes import N_POWERS, N_WORK
 from .compiled import njit_inlined
-from .tableau import DP_P, DP_STAGES, ERROR_EXPONENT, GROW_LIMIT, SAFETY, SHRINK_LIMIT
-
-
-@njit_inlined
-def stage_sum(weights, stages, n_stages, column):
-    """Σ_k weights[k] · stages[k, column] over the first ``n_stages`` Runge–Kutta stages."""
-    total = 0.0
-    for k in range(n_stages):
-        total += weights[k] * stages[k, column]
-    return total
+from .tableau import DP_P, DP_STAGES, stage_sum
 
 
 @njit_inlined
@@ -53,22 +44,6 @@ def dense_state(theta, h, state, w, x_out, v_out, energy_out):
                                                         DP_STAGES, c)
     for c in range(N_POWERS, N_WORK):
         energy_out[c] = state.energy[c]
-
-
-@njit_inlined
-def next_step(h, error, h_max):
-    """The step after an accepted one of size h with scaled error ``error`` ≤ 1."""
-    factor = min(GROW_LIMIT, SAFETY * error ** ERROR_EXPONENT) if error > 0.0 else GROW_LIMIT
-    return min(h * factor, h_max)
-
-
-@njit_inlined
-def retry_step(h, error):
-    """The step to try after one of size h was rejected with scaled error ``error`` > 1
-    (inf or NaN: a law gave a non-finite force ahead)."""
-    if not math.isfinite(error):
-        return h * SHRINK_LIMIT
-    return h * max(SHRINK_LIMIT, SAFETY * error ** ERROR_EXPONENT)
 
 
 @njit_inlined

@@ -18,9 +18,9 @@ from ..scene import Scene, SceneArrays
 from .clusters import TWO_DRIVERS, cluster_labels
 from .codes import OPEN, SLIP_POSITIVE, STICK, Mode
 from .detect import event_guards
-from .dynamics import (cluster_accelerations, coupling_forces, driven_accelerations,
-                       excitation_forces, interface_kinematics, resultant_forces,
-                       static_friction)
+from .dynamics import (cluster_accelerations, continued_mu, coupling_forces,
+                       driven_accelerations, excitation_forces, interface_kinematics,
+                       resultant_forces, static_friction)
 from .regroup import cluster_mass, static_friction_operator
 
 
@@ -50,8 +50,7 @@ def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
             continue
         sign = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
         speed = sign * slip_velocity[e] if slip_velocity[e] != 0.0 else ZERO_PLUS_SPEED
-        mu = friction_law(speed) if speed >= 0.0 else (
-            friction_law(speed) + 2.0 * friction_law.slope(speed) * speed)
+        mu = continued_mu(friction_law(speed), friction_law.slope(speed), speed)
         friction[e] = sign * mu * normal[e]
     return normal, friction
 

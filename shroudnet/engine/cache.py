@@ -1,8 +1,9 @@
 """Where compiled kernels are kept, how much room they take, and clearing them.
 
-Generated kernel modules and numba's compiled code for them live in one folder:
-``$SHROUDNET_CACHE``, else ``~/.cache/shroudnet``. numba keeps the compiled code of the
-engine's own modules beside them, in the package's ``__pycache__`` folders.
+Generated kernel headers and numba's compiled code for every kernel (its phase modules,
+``kernel``, compiled for its laws and method) live in one folder: ``$SHROUDNET_CACHE``,
+else ``~/.cache/shroudnet``. numba keeps the compiled code of the engine's own modules
+beside them, in the package's ``__pycache__`` folders.
 """
 
 from __future__ import annotations

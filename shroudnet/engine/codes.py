@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from enum import IntEnum
 
+from .controller import STALL_SIZE, STALL_STEPS
+
 
 class Mode(IntEnum):
     """Interface modes, stored as small integers in the modes arrays.
@@ -78,13 +80,6 @@ class WorkColumn(IntEnum):
 #: and the mode rule disagree, and the run would creep on by one event tolerance a switch.
 MAX_IDLE_SWITCHES = 1000
 
-#: Accepted adaptive steps in a row, each shorter than ``STALL_SIZE`` times the smallest
-#: step, before a run is stopped (STALLED). A force that jumps where no guard looks (a law
-#: discontinuous inside the contact) can make the motion chatter across the jump: each
-#: step then crosses it and comes back, accepted, at some 1e-16 s a step, and the run
-#: would take years. Switches never need this: they are located, not stepped to.
-STALL_STEPS = 10_000
-STALL_SIZE = 1e5
 
 _MESSAGES = {
     Status.ZENO: (

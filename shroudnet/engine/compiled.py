@@ -49,27 +49,99 @@ rounding only: on the paper's period-1 and period-3 orbits the Poincaré points 
 faster, from the fused stage sums of the four stages.
 """
 
+import functools
+import os
+
 from numba import njit
+from numba.core import caching
 
 _STEP = {"cache": True, "_nrt": False, "error_model": "numpy", "no_cfunc_wrapper": True,
          "fastmath": {"contract", "reassoc"}}
 _NOT_FROM_PYTHON = {"no_cpython_wrapper": True}
 
+
+def _flavour(**options):
+    """``numba.njit(**options)`` as a decorator that keys a kernel's phase functions.
+
+    numba keys its on-disk cache by a function's file, name and line, but a phase module
+    of ``kernel`` runs in many kernels (one per law classes, effects and method), each
+    compiling it differently. A function compiled in a kernel's namespace, which holds
+    the key of what its code is made of (``CACHE_KEY``, set by ``generate``), takes that
+    key into its name, so that each kernel has its own cache entries, kept in the kernel
+    cache folder (``_KernelCacheLocator``).
+    """
+    jit = njit(**options)
+
+    def compile_(function):
+        key = function.__globals__.get("CACHE_KEY")
+        if key:
+            function.__qualname__ = f"{function.__qualname__}__{key}"
+            _locate_kernels_in_their_folder()
+        return jit(function)
+
+    return compile_
+
+
+class _KernelCacheLocator(caching._CacheLocator):
+    """Where numba caches a kernel's phase functions: the folder a kernel's namespace names
+    (``CACHE_FOLDER``, set by ``generate`` inside the kernel cache folder), so that the
+    kernel folder holds all a kernel is and clearing it clears them, wherever numba keeps
+    the rest of its cache."""
+
+    def __init__(self, py_func, py_file, folder):
+        self._py_file = py_file
+        self._lineno = py_func.__code__.co_firstlineno
+        self._folder = folder
+
+    def get_cache_path(self):
+        return self._folder
+
+    def get_source_stamp(self):
+        status = os.stat(self._py_file)
+        return status.st_mtime, status.st_size
+
+    def get_disambiguator(self):
+        return str(self._lineno)
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        folder = py_func.__globals__.get("CACHE_FOLDER")
+        if not folder:
+            return None
+        locator = cls(py_func, py_file, folder)
+        try:
+            locator.ensure_cache_path()
+        except OSError:  # not writable: numba's own locators take it
+            return None
+        return locator
+
+
+@functools.cache
+def _locate_kernels_in_their_folder() -> None:
+    """Put ``_KernelCacheLocator`` before numba's own locators (once, at the first kernel).
+    With another numba, whose internals differ, numba's own locators keep the kernels."""
+    implementation = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl",
+                                                                    None)
+    locators = getattr(implementation, "_locator_classes", None)
+    if isinstance(locators, list) and _KernelCacheLocator not in locators:
+        locators.insert(0, _KernelCacheLocator)
+
+
 #: Allocating code callable from Python: arrays-only helpers.
-njit_entry = njit(cache=True, no_cfunc_wrapper=True)
+njit_entry = _flavour(cache=True, no_cfunc_wrapper=True)
 #: Allocating code called from compiled code only: the records' allocators.
-njit_internal = njit(cache=True, no_cfunc_wrapper=True, **_NOT_FROM_PYTHON)
+njit_internal = _flavour(cache=True, no_cfunc_wrapper=True, **_NOT_FROM_PYTHON)
 #: Step-path code called from compiled code only.
-njit_step = njit(**_STEP, **_NOT_FROM_PYTHON)
+njit_step = _flavour(**_STEP, **_NOT_FROM_PYTHON)
 #: Step-path code whose sums must stay as written, with no fused or reordered terms: the
 #: projection onto stick clusters, whose removed energy is a difference of near equals.
-njit_step_exact = njit(**{**_STEP, "fastmath": False}, **_NOT_FROM_PYTHON)
+njit_step_exact = _flavour(**{**_STEP, "fastmath": False}, **_NOT_FROM_PYTHON)
 #: Step-path functions that Python calls too: the drivers, and array functions.
-njit_step_callable = njit(**_STEP)
+njit_step_callable = _flavour(**_STEP)
 #: Small step-path helpers, inlined into their callers.
-njit_inlined = njit(**_STEP, forceinline=True, **_NOT_FROM_PYTHON)
+njit_inlined = _flavour(**_STEP, forceinline=True, **_NOT_FROM_PYTHON)
 #: Small step-path helpers, inlined, that Python calls too.
-njit_inlined_callable = njit(**_STEP, forceinline=True)
+njit_inlined_callable = _flavour(**_STEP, forceinline=True)
 
 # Merged flavours: parts of a larger function, called from one or two places, whose code
 # numba merges into each caller (``inline="always"``) instead of compiling it on its own.
@@ -77,4 +149,4 @@ njit_inlined_callable = njit(**_STEP, forceinline=True)
 # and compiled again there; merging the loop's middle layers cut the compile time by
 # a third (left to LLVM's forceinline, they compile in 95 s against 57 s).
 #: Step-path code merged into its caller.
-njit_step_merged = njit(**_STEP, inline="always", **_NOT_FROM_PYTHON)
+njit_step_merged = _flavour(**_STEP, inline="always", **_NOT_FROM_PYTHON)

@@ -4,8 +4,8 @@ Every interface has two guards, values that stay ≥ 0 while its mode holds and 
 a switch (``event_guards``). A step is checked against the guards where the last one
 ended (the state's ``contact_before`` / ``motion_before``). Between the step's ends, a
 contact can close and open again, and a stuck interface's friction can pass μ_s N and
-fall back; ``kinematic_dip``, ``graze_dense``, ``may_graze`` and ``predicted_low`` look
-for those. None of this depends on the contact or friction laws.
+fall back; ``kinematic_dip``, ``may_graze`` and ``predicted_low`` look for those (with
+``kernel.detect``). None of this depends on the contact or friction laws.
 """
 
 import numpy as np
@@ -65,11 +65,18 @@ def depth(before, after):
 
 
 @njit_inlined
+def guard_crossed(state, w, e):
+    """Whether interface e's contact or motion guard in w crossed since the state's
+    reference."""
+    return crossed(state.contact_before[e], w.contact[e]) or crossed(state.motion_before[e],
+                                                                      w.motion[e])
+
+
+@njit_inlined
 def first_crossed(state, w):
     """The first interface whose guard in w crossed since the state's reference, or −1."""
     for e in range(len(state.contact_before)):
-        if crossed(state.contact_before[e], w.contact[e]) or crossed(state.motion_before[e],
-                                                                     w.motion[e]):
+        if guard_crossed(state, w, e):
             return e
     return -1
 
@@ -79,8 +86,7 @@ def count_crossed(state, w):
     """How many interfaces' guards in w crossed since the state's reference."""
     count = 0
     for e in range(len(state.contact_before)):
-        if crossed(state.contact_before[e], w.contact[e]) or crossed(state.motion_before[e],
-                                                                     w.motion[e]):
+        if guard_crossed(state, w, e):
             count += 1
     return count
 
@@ -195,27 +201,3 @@ def kinematic_dip(h, state, s, w):
                     modes[e] != STICK and crossed(state.motion_before[e], w.motion_trial[e])):
                 return theta
     return 2.0
-
-
-@njit_inlined
-def graze_dense(h, tolerance, state, s, w):
-    """θ just past the minimum of a contact guard that dips below 0 inside the adaptive step
-    of size h, else 2. The minimum is bisected on the sign of ġ along the dense output to
-    within ``tolerance`` seconds; a switch then lies in (0, θ], where the guard falls."""
-    modes = state.modes
-    first = 2.0
-    for e in range(len(modes)):
-        if not may_graze(e, h, state.x, state.v, w.x_new, w.v_new, modes, s):
-            continue
-        lo, hi = 0.0, 1.0
-        while (hi - lo) * h > tolerance:
-            mid = 0.5 * (lo + hi)
-            dense_motion(mid, h, state, w, w.xt, w.vt)
-            if contact_guard(e, w.xt, w.vt, modes, s)[1] < 0.0:
-                lo = mid
-            else:
-                hi = mid
-        dense_motion(hi, h, state, w, w.xt, w.vt)
-        if contact_guard(e, w.xt, w.vt, modes, s)[0] < 0.0:
-            first = min(first, hi)
-    return first

@@ -32,6 +32,17 @@ import math
 from .compiled import njit_inlined, njit_inlined_callable, njit_step_callable
 
 
+@njit_inlined_callable
+def continued_mu(mu, slope, speed):
+    """μ of an exact friction law at the slip speed s signed by the slip mode, from μ = μ(|s|)
+    and its slope μ'(|s|): μ for s ≥ 0, and μ + 2 μ' s for s < 0, a state just past the
+    end of its mode, so that the mode's vector field leaves s = 0 with the slope μ'(0⁺)
+    the slip side arrives with, where μ(|s|) would have a kink."""
+    if speed >= 0.0:
+        return mu
+    return mu + 2.0 * slope * speed
+
+
 @njit_inlined
 def prescribed_acceleration(t, s, p):
     """(ẍ_p [m/s²], its rate [m/s³]) of prescribed-motion node p at time t [s]: the sum

@@ -1,21 +1,28 @@
-"""Kernel generation: the loop template specialised for the law classes of a scene.
+"""Kernel generation: the loop's phase modules specialised for the law classes of a scene.
 
-A kernel is ``template.py`` behind a generated header that dispatches to law classes and
-switches off the effects those classes rule out (contact events, stick, friction,
-regularisation). Scenes whose laws are all built into ``contact_laws`` share one kernel
+A kernel is a module that starts with a generated header, which dispatches to law classes
+and switches off the effects those classes rule out (contact events, stick, friction,
+regularisation), and then runs the phase modules of ``kernel`` (``kernel.PHASES``) in its
+namespace, each compiled from its own file, so that an error or a traceback names the
+phase module and its line. Scenes whose laws are all built into ``contact_laws``
+(``contact_laws.BUILT_IN_NORMAL``, ``BUILT_IN_FRICTION``) share one kernel per method
 that dispatches over every built-in class with every effect kept, so no combination of
 them compiles twice; a scene with a law of the user's own gets a kernel specialised for
 its law classes. A kernel never depends on the number of blades or on a parameter value,
-so a sweep compiles at most once.
-Kernels are written to the cache folder (``cache.cache_folder``) and compiled by numba
-with its on-disk cache, so a second process does not compile again. The cache key covers
-every source a kernel is made of: the template, the engine's modules, and the modules of
-each law class and of the functions its law calls.
+so a sweep compiles at most once per method.
+
+The header is written to the cache folder (``cache.cache_folder``) and every function is
+compiled by numba with its on-disk cache, so a second process does not compile again.
+numba keys that cache by a function's file, name and line, and a phase module runs in
+many kernels, so each phase function's name carries a key of everything its code is made
+of (``compiled``): the phase modules, the engine's modules, the header, the method, and
+the modules of each law class and of the functions its law calls. The phases that are the
+same for both methods (``METHOD_FREE``) run once for the laws, in a module of their own
+that both methods' kernels call into, so a second method compiles only its own phases.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import hashlib
 import importlib.util
@@ -31,18 +38,22 @@ from types import ModuleType
 import numba
 import numpy as np
 
-from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz, HuntCrossley,
-                          KelvinVoigt, LinearSpring, Stribeck)
+from contact_laws import BUILT_IN_FRICTION, BUILT_IN_NORMAL
 from contact_laws import base as law_base
-from contact_laws.base import PENETRATION_SCALE, RATE_SCALE, SPEED_SCALE
 
 from ..scene import Scene
 from .cache import cache_folder
+from .header import derivative_function, has_derivative, header, law_function
+from .kernel import PHASES
 from .records import KernelScene
 from .regroup import fill_groups
 
 _ENGINE = Path(__file__).parent
-_TEMPLATE = _ENGINE / "template.py"
+_PHASES = [_ENGINE / "kernel" / f"{phase}.py" for phase in PHASES]
+
+#: The phase modules whose code is the same for both methods: they never read ``ADAPTIVE``
+#: nor call a function of another phase (which their module does not hold).
+METHOD_FREE = ("forces", "tangent", "resolve")
 
 #: About how long compiling one driver of a kernel takes on a 2-core machine [s], with
 #: the engine's own compiled code in the cache, and without (the very first run); and
@@ -57,18 +68,9 @@ def announce(message: str) -> None:
     print(message, file=sys.stderr, flush=True)
 
 
-def _law_function(law_class, kind: str):
-    return law_class.normal_force if kind == "normal" else law_class.coefficient
-
-
 def _classes(laws) -> list[type]:
     unique = {type(law): None for law in laws}
     return sorted(unique, key=lambda c: (c.__module__, c.__qualname__))
-
-
-#: The law classes of the shared kernel, in its index order.
-BUILT_IN_NORMAL = (LinearSpring, Hertz, KelvinVoigt, HuntCrossley, ConstantLoad)
-BUILT_IN_FRICTION = (Coulomb, ExponentialFriction, Stribeck)
 
 
 def _law_classes(arrays) -> tuple[list[type], list[type]]:
@@ -107,108 +109,14 @@ def flags(arrays, tangent: bool = False) -> dict[str, bool]:
     }
 
 
-def _dispatch(name, prefix, classes, arguments):
-    lines = ["@njit_step", f"def {name}(kind, params, {arguments}):"]
-    for index, law_class in enumerate(classes):
-        arity = len(dataclasses.fields(law_class))
-        params = ", ".join(f"params[{p}]" for p in range(arity))
-        lines.append(f"    if kind == {index}:")
-        lines.append(f"        return {prefix}{index}({arguments}, {params})")
-    lines.append("    return 0.0")
-    return "\n".join(lines)
-
-
-def _difference(law, names, position, params, scale, one_sided=False):
-    """Generated lines: the derivative of ``law`` in its argument ``names[position]`` by a
-    central difference (one-sided near 0 where ``one_sided``), as ``NormalLaw.gradient``
-    and ``FrictionLaw.slope`` take it."""
-    argument = names[position]
-
-    def call(shift):
-        moved = [f"{name} {shift} step" if i == position and shift else name
-                 for i, name in enumerate(names)]
-        return f"{law}({', '.join(moved)}, {params})"
-
-    lines = [f"        step = DIFFERENCE_STEP * max(abs({argument}), {scale!r})"]
-    if one_sided:
-        lines.append(f"        if {argument} < step:")
-        lines.append(f"            return ({call('+')} - {call('')}) / step")
-    lines.append(f"        d_{argument} = ({call('+')} - {call('-')}) / (2.0 * step)")
-    return lines
-
-
-def _derivative_dispatch(classes, kind):
-    """Generated ``normal_force_gradient`` or ``friction_slope``: each law's own derivative,
-    or central differences of the law where it gives none."""
-    if kind == "normal":
-        name, names, zero = "normal_force_gradient", ["penetration", "rate"], "0.0, 0.0"
-    else:
-        name, names, zero = "friction_slope", ["slip_speed"], "0.0"
-    arguments = ", ".join(names)
-    lines = ["@njit_step", f"def {name}(kind, params, {arguments}):"]
-    for index, law_class in enumerate(classes):
-        arity = len(dataclasses.fields(law_class))
-        params = ", ".join(f"params[{p}]" for p in range(arity))
-        lines.append(f"    if kind == {index}:")
-        if _has_derivative(law_class, kind):
-            lines.append(f"        return _{kind}_derivative_{index}({arguments}, {params})")
-        elif kind == "normal":
-            lines += _difference(f"_normal_{index}", names, 0, params, PENETRATION_SCALE)
-            lines += _difference(f"_normal_{index}", names, 1, params, RATE_SCALE)
-            lines.append("        return d_penetration, d_rate")
-        else:
-            lines += _difference(f"_friction_{index}", names, 0, params, SPEED_SCALE,
-                                 one_sided=True)
-            lines.append("        return d_slip_speed")
-    lines.append(f"    return {zero}")
-    return "\n".join(lines)
-
-
-def _has_derivative(law_class, kind: str) -> bool:
-    return (law_class.has_analytic_gradient() if kind == "normal"
-            else law_class.has_analytic_slope())
-
-
-def _derivative_function(law_class, kind: str):
-    return law_class.normal_force_gradient if kind == "normal" else law_class.coefficient_slope
-
-
-def header(normal_classes, friction_classes, effect_flags) -> str:
-    """The generated lines a kernel starts with: effect flags and law dispatch."""
-    placeholders = [f"_normal_{i} = None" for i in range(len(normal_classes))]
-    placeholders += [f"_friction_{i} = None" for i in range(len(friction_classes))]
-    placeholders += [f"_{kind}_derivative_{i} = None"
-                     for kind, classes in (("normal", normal_classes),
-                                           ("friction", friction_classes))
-                     for i, law_class in enumerate(classes) if _has_derivative(law_class, kind)]
-    names = ", ".join(c.__qualname__ for c in normal_classes + friction_classes) or "none"
-    return "\n".join([
-        f"# Generated by shroudnet.engine.generate for the laws: {names}. Do not edit.",
-        "from contact_laws.base import DIFFERENCE_STEP",
-        "from shroudnet.engine.compiled import njit_step",
-        *(f"{flag} = {value}" for flag, value in effect_flags.items()),
-        "# Compiled law functions, set by shroudnet.engine.generate before the first call:",
-        *placeholders,
-        "",
-        _dispatch("normal_force", "_normal_", normal_classes, "penetration, rate"),
-        "",
-        _dispatch("friction_coefficient", "_friction_", friction_classes, "slip_speed"),
-        "",
-        _derivative_dispatch(normal_classes, "normal"),
-        "",
-        _derivative_dispatch(friction_classes, "friction"),
-        "",
-        "",
-    ])
-
-
 @functools.cache
-def template_sources() -> tuple[str, str]:
-    """The template's source, and the sources of the modules it is built on: the engine's,
-    and ``contact_laws.base``, whose constants it takes (read once per process)."""
-    paths = [path for path in sorted(_ENGINE.glob("*.py")) if path != _TEMPLATE]
-    engine = "\n".join(path.read_text() for path in paths + [Path(law_base.__file__)])
-    return _TEMPLATE.read_text(), engine
+def phase_sources() -> tuple[tuple[str, ...], str]:
+    """The phase modules' sources (in ``PHASES`` order), and the sources of the modules
+    they are built on: the engine's, and ``contact_laws.base``, whose constants they take
+    (read once per process)."""
+    paths = sorted(_ENGINE.glob("*.py")) + [Path(law_base.__file__)]
+    engine = "\n".join(path.read_text() for path in paths)
+    return tuple(path.read_text() for path in _PHASES), engine
 
 
 def law_sources(law_class, kind: str) -> str:
@@ -216,7 +124,7 @@ def law_sources(law_class, kind: str) -> str:
     modules of the functions (plain or compiled) it reaches through module globals."""
     sources: dict[str, str] = {}
     visited = set()
-    pending = [_law_function(law_class, kind)]
+    pending = [law_function(law_class, kind)]
     while pending:
         item = pending.pop()
         function = getattr(item, "py_func", item)
@@ -237,27 +145,52 @@ def law_sources(law_class, kind: str) -> str:
     return "\n".join(f"# {name}\n{source}" for name, source in sorted(sources.items()))
 
 
-def load_kernel(scene: Scene, tangent: bool = False) -> ModuleType:
-    """The kernel module for the law classes of ``scene``; with ``tangent``, the one that
-    integrates the tangent flow too."""
+def load_kernel(scene: Scene, tangent: bool = False, adaptive: bool = True) -> ModuleType:
+    """The kernel module for the law classes of ``scene`` and a method (adaptive or fixed
+    steps); with ``tangent``, the one that integrates the tangent flow too (adaptive
+    steps only)."""
+    if tangent and not adaptive:
+        raise ValueError("the tangent flow is integrated by the adaptive method only")
     arrays = scene.arrays
     normal_classes, friction_classes = _law_classes(arrays)
     effects = flags(arrays, tangent)
     if built_in(normal_classes, friction_classes):
         effects = {flag: True for flag in effects} | {"HAS_TANGENT": tangent}
-    return _kernel(tuple(normal_classes), tuple(friction_classes), tuple(effects.items()))
+    return _kernel(tuple(normal_classes), tuple(friction_classes), tuple(effects.items()),
+                   adaptive)
+
+
+def _digest(*parts: str) -> str:
+    return hashlib.sha256("\n".join(parts).encode()).hexdigest()[:20]
 
 
 @functools.cache
-def _kernel(normal_classes, friction_classes, effect_flags) -> ModuleType:
-    """The kernel of one combination of law classes and effect flags (once per process)."""
-    template, engine = template_sources()
-    source = header(list(normal_classes), list(friction_classes), dict(effect_flags)) \
-        + template
-    identity = "\n".join([source, engine]
-                         + [law_sources(c, "normal") for c in normal_classes]
-                         + [law_sources(c, "friction") for c in friction_classes])
-    key = hashlib.sha256(identity.encode()).hexdigest()[:20]
+def _kernel(normal_classes, friction_classes, effect_flags, adaptive) -> ModuleType:
+    """The kernel of one combination of law classes, effect flags and method (once per
+    process): the method's phases, run in a namespace that holds the method-free kernel
+    of the same laws (``_method_free``) and ``ADAPTIVE``."""
+    laws = _method_free(normal_classes, friction_classes, effect_flags)
+    phases, _ = phase_sources()
+    key = _digest(laws.CACHE_KEY, f"ADAPTIVE = {adaptive}")
+    module = ModuleType(f"shroudnet_kernel_{key}")
+    module.__dict__.update({name: value for name, value in vars(laws).items()
+                            if not name.startswith("__")})
+    module.__file__ = laws.__file__
+    module.ADAPTIVE = adaptive
+    _run_phases(module, key, [phase for phase in PHASES if phase not in METHOD_FREE], phases)
+    return module
+
+
+@functools.cache
+def _method_free(normal_classes, friction_classes, effect_flags) -> ModuleType:
+    """The header and the method-free phases (``METHOD_FREE``) of a kernel, for both
+    methods: a phase here that read ``ADAPTIVE``, or called a function of another phase,
+    would find no such name."""
+    phases, engine = phase_sources()
+    source = header(list(normal_classes), list(friction_classes), dict(effect_flags))
+    key = _digest(source, *phases, engine,
+                  *[law_sources(c, "normal") for c in normal_classes],
+                  *[law_sources(c, "friction") for c in friction_classes])
     folder = cache_folder()
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"kernel_{key}.py"
@@ -265,28 +198,47 @@ def _kernel(normal_classes, friction_classes, effect_flags) -> ModuleType:
         with tempfile.NamedTemporaryFile("w", dir=folder, suffix=".tmp", delete=False) as f:
             f.write(source)
         os.replace(f.name, path)  # atomic: concurrent processes never see half a file
-    name = f"shroudnet_kernel_{key}"
-    spec = importlib.util.spec_from_file_location(name, path)
+    spec = importlib.util.spec_from_file_location(f"shroudnet_kernel_{key}", path)
     module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
     spec.loader.exec_module(module)
+    _run_phases(module, key, METHOD_FREE, phases)
     for kind, classes in (("normal", normal_classes), ("friction", friction_classes)):
         for index, law_class in enumerate(classes):
-            setattr(module, f"_{kind}_{index}", numba.njit(_law_function(law_class, kind)))
-            if _has_derivative(law_class, kind):
+            setattr(module, f"_{kind}_{index}", numba.njit(law_function(law_class, kind)))
+            if has_derivative(law_class, kind):
                 setattr(module, f"_{kind}_derivative_{index}",
-                        numba.njit(_derivative_function(law_class, kind)))
+                        numba.njit(derivative_function(law_class, kind)))
     module.LAWS = tuple(c.__qualname__ for c in normal_classes + friction_classes)
     module.TANGENT = dict(effect_flags)["HAS_TANGENT"]
     module.SHARED = built_in(normal_classes, friction_classes)
     return module
 
 
-def compiled(driver, arguments) -> tuple[Callable, float]:
-    """``driver`` (a kernel's ``run_fixed_step`` or ``run_adaptive``) ready to call with
-    ``arguments``, and the seconds spent compiling it or loading it from the cache.
+def forget_kernels() -> None:
+    """Forget the kernels built in this process, so that the next ``load_kernel`` builds
+    them again from the phase sources (for tests that plant a change in them)."""
+    _kernel.cache_clear()
+    _method_free.cache_clear()
 
-    A compile is announced before it starts, once per kernel and driver.
+
+def _run_phases(module: ModuleType, key: str, names, phases) -> None:
+    """Run the phase modules ``names`` in ``module``, each compiled from its own file (so
+    that errors name it), their functions cached under ``key`` in the kernel cache folder
+    (``compiled``). The module is registered under its name, as numba's cache looks it
+    up there."""
+    sys.modules[module.__name__] = module
+    module.CACHE_KEY = key
+    module.CACHE_FOLDER = str(cache_folder() / "compiled")
+    for phase, path, source in zip(PHASES, _PHASES, phases):
+        if phase in names:
+            exec(compile(source, str(path), "exec"), module.__dict__)
+
+
+def compiled(driver, arguments) -> tuple[Callable, float]:
+    """``driver`` (a kernel's ``run``) ready to call with ``arguments``, and the seconds
+    spent compiling it or loading it from the cache.
+
+    A compile is announced before it starts, once per kernel.
     """
     if not hasattr(driver, "overloads"):  # NUMBA_DISABLE_JIT=1: plain Python, for debugging
         return driver, 0.0
@@ -298,8 +250,9 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
             flow = " with its tangent flow" if module.TANGENT else ""
             laws = "every built-in contact law (once" if module.SHARED else \
                 f"{' + '.join(module.LAWS)} (once for these law classes"
-            announce(f"shroudnet: compiling the {driver.__name__.removeprefix('run_')} "
-                     f"integrator{flow} for {laws}; about {seconds} s)")
+            method = "adaptive" if module.ADAPTIVE else "fixed_step"
+            announce(f"shroudnet: compiling the {method} integrator{flow} for {laws}; "
+                     f"about {seconds} s)")
         began = time.perf_counter()
         driver.compile(tuple(numba.typeof(a) for a in arguments))
         return driver, time.perf_counter() - began

@@ -33,12 +33,12 @@ KernelScene = namedtuple("KernelScene", [
 ])
 
 #: What a run is asked for, in seconds: the first sample time, the sample spacing and the
-#: number of samples (the last at ``last_sample``); the fixed step (``run_fixed_step``) or
-#: the first trial step (``run_adaptive``) and the number of fixed steps per sample; the
-#: adaptive tolerances (rtol, atol on x [m] and on ẋ [m/s]) and step limits; the event
-#: tolerance; the Zeno guard (switches within a window [s]); and how many events the log
-#: keeps; and whether the tangent's columns are orthonormalised after every step
-#: (``tangent.orthonormalise``, for Lyapunov exponents).
+#: number of samples (the last at ``last_sample``); the fixed step, or the first trial step
+#: of an adaptive run, and the number of fixed steps per sample; the adaptive tolerances
+#: (rtol, atol on x [m] and on ẋ [m/s]) and step limits; the event tolerance; the Zeno
+#: guard (switches within a window [s]); how many events the log keeps; and whether the
+#: tangent's columns are orthonormalised after every step (``tangent.orthonormalise``,
+#: for Lyapunov exponents).
 Controls = namedtuple("Controls", [
     "t0", "sample_step", "n_samples", "step", "steps_per_sample",
     "rtol", "atol_x", "atol_v", "h_max", "h_min",
@@ -57,7 +57,7 @@ State = namedtuple("State", ["x", "v", "energy", "modes", "contact_before", "mot
 #: (2 n_blades × k) holds k tangent vectors, displacement rows then velocity rows;
 #: ``log_growth`` the log of each column's growth removed by orthonormalisation, and
 #: ``history`` its value at every sample. Per interface, from the laws where the flow was
-#: last linearised (``template.linearise``): ∂N/∂u, ∂N/∂u̇, and ∂F/∂u, ∂F/∂u̇ of its force
+#: last linearised (``kernel.tangent.linearise``): ∂N/∂u, ∂N/∂u̇, and ∂F/∂u, ∂F/∂u̇ of its force
 #: F = N sin α + f cos α on the blades (u = x_left − x_right). ``stages``: the tangent of
 #: each Runge–Kutta stage, and ``candidate`` the tangent at the end of a step until the
 #: step's tangent error accepts it. Scratch: ``direction`` (one tangent vector), the changes of the

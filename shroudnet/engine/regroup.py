@@ -212,25 +212,29 @@ def regroup(s, modes, g):
 
 
 @njit_step_exact
-def project_velocities(s, topology, v, momentum):
-    """One velocity per stick cluster, conserving its momentum; 0 in a grounded cluster,
-    the prescribed node's in a driven one. ``momentum`` is scratch, one entry per node.
+def project_velocities(s, topology, values, first, momentum):
+    """One velocity per stick cluster in values[first:first + n_nodes], conserving its
+    momentum; 0 in a grounded cluster, the prescribed node's in a driven one. ``momentum``
+    is scratch, one entry per node. With ``first`` = 0 these are the state's velocities;
+    with n_nodes, the velocity rows of a tangent vector (δx then δẋ), P δy.
 
-    Returns the kinetic energy removed [J] (of the order of the event tolerance).
+    Returns the kinetic energy removed [J] (of the order of the event tolerance for the
+    state's velocities).
     """
     n_clusters = len(topology.grounded)
     for c in range(n_clusters):
         momentum[c] = 0.0
-    for i in range(len(v)):
-        momentum[topology.labels[i]] += s.mass[i] * v[i]
+    n = len(s.mass)
+    for i in range(n):
+        momentum[topology.labels[i]] += s.mass[i] * values[first + i]
     for c in range(n_clusters):
         if topology.driver[c] >= 0:
-            momentum[c] = v[topology.driver[c]]
+            momentum[c] = values[first + topology.driver[c]]
     lost = 0.0
-    for i in range(len(v)):
+    for i in range(n):
         c = topology.labels[i]
         new = momentum[c] if topology.driver[c] >= 0 else (
             0.0 if topology.grounded[c] else momentum[c] / topology.masses[c])
-        lost += 0.5 * s.mass[i] * (v[i] * v[i] - new * new)
-        v[i] = new
+        lost += 0.5 * s.mass[i] * (values[first + i] * values[first + i] - new * new)
+        values[first + i] = new
     return lost

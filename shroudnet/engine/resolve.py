@@ -1,6 +1,6 @@
 """Resolve: the parts of choosing the new modes at a switch that do not evaluate forces.
 
-The mode rule itself (``settle`` in the kernel template) computes static friction, which
+The mode rule itself (``kernel.resolve.settle``) computes static friction, which
 needs the laws; here are the initial modes, the kinds of events, the event log and the
 Zeno guard.
 """

@@ -1,4 +1,4 @@
-"""Runge–Kutta coefficients and the step-size controller's constants.
+"""Runge–Kutta coefficients, and their weighted sums over a step's stages.
 
 The Dormand–Prince 5(4) pair (Dormand & Prince 1980) with Shampine's dense output of
 order 4, as in Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.5–6. ``Tableau`` checks its
@@ -10,6 +10,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+
+from .compiled import njit_inlined
 
 
 class Tableau(NamedTuple):
@@ -83,16 +85,18 @@ DP_C, DP_A, DP_B, DP_E, DP_P = DORMAND_PRINCE
 #: Stages of a Dormand–Prince step, the first-same-as-last stage at its end included.
 DP_STAGES = len(DP_B)
 
-# The step-size controller (Hairer, Nørsett & Wanner §II.4): after a step with scaled
-# error err, the next is h · clip(SAFETY · err^(−1/5), SHRINK_LIMIT, GROW_LIMIT), at most
-# the largest step; a rejected step (err > 1) never grows.
-SAFETY = 0.9
-ERROR_EXPONENT = -0.2
-SHRINK_LIMIT = 0.2
-GROW_LIMIT = 5.0
 
 #: Fractions of an adaptive step where the kinematic guards, and the breakaway margins of
 #: stuck interfaces, are checked on the dense output, so that a contact that closes and
 #: opens again within one step, or a static friction that passes μ_s N and falls back, is
 #: not missed.
 DIP_POINTS = np.array([0.25, 0.5, 0.75])
+
+
+@njit_inlined
+def stage_sum(weights, stages, n_stages, column):
+    """Σ_k weights[k] · stages[k, column] over the first ``n_stages`` Runge–Kutta stages."""
+    total = 0.0
+    for k in range(n_stages):
+        total += weights[k] * stages[k, column]
+    return total

@@ -1,0 +1,118 @@
+"""The header of a kernel: the source that defines its effect flags and law dispatch.
+
+For the law classes of a kernel, in its index order: ``normal_force`` and
+``friction_coefficient`` call the compiled law function of a class index,
+``normal_force_gradient`` and ``friction_slope`` its own derivative, or central
+differences of the law where it gives none (``kernel.generated`` declares them all).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from contact_laws.base import PENETRATION_SCALE, RATE_SCALE, SPEED_SCALE
+
+
+def law_function(law_class, kind: str):
+    """The plain function that holds a law class's math: N(δ, δ̇, *parameters) for a
+    normal law, μ(|v|, *parameters) for a friction law."""
+    return law_class.normal_force if kind == "normal" else law_class.coefficient
+
+
+def _dispatch(name, prefix, classes, arguments):
+    lines = ["@njit_step", f"def {name}(kind, params, {arguments}):"]
+    for index, law_class in enumerate(classes):
+        arity = len(dataclasses.fields(law_class))
+        params = ", ".join(f"params[{p}]" for p in range(arity))
+        lines.append(f"    if kind == {index}:")
+        lines.append(f"        return {prefix}{index}({arguments}, {params})")
+    lines.append("    return 0.0")
+    return "\n".join(lines)
+
+
+def _difference(law, names, position, params, scale, one_sided=False):
+    """Generated lines: the derivative of ``law`` in its argument ``names[position]`` by a
+    central difference (one-sided near 0 where ``one_sided``), as ``NormalLaw.gradient``
+    and ``FrictionLaw.slope`` take it."""
+    argument = names[position]
+
+    def call(shift):
+        moved = [f"{name} {shift} step" if i == position and shift else name
+                 for i, name in enumerate(names)]
+        return f"{law}({', '.join(moved)}, {params})"
+
+    lines = [f"        step = DIFFERENCE_STEP * max(abs({argument}), {scale!r})"]
+    if one_sided:
+        lines.append(f"        if {argument} < step:")
+        lines.append(f"            return ({call('+')} - {call('')}) / step")
+    lines.append(f"        d_{argument} = ({call('+')} - {call('-')}) / (2.0 * step)")
+    return lines
+
+
+def _derivative_dispatch(classes, kind):
+    """Generated ``normal_force_gradient`` or ``friction_slope``: each law's own derivative,
+    or central differences of the law where it gives none."""
+    if kind == "normal":
+        name, names, zero = "normal_force_gradient", ["penetration", "rate"], "0.0, 0.0"
+    else:
+        name, names, zero = "friction_slope", ["slip_speed"], "0.0"
+    arguments = ", ".join(names)
+    lines = ["@njit_step", f"def {name}(kind, params, {arguments}):"]
+    for index, law_class in enumerate(classes):
+        arity = len(dataclasses.fields(law_class))
+        params = ", ".join(f"params[{p}]" for p in range(arity))
+        lines.append(f"    if kind == {index}:")
+        if has_derivative(law_class, kind):
+            lines.append(f"        return _{kind}_derivative_{index}({arguments}, {params})")
+        elif kind == "normal":
+            lines += _difference(f"_normal_{index}", names, 0, params, PENETRATION_SCALE)
+            lines += _difference(f"_normal_{index}", names, 1, params, RATE_SCALE)
+            lines.append("        return d_penetration, d_rate")
+        else:
+            lines += _difference(f"_friction_{index}", names, 0, params, SPEED_SCALE,
+                                 one_sided=True)
+            lines.append("        return d_slip_speed")
+    lines.append(f"    return {zero}")
+    return "\n".join(lines)
+
+
+def has_derivative(law_class, kind: str) -> bool:
+    """Whether a law class gives its own derivative (else the header differentiates it)."""
+    return (law_class.has_analytic_gradient() if kind == "normal"
+            else law_class.has_analytic_slope())
+
+
+def derivative_function(law_class, kind: str):
+    """A law class's own derivative: (∂N/∂δ, ∂N/∂δ̇), or dμ/d|v|."""
+    return law_class.normal_force_gradient if kind == "normal" else law_class.coefficient_slope
+
+
+def header(normal_classes, friction_classes, effect_flags) -> str:
+    """The generated lines a kernel starts with: effect flags and law dispatch. The method
+    (``ADAPTIVE``) and the cache key are set by ``_kernel``, so that both methods share
+    the header's compiled dispatch."""
+    placeholders = [f"_normal_{i} = None" for i in range(len(normal_classes))]
+    placeholders += [f"_friction_{i} = None" for i in range(len(friction_classes))]
+    placeholders += [f"_{kind}_derivative_{i} = None"
+                     for kind, classes in (("normal", normal_classes),
+                                           ("friction", friction_classes))
+                     for i, law_class in enumerate(classes) if has_derivative(law_class, kind)]
+    names = ", ".join(c.__qualname__ for c in normal_classes + friction_classes) or "none"
+    return "\n".join([
+        f"# Generated by shroudnet.engine.generate for the laws: {names}. Do not edit.",
+        "# The phase modules of shroudnet.engine.kernel run after it, in its namespace.",
+        "from contact_laws.base import DIFFERENCE_STEP",
+        "from shroudnet.engine.compiled import njit_step",
+        *(f"{flag} = {value}" for flag, value in effect_flags.items()),
+        "# Compiled law functions, set by shroudnet.engine.generate before the first call:",
+        *placeholders,
+        "",
+        _dispatch("normal_force", "_normal_", normal_classes, "penetration, rate"),
+        "",
+        _dispatch("friction_coefficient", "_friction_", friction_classes, "slip_speed"),
+        "",
+        _derivative_dispatch(normal_classes, "normal"),
+        "",
+        _derivative_dispatch(friction_classes, "friction"),
+        "",
+    ])

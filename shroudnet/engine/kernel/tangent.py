@@ -1,0 +1,187 @@
+"""Tangent: the law-aware half of the tangent flow (law-free: ``shroudnet.engine.tangent``).
+
+The laws' slopes at a state (``linearise``), the tangent through a Dormand–Prince step
+(``tangent_step``), and the gradients of the guards that cross at a switch, which the
+saltation matrices (``shroudnet.engine.saltation``) are built from. Compiled into the
+kernels of runs that integrate the tangent flow; others never call it.
+"""
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from shroudnet.engine.codes import OPEN, SLIP_POSITIVE, STICK
+from shroudnet.engine.compiled import (njit_entry, njit_step, njit_step_exact,
+                                       njit_step_merged)
+from shroudnet.engine.detect import crossed, guard_crossed
+from shroudnet.engine.dynamics import static_friction
+from shroudnet.engine.records import new_switching, new_tangent, new_work
+from shroudnet.engine.regroup import regroup
+from shroudnet.engine.saltation import (breakaway_normal, contact_normal, reduce_to_clusters,
+                                        same_surface, slip_normal)
+from shroudnet.engine.tableau import DP_A, DP_C, DP_STAGES, stage_sum
+from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
+                                      linearised_acceleration, stage_tangent, tangent_error)
+
+if TYPE_CHECKING:
+    from .forces import derivative, sliding_coefficient
+    from .generated import (HAS_FRICTION, HAS_REGULARISED, friction_coefficient,
+                            friction_slope, normal_force_gradient)
+
+
+@njit_step
+def linearise(t, x, v, modes, topology, s, g):
+    """The forces at (t, x, v) into g.work, and each closed interface's slopes into g:
+    ∂N/∂u = ∂N/∂δ sin α and ∂N/∂u̇ = ∂N/∂δ̇ sin α, and, unless it is stuck, ∂F/∂u and ∂F/∂u̇ of
+    F = N sin α + f cos α, with f = μ(|w|) N σ, w = u̇ cos α, σ = ±1 by the slip mode
+    and μ at σw (``sliding_coefficient``): ∂f/∂u = μ σ ∂N/∂u, ∂f/∂u̇ = μ σ ∂N/∂u̇ +
+    N μ'(σw) cos α; for a regularised law σ = tanh(w/ε) and μ at |w|, so the last term is
+    N (μ'(|w|) sgn(w) σ + μ σ') cos α (paper eqs. 2–6)."""
+    derivative(t, x, v, modes, topology, s, g.work, g.acceleration)
+    w = g.work
+    for e in range(len(modes)):
+        g.normal_u[e] = 0.0
+        g.normal_du[e] = 0.0
+        g.force_u[e] = 0.0
+        g.force_du[e] = 0.0
+        if modes[e] == OPEN:
+            continue
+        sine, cosine = s.sin_angle[e], s.cos_angle[e]
+        d_penetration, d_rate = normal_force_gradient(s.normal_kind[e], s.normal_params[e],
+                                                      w.penetration[e], w.rate[e])
+        g.normal_u[e] = d_penetration * sine
+        g.normal_du[e] = d_rate * sine
+        if modes[e] == STICK:
+            continue
+        force_u = sine * g.normal_u[e]
+        force_du = sine * g.normal_du[e]
+        if HAS_FRICTION and s.friction_kind[e] >= 0:
+            kind, params, slip = s.friction_kind[e], s.friction_params[e], w.slip[e]
+            if HAS_REGULARISED and s.regularisation[e] > 0.0:
+                mu = friction_coefficient(kind, params, abs(slip))
+                sigma = math.tanh(slip / s.regularisation[e])
+                d_sigma = (1.0 - sigma * sigma) / s.regularisation[e]
+                sign = 1.0 if slip >= 0.0 else -1.0
+                d_slip = w.normal[e] * (friction_slope(kind, params, abs(slip)) * sign * sigma
+                                        + mu * d_sigma)
+            else:
+                sigma = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
+                mu, slope = sliding_coefficient(kind, params, sigma * slip)
+                d_slip = w.normal[e] * slope
+            force_u += cosine * mu * sigma * g.normal_u[e]
+            force_du += cosine * (mu * sigma * g.normal_du[e] + d_slip * cosine)
+        g.force_u[e] = force_u
+        g.force_du[e] = force_du
+
+
+@njit_entry
+def linearise_at(t, x, v, modes, s, tangent0):
+    """``linearise`` and the vector field's Jacobian at (t, x, v) in ``modes``, callable
+    from Python for tests: returns (J, ẍ), J = ∂(ẋ, ẍ)/∂(x, ẋ) (2 n_blades square)."""
+    n = len(x)
+    g = new_tangent(tangent0, len(modes), 1, new_work(n, len(modes), len(s.motion_amplitude)))
+    topology = regroup(s, modes, new_switching(n, len(modes)))
+    linearise(t, x, v, modes, topology, s, g)
+    jacobian = np.zeros((2 * n, 2 * n))
+    for r in range(2 * n):
+        for q in range(2 * n):
+            g.direction[q] = 1.0 if q == r else 0.0
+        linearised_acceleration(g.direction, s, modes, topology, g)
+        for i in range(n):
+            jacobian[i, r] = g.direction[n + i]
+            jacobian[n + i, r] = g.acceleration_change[i]
+    return jacobian, g.acceleration.copy()
+
+
+@njit_step
+def tangent_step(t, h, state, topology, s, w, controls):
+    """The tangent through the Dormand–Prince step of size h from t just taken (its stages
+    in w), the exact derivative of the step (``tangent``), into state.tangent.candidate;
+    returns its scaled local error (``tangent.tangent_error``). ``commit_tangent`` makes
+    it the tangent."""
+    g = state.tangent
+    x = g.work.xt
+    v = g.work.vt
+    for j in range(DP_STAGES - 1):
+        for i in range(len(x)):
+            x[i] = state.x[i] + h * stage_sum(DP_A[j], w.stage_v, j, i)
+            v[i] = w.stage_v[j, i]
+        linearise(t + DP_C[j] * h, x, v, state.modes, topology, s, g)
+        stage_tangent(j, h, s, state.modes, topology, g)
+    candidate_tangent(h, g)
+    linearise(t + h, w.x_new, w.v_new, state.modes, topology, s, g)
+    last_stage_tangent(s, state.modes, topology, g)
+    return tangent_error(h, controls.rtol, s, g)
+
+
+@njit_step
+def guard_gradient(t, e, state, topology, s, w):
+    """Before a switch at t found on interface e: f⁻ = (ẋ, ẍ) of the modes before it into
+    g.f_minus, and the gradient of the guard that crossed into g.guard_normal; returns
+    its ∂g/∂t (nonzero for a breakaway only, through the excitation)."""
+    g = state.tangent
+    n = len(state.x)
+    for i in range(n):
+        g.f_minus[i] = state.v[i]
+        g.f_minus[n + i] = w.a_end[i]
+    if crossed(state.contact_before[e], w.contact[e]):
+        contact_normal(e, s, g)
+        return 0.0
+    if state.modes[e] != STICK:
+        slip_normal(e, s, g)
+        return 0.0
+    linearise(t, state.x, state.v, state.modes, topology, s, g)
+    gw = g.work
+    static_friction(topology.operator, topology.stuck_interfaces, s.mass, gw.resultant,
+                    g.acceleration, gw.normal, s.sin_angle, s.left, s.right, gw.imbalance,
+                    gw.friction)
+    sign = 1.0 if gw.friction[e] >= 0.0 else -1.0
+    return breakaway_normal(e, sign, t, s, state.modes, topology, g)
+
+
+@njit_step_merged
+def crossings_coincide(t, crossing, time_rate, state, topology, s, w):
+    """Whether every guard crossed together with ``crossing``'s (gradient in
+    g.guard_normal, ∂/∂t ``time_rate``) is the same surface on the stick clusters, as for
+    two interfaces that join the same two clusters: then the switch is one. g.f_plus
+    holds the first gradient meanwhile (it is free until the switch is resolved);
+    g.guard_normal and g.f_minus are left as ``guard_gradient`` of ``crossing`` made them."""
+    g = state.tangent
+    first = g.f_plus
+    for r in range(len(first)):
+        first[r] = g.guard_normal[r]
+    reduce_to_clusters(first, s, topology, g.rows)
+    coincide = True
+    for e in range(len(state.modes)):
+        if e == crossing or not guard_crossed(state, w, e):
+            continue
+        rate = guard_gradient(t, e, state, topology, s, w)
+        reduce_to_clusters(g.guard_normal, s, topology, g.rows)
+        if not same_surface(first, time_rate, g.guard_normal, rate):
+            coincide = False
+            break
+    guard_gradient(t, crossing, state, topology, s, w)
+    return coincide
+
+
+@njit_step_exact
+def crossed_gradients(t, state, topology, s, w, sw):
+    """Every interface whose guard crossed at t, the gradient n of its guard (one row
+    each) and its rate nᵀ f⁻ + ∂g/∂t (``guard_gradient``), into sw.crossings,
+    sw.crossing_normals and sw.crossing_rates, for ``apply_saltations``; returns their
+    number."""
+    g = state.tangent
+    crossings, normals, rates = sw.crossings, sw.crossing_normals, sw.crossing_rates
+    k = 0
+    for e in range(len(state.modes)):
+        if not guard_crossed(state, w, e):
+            continue
+        rate = guard_gradient(t, e, state, topology, s, w)
+        for r in range(len(g.guard_normal)):
+            normals[k, r] = g.guard_normal[r]
+            rate += g.guard_normal[r] * g.f_minus[r]
+        crossings[k] = e
+        rates[k] = rate
+        k += 1
+    return k
