@@ -186,13 +186,22 @@ def jump(values, points):
     return order[-1]
 
 
-def test_a_hardening_contact_folds_the_response_and_the_folds_are_the_jumps_of_sweeps():
+@pytest.fixture(scope="module")
+def hardening_branch():
+    """The branch of a blade against the spring pad ``PAD`` over 7000–14000 rpm, through
+    both folds (read by two tests; computed once)."""
+    return continuation(pad_at(PAD, 1.0), 7000.0, 14000.0)
+
+
+@pytest.mark.slow  # two sweeps of 450-period transients, some 20 s
+def test_a_hardening_contact_folds_the_response_and_the_folds_are_the_jumps_of_sweeps(
+        hardening_branch):
     """A gap that closes bends the resonance to higher speeds: between two folds three
     orbits coexist, the middle one unstable. A sweep of transients up the speed stays on
     the upper branch to the upper fold and drops there; down the speed it stays on the
     lower branch to the lower fold and jumps up there."""
     at = pad_at(PAD, 1.0)
-    branch = continuation(at, 7000.0, 14000.0)
+    branch = hardening_branch
     folds = sorted(b.parameter for b in branch.bifurcations if b.kind == "fold")
     assert len(folds) == 2 and branch.ended == "reached p = 14000"
     lower, upper = folds
@@ -215,12 +224,12 @@ def test_a_hardening_contact_folds_the_response_and_the_folds_are_the_jumps_of_s
     assert "grazing" in kinds
 
 
-def test_a_folded_branch_turns_back_at_its_folds():
+def test_a_folded_branch_turns_back_at_its_folds(hardening_branch):
     """The hardening pad's branch, without the sweeps: the parameter of its points turns
     back twice, and a fold is reported at each turn and nowhere else, located beyond the
     points around it (the branch's extreme parameter), with a real multiplier at +1; the
     orbits between the folds are unstable, those outside stable."""
-    branch = continuation(pad_at(PAD, 1.0), 7000.0, 14000.0)
+    branch = hardening_branch
     p = branch.parameter
     step = np.sign(np.diff(p))
     turns = np.flatnonzero(step[1:] != step[:-1]) + 1  # p[i] is the discrete extreme
