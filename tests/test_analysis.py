@@ -1,5 +1,6 @@
 """Analysis: spectra, the period and chaos classifier, energy measures, Campbell."""
 
+import functools
 import math
 
 import numpy as np
@@ -12,6 +13,7 @@ from shroudnet.scenes import paper_frequency_model, three_blade_paper
 from tests.test_simulate import linear_response
 
 
+@functools.cache  # 700 periods by solve_ivp take seconds; the period-2 section serves twice
 def duffing_section(gamma, *, delta=0.3, omega=1.2, transient=200, record=500):
     """Poincaré points of x'' + δx' − x + x³ = γ cos ωt (the double-well Duffing oscillator
     of Guckenheimer & Holmes, §2.2): period 2 at γ = 0.28, chaotic at γ = 0.5."""
