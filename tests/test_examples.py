@@ -188,7 +188,7 @@ EXAMPLES = {
     "fig20_campbell": ({}, ["fig20_campbell.png"], check_campbell),
     "belt_stick_slip": ({"periods": 20, "transient": 10, "samples_per_period": 100},
                         ["belt_stick_slip.png"], check_belt_stick_slip),
-    "bladed_disc": ({"max_points": 3, "samples": 2, "speeds": 2, "transient": 30,
+    "bladed_disc": ({"max_points": 2, "samples": 2, "speeds": 2, "transient": 30,
                      "record": 5},
                     ["bladed_disc_zzenf.png", "bladed_disc_response.png",
                      "bladed_disc_mistuning.png"], check_bladed_disc),
