@@ -38,6 +38,7 @@ def direct_peaks(scene, speeds):
     return peaks
 
 
+@pytest.mark.slow  # 217 runs: the tuned ring and six samples at 31 speeds
 def test_no_sample_of_a_linearly_coupled_ring_exceeds_whiteheads_bound():
     scene = tuned_ring()
     study = mistuning_study(scene, spread=0.03, samples=6, speeds_rpm=resonance_speeds(scene),

@@ -135,6 +135,7 @@ def test_a_process_pool_gives_the_serial_points_bit_for_bit(serial):
         assert_same_points(sweep(paper_scene_at, GAMMAS, executor=pool, **SETTINGS), serial)
 
 
+@pytest.mark.slow  # starting a local dask cluster of two processes takes seconds
 def test_a_dask_cluster_gives_the_serial_points_bit_for_bit(serial):
     from distributed import Client, LocalCluster
 
