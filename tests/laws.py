@@ -1,5 +1,6 @@
 """Law factories shared by the tests: every built-in law, and one written by a user."""
 
+import math
 from dataclasses import dataclass
 
 from hypothesis import strategies as st
@@ -25,18 +26,29 @@ class CubicSpring(cl.NormalLaw):
 
 @dataclass(frozen=True, kw_only=True)
 class PreloadedStop(cl.NormalLaw):
-    """A stop held by a preloaded spring, N = F0 + k δ: the force jumps to F0 on contact."""
+    """A stop held by a preloaded spring, N = F0 + k δ: the force jumps to F0 on contact.
+
+    It may also carry the faults a law of one's own can have, for the tests of how a run
+    stops: NaN beyond δ = ``reach``, as an interpolation table read past its end gives, and
+    a force that jumps by ``jump`` where δ passes ``step``; by default it has neither.
+    They are fields, not classes of their own, because each law class of one's own
+    compiles a kernel: every scene with a stop and Coulomb friction shares one."""
 
     preload: float
     stiffness: float
+    reach: float = math.inf
+    step: float = math.inf
+    jump: float = 0.0
 
     def __post_init__(self):
         cl.check_real("PreloadedStop", "preload", self.preload, low=0.0, unit="N")
         cl.check_real("PreloadedStop", "stiffness", self.stiffness, low=0.0, unit="N/m")
 
     @staticmethod
-    def normal_force(penetration, rate, preload, stiffness):
-        return preload + stiffness * penetration
+    def normal_force(penetration, rate, preload, stiffness, reach, step, jump):
+        if penetration > reach:
+            return math.nan
+        return preload + stiffness * penetration + (jump if penetration > step else 0.0)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -4,7 +4,6 @@ the interface and what to do, and a run that makes no progress stops instead of 
 (The Zeno stop is reached in ``test_hard_cases``.)
 """
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -15,6 +14,7 @@ import shroudnet.scene
 import shroudnet.engine.generate as generate
 from shroudnet import Adaptive, FixedStep, SimulationError, simulate
 from shroudnet.scenes import three_blade_paper
+from tests.laws import PreloadedStop
 
 
 def sticking_scene(**laws):
@@ -42,24 +42,12 @@ class GrippingOnceSliding(cl.FrictionLaw):
         return mu_slip if slip_speed > 0.0 else mu_static
 
 
-@dataclass(frozen=True, kw_only=True)
-class FaultySpring(cl.NormalLaw):
-    """N = k δ, with the faults a law of one's own may have: NaN beyond δ = ``reach``, as an
-    interpolation table read past its end gives, and a force that jumps by ``jump`` where δ
-    passes ``step``. Each test gives it the fault it needs, the others left out (an
-    infinite reach or step): one class, so that they share one kernel, where a class for
-    each fault would compile one each."""
-
-    stiffness: float
-    reach: float = math.inf
-    step: float = math.inf
-    jump: float = 0.0
-
-    @staticmethod
-    def normal_force(penetration, rate, stiffness, reach, step, jump):
-        if penetration > reach:
-            return math.nan
-        return stiffness * penetration + (jump if penetration > step else 0.0)
+def faulty_scene(**fault):
+    """The paper's group with a contact spring N = k δ (k = 3e5 N/m) that has ``fault``:
+    ``reach`` (NaN beyond it) or ``step`` and ``jump`` (``PreloadedStop`` without preload),
+    and Coulomb friction, so that its kernel is the one of test_hard_cases' stop."""
+    return three_blade_paper(normal=PreloadedStop(preload=0.0, stiffness=3e5, **fault),
+                             friction=cl.Coulomb(mu=0.3))
 
 
 @pytest.fixture
@@ -108,42 +96,42 @@ def test_friction_that_grips_harder_once_sliding_has_no_consistent_mode(unchecke
         simulate(scene, 20)
 
 
-@pytest.mark.slow  # compiles a kernel for its law (one FaultySpring kernel for the file)
+@pytest.mark.slow  # compiles a kernel for its law (the one of test_hard_cases' stop)
 def test_a_law_that_gives_nan_stops_the_adaptive_run_as_not_finite(unchecked_laws):
     """A table law read past its end gives NaN: the adaptive step shrinks in front of it
     until it collapses, and the run says a law gave a non-finite force, not that the
     tolerances are too tight."""
-    scene = three_blade_paper(normal=FaultySpring(stiffness=3e5, reach=1e-6))
+    scene = faulty_scene(reach=1e-6)
     with pytest.raises(SimulationError, match=r"non-finite at t = .*law returned inf or NaN"):
         simulate(scene, 5, method=Adaptive())
 
 
-@pytest.mark.slow  # compiles the fixed-step driver of the FaultySpring kernel
+@pytest.mark.slow  # compiles a kernel for its law (the one of test_hard_cases' stop)
 def test_a_law_that_gives_nan_stops_the_fixed_step_run_as_not_finite(unchecked_laws):
-    scene = three_blade_paper(normal=FaultySpring(stiffness=3e5, reach=1e-6))
+    scene = faulty_scene(reach=1e-6)
     with pytest.raises(SimulationError, match=r"non-finite at t = .*law returned inf or NaN"):
         simulate(scene, 5, method=FixedStep(steps_per_period=200))
 
 
-@pytest.mark.slow  # compiles a kernel for its law (one FaultySpring kernel for the file)
+@pytest.mark.slow  # compiles a kernel for its law (the one of test_hard_cases' stop)
 def test_a_force_jump_the_tolerances_cannot_follow_collapses_the_step():
     """A jump J in the normal force at δ = δ1: a step of h across it errs by about
     h J / m in velocity, against atol·lΩ ≈ 1.3e-9 m/s at atol = 1e-12 m. With J = 1e9 N
     that is still 500 times too much at the smallest step (1e-14 periods = 5e-17 s), so
     the step collapses as it closes in on δ1."""
-    scene = three_blade_paper(normal=FaultySpring(stiffness=3e5, step=1e-6, jump=1e9))
+    scene = faulty_scene(step=1e-6, jump=1e9)
     with pytest.raises(SimulationError, match=r"adaptive step fell below 1e-14 periods at "
                                               r"t = .*jump in a contact law"):
         simulate(scene, 5, method=Adaptive(atol=1e-12))
 
 
-@pytest.mark.slow  # compiles a kernel for its law (one FaultySpring kernel for the file)
+@pytest.mark.slow  # compiles a kernel for its law (the one of test_hard_cases' stop)
 def test_motion_chattering_across_a_force_jump_stops_the_run_instead_of_hanging():
     """With a looser atol the same jump does not collapse the step: the 1e9 N throws the
     blades back each time δ passes δ1, and the steps, some 1e-16 s each, cross it and come
     back, accepted, without end (the run used to hang here). No guard sees the jump, so
     no event is located; the run stops once the steps stay that small."""
-    scene = three_blade_paper(normal=FaultySpring(stiffness=3e5, step=1e-6, jump=1e9))
+    scene = faulty_scene(step=1e-6, jump=1e9)
     with pytest.raises(SimulationError, match=r"adaptive steps stayed below 1e-09 periods for "
                                               r"10000 steps in a row at t = .*"
                                               r"chatter across it"):
