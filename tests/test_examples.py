@@ -19,6 +19,7 @@ ROOT = Path(__file__).resolve().parents[1]
 LABEL = re.compile(r"p\d+|quasi-periodic|chaotic|undetermined")
 
 
+@pytest.mark.slow  # some 12 s: a continuation, a Lyapunov run, a local dask cluster
 def test_readme_python_blocks_run():
     """Each block as it runs pasted into a script of its own (``__name__ == "__main__"``)."""
     blocks = re.findall(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re.S)
@@ -204,7 +205,13 @@ EXAMPLES = {
 }
 
 
-@pytest.mark.parametrize("name", sorted(EXAMPLES))
+#: Examples that take over 10 s even at a test's size: the 24-sector disc's branch.
+SLOW_EXAMPLES = {"bladed_disc"}
+
+
+@pytest.mark.parametrize("name", [pytest.param(name, marks=pytest.mark.slow)
+                                  if name in SLOW_EXAMPLES else name
+                                  for name in sorted(EXAMPLES)])
 def test_example_computes_what_it_claims_and_saves_its_figures(name, tmp_path, capsys):
     example = load_example(name)
     arguments, figures, check = EXAMPLES[name]
