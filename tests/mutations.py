@@ -7,7 +7,7 @@ mutation is a bug the test suite cannot see::
 
     python tests/mutations.py                 # every mutation
     python tests/mutations.py stick-limit     # those whose name (or layer) holds a word
-    python tests/mutations.py ledger          # every mutation of the ledger layer
+    python tests/mutations.py tangent         # every mutation of the tangent layer
     python tests/mutations.py --list
     python tests/mutations.py --check         # does every mutation plant? (no tests run)
     python tests/mutations.py --source DIR    # plant into another checkout's tree
@@ -49,8 +49,10 @@ ROOT = Path(__file__).resolve().parents[1]
 SOURCE_FOLDERS = ("shroudnet", "contact_laws")
 
 #: The parts of the code the mutations must reach, each by at least one: the contact laws,
-#: the scene's model, the compiled loop (forces, events, modes) and the energy ledger.
-LAYERS = ("laws", "model", "loop", "ledger")
+#: the scene's model, the compiled loop (forces, events, modes), the energy ledger, the
+#: tangent flow and its saltation matrices, periodic orbits (Newton on the stroboscopic
+#: map) and continuation (its bifurcation test functions).
+LAYERS = ("laws", "model", "loop", "ledger", "tangent", "orbits", "continuation")
 
 #: Tests that check the physics, run against every mutation unless it names its own.
 PHYSICS_TESTS = (
@@ -63,6 +65,28 @@ PHYSICS_TESTS = (
     "tests/test_simulate.py",
     "tests/test_baseline_and_bench.py",
 )
+
+#: The tests aimed at the tangent flow, the orbits and the continuation.
+MONODROMY = "tests/test_tangent.py::test_monodromy_agrees_with_differences_of_the_trajectory"
+#: Its cases, each run alone: a mutation of the engine compiles the kernels of those it
+#: runs. Breakaway is seen only where the friction drops as it slips (μ(0⁺) < μ_s, a law of
+#: the tests' own): elsewhere the vector field is continuous there, and its saltation P.
+SLIP_REVERSAL, STICKING, DROPPING, SPRING_BREAKAWAY, DAMPED_IMPACT = (
+    f"{MONODROMY}[{case}]" for case in ("slip reversal", "stick and breakaway",
+                                        "friction dropping at breakaway",
+                                        "stick and breakaway on a spring pad",
+                                        "damped impact"))
+STUCK_CLUSTER = "tests/test_tangent.py::test_monodromy_of_an_all_stuck_cluster_moves_it_as_one_body"
+APART = ("tests/test_tangent.py::"
+         "test_apart_interfaces_switching_at_the_same_instant_multiply_their_saltations")
+LINEAR_NEWTON = "tests/test_orbits.py::test_newton_solves_a_linear_scene_in_one_step"
+UNSTABLE_ORBIT = "tests/test_orbits.py::test_newton_finds_an_unstable_orbit_that_transients_leave"
+FOLDS = "tests/test_orbits.py::test_a_folded_branch_turns_back_at_its_folds"
+DOUBLING = ("tests/test_orbits.py::"
+            "test_a_period_doubling_starts_a_doubled_branch_that_a_transient_lands_on")
+TORUS = ("tests/test_orbits.py::"
+         "test_the_papers_resonance_loses_period_one_at_a_torus_bifurcation")
+
 
 @dataclass(frozen=True)
 class Mutation:
@@ -136,6 +160,75 @@ MUTATIONS = (
              "damping += s.damping[i] * v[i] * v[i]",
              "damping += 0.5 * s.damping[i] * v[i] * v[i]",
              "the ledger books half the viscous loss"),
+    # ---- tangent: the saltation matrices S = P + (f⁺ − P f⁻) nᵀ / (nᵀ f⁻ + ∂g/∂t) --------
+    Mutation("saltation-jump-dropped", "tangent",
+             "            matrix[r, column] = g.f_minus[r] + jump[r] * along * along_scale",
+             "            matrix[r, column] = g.f_minus[r]",
+             "a switch multiplies the tangent by P alone, without (f⁺ − P f⁻) nᵀ / ġ",
+             (SLIP_REVERSAL, STICKING)),
+    Mutation("saltation-time-rate-sign", "tangent",
+             "    rate = time_rate\n", "    rate = -time_rate\n",
+             "ġ takes ∂g/∂t (the breakaway guard's, through the excitation) with the wrong "
+             "sign", (DROPPING,)),
+    Mutation("contact-normal-on-velocity", "tangent",
+             "        g.guard_normal[s.left[e]] += s.sin_angle[e]",
+             "        g.guard_normal[len(s.mass) + s.left[e]] += s.sin_angle[e]",
+             "the contact guard's gradient ∂δ/∂y sits in the velocity rows (seen only where "
+             "the force jumps as the contact closes: a damped contact)", (DAMPED_IMPACT,)),
+    Mutation("slip-normal-on-position", "tangent",
+             "        g.guard_normal[n + s.left[e]] += s.cos_angle[e]",
+             "        g.guard_normal[s.left[e]] += s.cos_angle[e]",
+             "the slip guard's gradient ∂(u̇ cos α)/∂y sits in the position rows",
+             (SLIP_REVERSAL,)),
+    Mutation("breakaway-normal-friction-sign", "tangent",
+             "    return -sign * change", "    return sign * change",
+             "the breakaway guard μ_s N − |f| changes with +sgn(f) δf, not −sgn(f) δf "
+             "(under a constant load its whole gradient and ∂g/∂t flip, which S does not "
+             "see: a spring pad's μ_s δN does not flip)", (SPRING_BREAKAWAY,)),
+    Mutation("breakaway-normal-without-the-load", "tangent",
+             "g.guard_normal[r] = s.static_mu[e] * normal_change",
+             "g.guard_normal[r] = 0.0 * normal_change",
+             "the breakaway guard μ_s N − |f| is differentiated as if N were constant (as it "
+             "is for a constant load, not for a spring pad)", (SPRING_BREAKAWAY,)),
+    Mutation("saltations-at-one-instant-drop-jumps", "tangent",
+             "            matrix[r, column] = g.f_minus[r] + (jump[r] * along[k] if k >= 0 else "
+             "0.0)",
+             "            matrix[r, column] = g.f_minus[r]",
+             "interfaces apart that switch at one instant multiply the tangent by P alone",
+             (APART,)),
+    Mutation("cluster-projection-by-velocity-not-momentum", "tangent",
+             "        momentum[topology.labels[i]] += s.mass[i] * values[first + i]",
+             "        momentum[topology.labels[i]] += values[first + i]",
+             "velocities are projected onto a stick cluster (P of the saltations, and the "
+             "state's at stick onset) by their sum over its mass, not by its momentum",
+             (STUCK_CLUSTER,)),
+    # ---- orbits: Newton's step (M − I) Δy = −(φ(y) − y) ----------------------------------
+    Mutation("newton-without-monodromy", "orbits",
+             "change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)",
+             "change = least_squares(-np.eye(len(y)), y - step.end)",
+             "Newton's step is y ← φ(y), the plain iteration of the map, which finds only "
+             "stable orbits, and those slowly", (LINEAR_NEWTON, UNSTABLE_ORBIT)),
+    Mutation("newton-monodromy-transposed", "orbits",
+             "change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)",
+             "change = least_squares(step.jacobian.T - np.eye(len(y)), y - step.end)",
+             "Newton's step solves with Mᵀ − I: the multipliers are right, the step is not",
+             (LINEAR_NEWTON, UNSTABLE_ORBIT)),
+    # ---- continuation: the test functions of the smooth bifurcations ---------------------
+    Mutation("fold-test-on-a-state-component", "continuation",
+             "    if a.tangent[-1] * b.tangent[-1] < 0.0:",
+             "    if a.tangent[0] * b.tangent[0] < 0.0:",
+             "a fold is looked for where a displacement, not the parameter, turns back",
+             (FOLDS,)),
+    Mutation("period-doubling-test-at-plus-one", "continuation",
+             "np.linalg.eigvals(point.step.jacobian) + 1.0",
+             "np.linalg.eigvals(point.step.jacobian) - 1.0",
+             "a period doubling is located on det(M − I), the fold's test, not det(M + I)",
+             (DOUBLING,)),
+    Mutation("torus-test-plus-one", "continuation",
+             "np.prod(values[i] * values[j] - 1.0)",
+             "np.prod(values[i] * values[j] + 1.0)",
+             "a torus bifurcation is located on Π (μ_i μ_j + 1), which never vanishes on the "
+             "unit circle", (TORUS,)),
 )
 
 
@@ -229,7 +322,7 @@ def check(mutations, tree: Path, every_layer: bool) -> int:
     for m in mutations:
         place = "-" if m.name in found else where(m, tree)
         verdict = found.get(m.name, "plants")
-        print(f"{m.name:44s} {m.layer:12s} {place:34s} {verdict}")
+        print(f"{m.name:44s} {m.layer:12s} {place:40s} {verdict}")
     if "layers" in found:
         print(found["layers"])
     counts = ", ".join(f"{layer} {sum(m.layer == layer for m in mutations)}"
