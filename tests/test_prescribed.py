@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from contact_laws import ConstantLoad, Coulomb, Stribeck
+from contact_laws import ConstantLoad, Coulomb, LinearSpring, Stribeck
 from shroudnet import (Adaptive, AntiPhase, Blade, BladeGroup, ConstantVelocity, Coupling,
                        Excitation, FixedStep, HarmonicMotion, Interface, Mode, MotionTable,
                        Scene, assemble, linear_modes, monodromy, periodic_orbit,
@@ -33,12 +33,19 @@ BELT_SPEED = 0.1
 
 
 def belt(motion=ConstantVelocity(velocity=BELT_SPEED), block=BLOCK, speed_rpm=600.0,
-         load=LOAD, friction=FRICTION):
+         load=LOAD, friction=FRICTION, far_wall=False):
     """A block on a spring to ground, pressed on a moving belt with velocity-weakening
-    friction; no excitation. u = x_block − x_belt, so the slip velocity is ẋ − V."""
+    friction; no excitation. u = x_block − x_belt, so the slip velocity is ẋ − V.
+
+    With ``far_wall``, also a spring contact to a fixed wall 1 m away, which the block never
+    reaches: for a friction law of one's own, the scene then has the law classes and
+    effects of ``test_tangent``'s ``beside_a_still_node`` scenes, and shares their kernel."""
     group = BladeGroup().add_blade("block", block).add_prescribed("belt", motion)
     group.connect("block", "belt", Interface(gap=0.0, angle=0.0, normal=ConstantLoad(force=load),
                                              friction=friction))
+    if far_wall:
+        group.add_fixed("wall").connect("block", "wall", Interface(
+            gap=1.0, angle=1.0, normal=LinearSpring(stiffness=1e6)))
     return Scene(group=group, excitation=NO_EXCITATION, speed_rpm=speed_rpm)
 
 
@@ -253,7 +260,7 @@ def test_monodromy_through_stick_and_breakaway_on_a_shaker_agrees_with_differenc
     assert_monodromy_agrees_with_differences(scene)
 
 
-@pytest.mark.slow  # compiles a kernel for its law (shared with test_tangent's case)
+@pytest.mark.slow  # compiles a kernel for its law (shared with test_tangent's cases)
 def test_monodromy_of_friction_that_drops_at_breakaway_on_a_shaker_agrees_with_differences():
     """With μ(0) = μ_s and μ(0⁺) = μ_k < μ_s, the friction drops by (μ_s − μ_k) N as the
     blade breaks away from the shaker: the breakaway saltation gets a jump term,
@@ -264,7 +271,8 @@ def test_monodromy_of_friction_that_drops_at_breakaway_on_a_shaker_agrees_with_d
     (at the default 1e-10 s they agree to 2e-5 only)."""
     scene = belt(HarmonicMotion(amplitude=1e-4, frequency=100.0),
                  block=Blade(mass=0.1, damping=2.0, stiffness=1e5), speed_rpm=6000.0,
-                 load=12.0, friction=StaticKinetic(mu_static=0.4, mu_kinetic=0.3))
+                 load=12.0, friction=StaticKinetic(mu_static=0.4, mu_kinetic=0.3),
+                 far_wall=True)
     assert_monodromy_agrees_with_differences(scene, event_tolerance=1e-13)
 
 

@@ -28,7 +28,8 @@ from shroudnet.engine.generate import kernel_scene, load_kernel
 from shroudnet.scenes import three_blade_paper
 from tests.groups import states
 from tests.laws import StaticKinetic
-from tests.test_physics_references import BLADE, IDLE, IDLE_BLADE, SPEED_RPM, facing_pads
+from tests.test_physics_references import (BLADE, FAR, IDLE, IDLE_BLADE, SPEED_RPM,
+                                           facing_pads)
 
 #: The trajectories the differences are taken of: as exact as the integrator goes.
 EXACT = Adaptive(rtol=1e-12)
@@ -232,15 +233,22 @@ def pads_scene(interface, amplitudes=(0.0, 20.0), blade=BLADE):
 
 
 def beside_a_still_node(interface, amplitudes=(0.0, 20.0), blade=BLADE):
-    """A blade facing its fixed pad across ``interface``, without idle blades, and a
-    prescribed node at rest that touches nothing. For a law of one's own, which gets a
-    kernel of its own whatever the scene: the law classes and effects are then those of
-    ``test_prescribed``'s shaker scenes with the same laws, so that the two files compile
-    one kernel between them (the compile is nearly all of such a test's time). The node
-    adds nothing to the motion or to the monodromy, which has the blades' rows only."""
+    """A blade facing its fixed pad across ``interface``, without idle blades, and two
+    contacts that never act: one pressed by a constant load along y (α = 0, no friction:
+    no force along x) on a prescribed node at rest, and a spring contact to a wall 1 m
+    away. For a friction law of one's own, which gets a kernel of its own whatever the
+    scene: with a constant load and a spring contact (contact events), a prescribed node
+    and no other law, every such scene has the law classes and effects of
+    ``test_prescribed``'s shaker case with the same friction, and they all compile one
+    kernel (the compile is nearly all of such a test's time). The idle contacts add
+    nothing to the motion or to the monodromy, which has the blade's rows only."""
     group = BladeGroup().add_blade("blade1", blade).add_fixed("pad1")
     group.connect("blade1", "pad1", interface)
-    group.add_prescribed("still", ConstantVelocity(velocity=0.0))
+    group.add_prescribed("still", ConstantVelocity(velocity=0.0)).add_fixed("wall")
+    group.connect("blade1", "still", Interface(gap=0.0, angle=0.0,
+                                                normal=ConstantLoad(force=1.0)))
+    group.connect("blade1", "wall", Interface(gap=FAR, angle=1.0,
+                                               normal=LinearSpring(stiffness=1e6)))
     excitation = Excitation(engine_order=1, amplitudes=amplitudes, phases=[0.0])
     return Scene(group=group, excitation=excitation, speed_rpm=SPEED_RPM)
 
@@ -282,8 +290,7 @@ CASES = {
         (0.0, 0.0), 20),
     # the same friction, pressed by a preloaded spring pad: the normal force moves with
     # the blade, so the breakaway guard μ_s N − |f| changes with N too (with a constant
-    # load it does not), and the jump term carries its gradient. No built-in law drops
-    # at breakaway, and no other test has these laws: a kernel of its own
+    # load it does not), and the jump term carries its gradient
     "stick and breakaway on a spring pad": (
         beside_a_still_node(Interface(gap=-1e-4, angle=0.5, normal=LinearSpring(stiffness=1e6),
                                       friction=StaticKinetic(mu_static=0.6, mu_kinetic=0.4)),
@@ -294,7 +301,8 @@ CASES = {
 }
 
 
-#: Cases with a law of the user's own: they compile a kernel (``beside_a_still_node``).
+#: Cases with a law of the user's own: they compile a kernel, one between them and
+#: ``test_prescribed``'s shaker case (``beside_a_still_node``).
 OWN_KERNEL = {"friction dropping at breakaway", "stick and breakaway on a spring pad"}
 
 
