@@ -45,7 +45,7 @@ def first_inside(t, h, state, topology, s, w, controls):
     return theta
 
 
-@njit_step_merged
+@njit_step
 def breakaway(t, h, state, topology, s, w, controls):
     """The first fraction of the step of size h from t where a stuck interface's breakaway
     margin has crossed, else 2.
@@ -54,7 +54,8 @@ def breakaway(t, h, state, topology, s, w, controls):
     whole excursion of the static friction beyond μ_s N. The margins are sampled inside
     the step (at ``DIP_POINTS`` of an adaptive step, the first two kept in
     w.contact_trial and w.motion_trial; at the ``MIDDLE`` of a fixed one), then checked
-    where a parabola through the samples and the step's ends puts them lowest.
+    where a parabola through the samples and the step's ends puts them lowest. Compiled
+    on its own: it runs only while something is stuck, and costs force evaluations then.
     """
     modes, before = state.modes, state.motion_before
     points = DIP_POINTS if ADAPTIVE else MIDDLE

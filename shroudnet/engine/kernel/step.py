@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from shroudnet.engine.advance import dense_motion, set_powers
 from shroudnet.engine.codes import N_POWERS, PROJECTION
 from shroudnet.engine.compiled import njit_step, njit_step_merged
-from shroudnet.engine.controller import scaled_error
+from shroudnet.engine.controller import accepted, scaled_error
 from shroudnet.engine.tableau import DP_A, DP_B, DP_C, DP_STAGES, stage_sum
 
 if TYPE_CHECKING:
@@ -121,7 +121,7 @@ def trial_step(t, h, state, topology, s, w, controls):
         rk4_guarded(t, h, state, topology, s, w)
         return 0.0
     error = dp5_step(t, h, state, topology, s, w, controls)
-    if HAS_TANGENT and state.tangent.matrix.shape[1] > 0 and error <= 1.0:
+    if HAS_TANGENT and state.tangent.matrix.shape[1] > 0 and accepted(error):
         error = max(error, tangent_step(t, h, state, topology, s, w, controls))
     return error
 
