@@ -57,6 +57,7 @@ def event_total(scene, periods, method, **options):
     return sum(simulate(scene, periods, method=method, **options).events.counts.values())
 
 
+@pytest.mark.slow
 @pytest.mark.timeout(1500)  # compiles in fresh processes, then every kind of kernel
 def test_the_benchmark_prints_every_section_with_figures_that_hold_together(capsys):
     """``--quick`` prints every section, and its figures are what they say: parts no larger

@@ -85,8 +85,8 @@ def test_a_kernel_function_is_named_by_its_phase_module_and_line(monkeypatch):
     phases, engine = generate.phase_sources()
     forces = PHASES.index("forces")
     planted = list(phases)
-    planted[forces] = phases[forces].replace(
-        "    law_forces(s, modes, w)\n", "    law_forces(s, modes, w)\n    w.mistyped[0] = 0.0\n", 1)
+    call = "    law_forces(s, modes, w)\n"
+    planted[forces] = phases[forces].replace(call, call + "    w.mistyped[0] = 0.0\n", 1)
     line = planted[forces].splitlines().index("    w.mistyped[0] = 0.0") + 1
     monkeypatch.setattr(generate, "phase_sources", lambda: (tuple(planted), engine))
     generate.forget_kernels()
