@@ -223,7 +223,6 @@ def test_contact_angle_near_zero_keeps_friction_finite():
     assert np.abs(sim.x - free).max() <= deviation + integration
 
 
-@pytest.mark.slow  # compiles a kernel without stick
 def test_contact_angle_of_a_right_angle_holds_no_friction():
     """α = π/2: cos α = 0, so friction has no component along x and cannot stick."""
     sim = simulate(three_blade_paper(alpha=math.pi / 2), 50, method=Adaptive())
