@@ -23,7 +23,7 @@ def cache_folder() -> Path:
 
 
 def _engine_files() -> list[Path]:
-    return [p for p in (_ENGINE / "__pycache__").glob("*") if p.suffix in _NUMBA_SUFFIXES]
+    return [p for p in _ENGINE.rglob("__pycache__/*") if p.suffix in _NUMBA_SUFFIXES]
 
 
 def cache_size() -> tuple[int, int]:

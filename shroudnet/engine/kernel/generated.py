@@ -30,8 +30,11 @@ HAS_TANGENT: bool = False
 #: or classical Runge–Kutta 4 on a fixed grid (False). It decides only how the state
 #: inside a step is obtained (``step.motion_inside``) and how steps are sized and recorded.
 ADAPTIVE: bool = True
-#: The kernel's cache key: its compiled functions are cached under names that carry it.
-KERNEL_KEY: str = ""
+#: The key of what a phase's code is made of, which its compiled functions' names carry,
+#: and the folder numba caches them in (``compiled``): set by ``generate`` before each
+#: phase runs, read by the compile flavours, never by the phases themselves.
+CACHE_KEY: str = ""
+CACHE_FOLDER: str = ""
 
 
 def normal_force(kind: int, params, penetration: float, rate: float) -> float:
