@@ -83,6 +83,7 @@ from .simulate import simulate as simulate
 from .stability import LyapunovExponents as LyapunovExponents
 from .stability import lyapunov as lyapunov
 from .stability import monodromy as monodromy
+from .substructure import Substructure as Substructure
 from .simulation import EnergyLedger as EnergyLedger
 from .engine.codes import EventKind as EventKind
 from .simulation import EventLog as EventLog
