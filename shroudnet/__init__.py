@@ -41,6 +41,7 @@ from .analysis import classify_section as classify_section
 from .analysis import friction_loss_per_cycle as friction_loss_per_cycle
 from .analysis import spectrum as spectrum
 from .analysis import zero_one_test as zero_one_test
+from .beam import cantilever_beam as cantilever_beam
 from .blade import Blade as Blade
 from .blade import ConstantFrequency as ConstantFrequency
 from .blade import FrequencyTable as FrequencyTable
