@@ -78,6 +78,8 @@ from .engine.codes import Mode as Mode
 from .orbits import ConvergenceError as ConvergenceError
 from .orbits import PeriodicOrbit as PeriodicOrbit
 from .orbits import periodic_orbit as periodic_orbit
+from .reduction import craig_bampton as craig_bampton
+from .reduction import modal_truncation as modal_truncation
 from .scene import Scene as Scene
 from .scene import SceneArrays as SceneArrays
 from .simulate import simulate as simulate
