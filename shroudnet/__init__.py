@@ -59,6 +59,7 @@ from .excitation import EngineOrderWave as EngineOrderWave
 from .excitation import Excitation as Excitation
 from .excitation import ExplicitPhases as ExplicitPhases
 from .excitation import TravellingWave as TravellingWave
+from .fe_files import read_matrices as read_matrices
 from .group import BladeGroup as BladeGroup
 from .interface import Interface as Interface
 from .linear import GroupCampbell as GroupCampbell

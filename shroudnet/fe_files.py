@@ -1,0 +1,145 @@
+"""Reading finite-element matrices from files: numpy ``.npz`` and MATLAB ``.mat``.
+
+An FE tool exports its mass and stiffness matrices (ANSYS, Abaqus, NASTRAN through a small
+script; MATLAB with ``save('blade.mat', 'M', 'K', '-v7')``). The matrices are found by name:
+
+- ``.npz`` (``numpy.savez``): a dense array under the name, or a sparse matrix as
+  coordinate triplets under ``<name>_rows``, ``<name>_cols``, ``<name>_values`` (0-based) and
+  ``<name>_shape``. Pickled objects are refused.
+- ``.mat`` (``scipy.io.savemat``, MATLAB up to v7): dense or sparse variables. MATLAB's
+  v7.3 files are HDF5, which ``scipy.io.loadmat`` does not read: save with ``-v7``.
+
+Units are the file's: give SI (kg, N/m) or know what the frequencies mean.
+"""
+
+from __future__ import annotations
+
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import scipy.io
+import scipy.sparse
+
+from .substructure import Substructure, square_matrix
+
+#: The file kinds read, by extension.
+EXTENSIONS = (".npz", ".mat")
+#: The arrays of a sparse matrix stored as coordinate triplets in an ``.npz``.
+TRIPLET_SUFFIXES = ("_rows", "_cols", "_values", "_shape")
+
+
+@dataclass(frozen=True, eq=False)
+class FEMatrices:
+    """The matrices read from one file: each an (N, N) float ndarray or ``csr_array``.
+
+    ``damping`` is None where it was not asked for.
+    """
+
+    path: Path
+    mass: object
+    stiffness: object
+    damping: object = None
+
+    @property
+    def n_dofs(self) -> int:
+        """N, the number of degrees of freedom of the file's model."""
+        return self.mass.shape[0]
+
+
+def read_matrices(path, mass: str = "M", stiffness: str = "K",
+                  damping: str | None = None) -> FEMatrices:
+    """Read M and K (and C if ``damping`` names it) from an ``.npz`` or ``.mat`` file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file; its extension, ``.npz`` or ``.mat``, says how to read it.
+    mass, stiffness, damping : str
+        The names of the matrices in the file.
+
+    Returns
+    -------
+    FEMatrices
+        Square float matrices of one size, dense or sparse as stored; their symmetry and
+        definiteness are checked where they are used (``Substructure``, the reductions).
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> file = pathlib.Path(tempfile.mkdtemp()) / "blade.npz"
+    >>> np.savez(file, M=np.eye(2), K=np.array([[2.0, -1.0], [-1.0, 1.0]]))
+    >>> read_matrices(file).stiffness
+    array([[ 2., -1.],
+           [-1.,  1.]])
+    """
+    path = Path(path)
+    if path.suffix.lower() not in EXTENSIONS:
+        raise ValueError(f"read_matrices reads {' and '.join(EXTENSIONS)} files, got "
+                         f"{path.name!r}")
+    if not path.is_file():
+        raise FileNotFoundError(f"read_matrices: no file {str(path)!r}")
+    arrays = _read_npz(path) if path.suffix.lower() == ".npz" else _read_mat(path)
+    names = {"mass": mass, "stiffness": stiffness, "damping": damping}
+    matrices = {}
+    for field, name in names.items():
+        if name is None:
+            continue
+        if not isinstance(name, str):
+            raise TypeError(f"read_matrices.{field} must be the name of a matrix in the file, "
+                            f"got {type(name).__name__}")
+        if name not in arrays:
+            found = ", ".join(sorted(arrays)) or "nothing"
+            raise ValueError(f"{path.name!r} has no matrix {name!r} ({field}=); it holds: "
+                             f"{found}")
+        matrices[field] = square_matrix(f"{path.name}[{name!r}] ({field})", arrays[name])
+    size = matrices["mass"].shape[0]
+    for field, matrix in matrices.items():
+        if matrix.shape[0] != size:
+            raise ValueError(f"{path.name!r}: the {field} matrix {names[field]!r} is "
+                             f"{matrix.shape[0]} × {matrix.shape[0]}, the mass {size} × {size}")
+    return FEMatrices(path=path, **matrices)
+
+
+def substructure_from_file(path, *, points, load=None, mass: str = "M", stiffness: str = "K",
+                           damping: str | None = None, damping_ratios=None,
+                           excitation_scale: float = 1.0) -> Substructure:
+    """A ``Substructure`` of the matrices in ``path`` (see ``read_matrices``) with the given
+    ``points``, ``load``, ``damping_ratios`` and ``excitation_scale`` (as for
+    ``Substructure``). For a model too large to use as it is, read the matrices and reduce
+    them (``craig_bampton``, ``modal_truncation``) instead."""
+    matrices = read_matrices(path, mass=mass, stiffness=stiffness, damping=damping)
+    return Substructure(matrices.mass, matrices.stiffness, matrices.damping,
+                        damping_ratios=damping_ratios, points=points, load=load,
+                        excitation_scale=excitation_scale)
+
+
+def _read_npz(path: Path) -> dict[str, object]:
+    try:
+        with np.load(path, allow_pickle=False) as archive:
+            arrays = {name: archive[name] for name in archive.files}
+    except (ValueError, OSError, zipfile.BadZipFile) as error:
+        raise ValueError(f"{path.name!r} is not a readable .npz of numeric arrays ({error})") \
+            from None
+    for name in [key[:-len("_rows")] for key in arrays if key.endswith("_rows")]:
+        parts = [f"{name}{suffix}" for suffix in TRIPLET_SUFFIXES]
+        if name in arrays or not all(part in arrays for part in parts):
+            continue
+        rows, cols, values, shape = (arrays.pop(part) for part in parts)
+        shape = tuple(int(s) for s in np.ravel(shape))
+        if len(shape) != 2:
+            raise ValueError(f"{path.name!r}: {name}_shape must hold two sizes, got {shape}")
+        arrays[name] = scipy.sparse.coo_array((values, (rows, cols)), shape=shape).tocsr()
+    return arrays
+
+
+def _read_mat(path: Path) -> dict[str, object]:
+    try:
+        contents = scipy.io.loadmat(str(path))
+    except NotImplementedError:
+        raise ValueError(f"{path.name!r} is a MATLAB v7.3 (HDF5) file, which this reader "
+                         "does not read: save it with save(..., '-v7')") from None
+    except ValueError as error:
+        raise ValueError(f"{path.name!r} is not a readable .mat file ({error})") from None
+    return {name: value for name, value in contents.items() if not name.startswith("__")}
