@@ -1,7 +1,8 @@
 """A blade group: blades are nodes, shroud interfaces and couplings are edges of a networkx
 graph.
 
-Every node carries the attribute ``blade`` (a ``Blade``, or None for a fixed node: the disc,
+Every node carries the attribute ``blade`` (a ``Blade`` or a ``Substructure``, a node of
+many degrees of freedom, or None for a fixed node: the disc,
 the casing, a damper platform, whose displacement is x ≡ 0, and for a prescribed-motion
 node) and ``motion`` (the ``Motion`` of a prescribed-motion node, else None: a belt, a
 shaker, whose displacement is a given function of time). Every edge carries either
@@ -9,7 +10,9 @@ shaker, whose displacement is a given function of time). Every edge carries eith
 ``Coupling``: a linear spring and damper that never does), ``left`` (the name of its left
 node i, so that u = x_left − x_right; see ``shroudnet.interface``) and ``index`` (its
 position in the interface or the coupling arrays: the order of its kind's ``connect``
-calls).
+calls). An edge between points of nodes (``connect`` with (node, point) ends) also
+carries ``left_point`` and ``right_point``, the point names at its left and right ends
+(None at a fixed or prescribed node, or where the node's only point is meant).
 """
 
 from __future__ import annotations
@@ -24,6 +27,12 @@ from .blade import Blade
 from .coupling import Coupling
 from .interface import Interface
 from .motion import ConstantVelocity, HarmonicMotion, Motion, MotionTable
+from .substructure import Substructure
+
+#: An end of an edge: a node's name, or (node name, point name).
+End = Hashable | tuple[Hashable, str]
+#: The one point of a ``Blade``: its displacement x.
+BLADE_POINT = "x"
 
 
 class BladeGroup:
@@ -45,10 +54,13 @@ class BladeGroup:
 
     # -- building ---------------------------------------------------------------------------
 
-    def add_blade(self, name: Hashable, blade: Blade) -> BladeGroup:
-        """Add a blade node called ``name``; returns the group so calls can be chained."""
-        if not isinstance(blade, Blade):
-            raise TypeError(f"add_blade({name!r}, ...) needs a shroudnet.Blade, got {blade!r}")
+    def add_blade(self, name: Hashable, blade: Blade | Substructure) -> BladeGroup:
+        """Add a blade node called ``name``: a ``Blade`` (one mass) or a ``Substructure``
+        (a structure of many degrees of freedom with named points); returns the group so
+        calls can be chained."""
+        if not isinstance(blade, Blade | Substructure):
+            raise TypeError(f"add_blade({name!r}, ...) needs a shroudnet.Blade or "
+                            f"shroudnet.Substructure, got {blade!r}")
         self._add_node(name, blade)
         return self
 
@@ -67,13 +79,21 @@ class BladeGroup:
         self._add_node(name, None, motion)
         return self
 
-    def connect(self, left: Hashable, right: Hashable,
-                interface: Interface | Coupling) -> BladeGroup:
+    def connect(self, left: End, right: End, interface: Interface | Coupling) -> BladeGroup:
         """Join ``left`` (node i) and ``right`` (node j) by ``interface``: an ``Interface``
-        (a contact) or a ``Coupling`` (a spring and damper); returns the group."""
+        (a contact) or a ``Coupling`` (a spring and damper); returns the group.
+
+        An end is a node's name, or a (node name, point name) tuple that joins a point of
+        a ``Substructure``: ``connect(("blade1", "shroud"), ("blade2", "shroud"), shroud)``.
+        A substructure's end names its point unless the substructure has only one; a
+        ``Blade`` has the one point ``"x"``, its displacement.
+        """
         if not isinstance(interface, Interface | Coupling):
             raise TypeError(f"connect({left!r}, {right!r}, ...) needs a shroudnet.Interface "
                             f"or a shroudnet.Coupling, got {interface!r}")
+        where = f"connect({left!r}, {right!r})"
+        (left, left_point), (right, right_point) = (self._end(left, interface, where),
+                                                    self._end(right, interface, where))
         for end in (left, right):
             if end not in self.graph:
                 raise ValueError(f"connect({left!r}, {right!r}): unknown node {end!r}; "
@@ -87,8 +107,48 @@ class BladeGroup:
                              "fixed or prescribed), so nothing between them can move")
         kind = "interface" if isinstance(interface, Interface) else "coupling"
         index = sum(1 for *_, data in self.graph.edges(data=True) if kind in data)
-        self.graph.add_edge(left, right, left=left, index=index, **{kind: interface})
+        points = {} if left_point is None and right_point is None else {
+            "left_point": left_point, "right_point": right_point}
+        self.graph.add_edge(left, right, left=left, index=index, **{kind: interface},
+                            **points)
         return self
+
+    def _end(self, end, interface, where) -> tuple[Hashable, str | None]:
+        """(node, point) of an edge's end, checked against the node and the interface."""
+        node, point = (end if isinstance(end, tuple) and len(end) == 2
+                       and isinstance(end[1], str) else (end, None))
+        if node not in self.graph:
+            raise ValueError(f"{where}: unknown node {node!r}; add it first (nodes: "
+                             f"{list(self.graph)})")
+        body = self.graph.nodes[node]["blade"]
+        if isinstance(body, Substructure):
+            names = list(body.points)
+            if point is None:
+                if len(names) != 1:
+                    raise ValueError(f"{where}: node {node!r} is a Substructure with points "
+                                     f"{names}; name one, as ({node!r}, point)")
+                point = names[0]
+            elif point not in body.points:
+                raise ValueError(f"{where}: node {node!r} has no point {point!r}; its "
+                                 f"points are {names}")
+            size = body.point(point).shape[0]
+        elif point is not None and not (isinstance(body, Blade) and point == BLADE_POINT):
+            kind = "a Blade, whose one point is 'x'" if body is not None \
+                else "fixed or prescribed, with no points"
+            raise ValueError(f"{where}: node {node!r} is {kind}; got the point {point!r}")
+        else:
+            size = 1
+        wanted = getattr(interface, "components", None)
+        if body is not None and wanted is not None and size != wanted:
+            raise ValueError(f"{where}: point {point!r} of node {node!r} has {size} "
+                             f"component(s), but the interface's directions have {wanted}")
+        if body is not None and wanted is None and size != 1 and isinstance(interface,
+                                                                           Interface):
+            raise ValueError(f"{where}: point {point!r} of node {node!r} has {size} "
+                             "components: give the Interface normal_direction= and "
+                             "tangent_direction= (the angle form joins points of one "
+                             "component)")
+        return node, point
 
     def _add_node(self, name: Hashable, blade: Blade | None, motion: Motion | None = None
                   ) -> None:
@@ -189,6 +249,21 @@ class BladeGroup:
                 if motion is not None]
 
     @property
+    def has_substructures(self) -> bool:
+        """Whether a node is a ``Substructure``, or an edge joins named points."""
+        return any(isinstance(blade, Substructure) for _, blade in
+                   self.graph.nodes(data="blade")) or any(
+            "left_point" in data or getattr(data.get("interface"), "components", None)
+            for *_, data in self.graph.edges(data=True))
+
+    def edge_points(self, kind: str) -> list[tuple[str | None, str | None]]:
+        """(left point, right point) of every interface (``kind`` "interface") or coupling
+        ("coupling"), in the order of ``interfaces`` or ``couplings``."""
+        edges = sorted((data for *_, data in self.graph.edges(data=True) if kind in data),
+                       key=lambda data: data["index"])
+        return [(data.get("left_point"), data.get("right_point")) for data in edges]
+
+    @property
     def interfaces(self) -> list[tuple[Hashable, Hashable, Interface]]:
         """(left, right, interface) for every interface, in the order they were connected."""
         return self._edges("interface")
@@ -204,8 +279,8 @@ class BladeGroup:
         return [(data["left"], b if data["left"] == a else a, data[kind])
                 for a, b, data in edges]
 
-    def blade(self, name: Hashable) -> Blade:
-        """The ``Blade`` at node ``name``."""
+    def blade(self, name: Hashable) -> Blade | Substructure:
+        """The ``Blade`` or ``Substructure`` at node ``name``."""
         blade = self.graph.nodes[name]["blade"]
         if blade is None:
             kind = "prescribed" if self.graph.nodes[name].get("motion") else "fixed"

@@ -175,7 +175,7 @@ def start_states(scene, periods, guess, transient, method, event_tolerance) -> l
     """Where Newton starts: ``guess`` (checked); or the ``STARTS`` stroboscopic states of
     the second half of a ``transient`` from rest that come closest to themselves after
     ``periods`` periods (near-returns lie near an orbit), closest first."""
-    n = len(scene.blades)
+    n = scene.arrays.n_blades
     if guess is not None:
         parts = [np.asarray(part, dtype=float) for part in guess] \
             if isinstance(guess, tuple | list) and len(guess) == 2 else [np.asarray(guess)]

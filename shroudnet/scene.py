@@ -19,6 +19,8 @@ from contact_laws import FrictionLaw, NormalLaw, check_real
 from .excitation import EngineOrderWave, Excitation, ExplicitPhases
 from .group import BladeGroup
 from .motion import Motion
+from .structural import Layout, lower
+from .substructure import Substructure
 
 #: Below this |cos α| friction has no component along x: such an interface never sticks.
 _NO_TANGENTIAL = 1e-12
@@ -58,6 +60,19 @@ class SceneArrays:
     coupling_stiffness: np.ndarray  # k_c [N/m]
     coupling_damping: np.ndarray    # c_c [N·s/m]
     motions: tuple[Motion, ...] = ()  # the prescribed-motion nodes, by position − n_blades
+    # A scene with substructures (``structural``): its "blades" are coordinates, and these
+    # hold what per-blade arrays cannot (None for a scene of blades):
+    normal_rows: np.ndarray | None = None   # n_e over all coordinates (prescribed last)
+    tangent_rows: np.ndarray | None = None  # t_e
+    normal_gap: np.ndarray | None = None    # δ_e = n_e·x − normal_gap_e [m]
+    structure_stiffness: np.ndarray | None = None  # K̃, couplings included, all coordinates
+    structure_damping: np.ndarray | None = None    # C̃
+    layout: Layout | None = None            # where each node's coordinates and points are
+
+    @property
+    def is_structure(self) -> bool:
+        """Whether the scene has substructures (its arrays are by coordinate)."""
+        return self.layout is not None
 
     @property
     def n_blades(self) -> int:
@@ -87,12 +102,17 @@ class SceneArrays:
     def stiffness_matrix(self) -> np.ndarray:
         """K [N/m] of M ẍ + C ẋ + K x: the blades' own springs k_i on the diagonal, plus
         each coupling's k_c on the rows and columns of its two nodes (a coupling to a fixed
-        node adds to the diagonal only). Interfaces are not in it."""
+        node adds to the diagonal only). Interfaces are not in it. With substructures, K̃
+        of the free coordinates."""
+        if self.is_structure:
+            return self.structure_stiffness[:self.n_blades, :self.n_blades].copy()
         return edge_matrix(self.stiffness, self.coupling_left, self.coupling_right,
                               self.coupling_stiffness)
 
     def damping_matrix(self) -> np.ndarray:
         """C [N·s/m]: the blades' c_i and the couplings' c_c, as ``stiffness_matrix``."""
+        if self.is_structure:
+            return self.structure_damping[:self.n_blades, :self.n_blades].copy()
         return edge_matrix(self.damping, self.coupling_left, self.coupling_right,
                               self.coupling_damping)
 
@@ -169,8 +189,12 @@ class Scene:
             object.__setattr__(self, "excitation",
                                dataclasses.replace(self.excitation, phases=wave))
         self.excitation.blade_phases(n_blades)  # raises if the count or the ND is wrong
-        for name in frozen.blades:
-            frozen.blade(name).stiffness_at(self.speed_rpm)  # raises outside a table's range
+        for name in frozen.blades:  # raises outside a table's range
+            body = frozen.blade(name)
+            if isinstance(body, Substructure):
+                body.matrices_at(self.speed_rpm)
+            else:
+                body.stiffness_at(self.speed_rpm)
         check_held(frozen, self.speed_rpm)
         check_user_laws(self)
 
@@ -202,7 +226,10 @@ class Scene:
 
     @cached_property
     def arrays(self) -> SceneArrays:
-        """The scene lowered to flat arrays (computed once)."""
+        """The scene lowered to flat arrays (computed once): by blade, or with
+        substructures by coordinate (``structural``)."""
+        if self.group.has_substructures:
+            return SceneArrays(**lower(self))
         names = self.blades
         position = {name: i for i, name in enumerate(names)}
         prescribed = self.group.prescribed
@@ -261,7 +288,7 @@ def check_held(group: BladeGroup, speed_rpm: float) -> None:
     """
     moving = group.graph.subgraph(group.blades)
     for part in nx.connected_components(moving):
-        held = any(group.blade(name).stiffness_at(speed_rpm) > 0.0 for name in part) or any(
+        held = any(_grounded(group.blade(name), speed_rpm) for name in part) or any(
             group.graph.nodes[other]["blade"] is None
             for name in part for other in group.graph.neighbors(name))
         if not held:
@@ -271,6 +298,14 @@ def check_held(group: BladeGroup, speed_rpm: float) -> None:
                 "none is joined to a fixed node, so they can drift away together as a rigid "
                 "body. Give one of them a stiffness, or connect one to a fixed node "
                 "(add_fixed) by a Coupling or an Interface.")
+
+
+def _grounded(body, speed_rpm) -> bool:
+    """Whether a node has a spring to ground: k > 0, or a substructure's K(Ω) with no
+    rigid-body mode."""
+    if isinstance(body, Substructure):
+        return bool(body.frequencies_at(speed_rpm)[0] > 0.0)
+    return body.stiffness_at(speed_rpm) > 0.0
 
 
 # ---- the contract of user laws, probed --------------------------------------------------

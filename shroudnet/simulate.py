@@ -128,7 +128,7 @@ def integrate(scene: Scene, periods: int, *,
     if isinstance(method, FixedStep) and method.steps_per_period % samples_per_period:
         raise ValueError(f"samples_per_period must divide FixedStep.steps_per_period = "
                          f"{method.steps_per_period}, got {samples_per_period}")
-    n = len(scene.blades)
+    n = scene.arrays.n_blades  # coordinates, with substructures
     x0, v0 = (np.zeros(n), np.zeros(n)) if initial is None else (
         _initial(initial[0], n, "x0"), _initial(initial[1], n, "v0"))
     _check_memory(scene, periods, samples_per_period, event_capacity)
@@ -254,7 +254,7 @@ def output_bytes(scene: Scene, periods: int, samples_per_period: int,
     and friction forces (float64) and modes (int8) per interface and the work columns;
     and the event log (time, interface, kind) at its capacity."""
     n_samples = periods * samples_per_period + 1
-    blades, interfaces = len(scene.blades), len(scene.group.interfaces)
+    blades, interfaces = scene.arrays.n_blades, len(scene.group.interfaces)
     per_sample = 8 * (1 + 2 * blades + 2 * interfaces + len(WorkColumn)) + interfaces
     return n_samples * per_sample + event_capacity * (8 + 8 + 1)
 
@@ -314,6 +314,12 @@ def _stored(scene, t, x, v, modes):
     kinetic = 0.5 * np.sum(a.mass * v * v)
     x_p, v_p = a.prescribed_state(t)
     x, v = np.concatenate([x, x_p]), np.concatenate([v, v_p])
+    if a.is_structure:
+        strain = 0.5 * x @ a.structure_stiffness @ x
+        penetration = a.normal_rows @ x - a.normal_gap
+        contact = sum(_contact_energy(law, penetration[e])
+                      for e, law in enumerate(a.normal_laws) if modes[e] != Mode.OPEN)
+        return kinetic + strain, contact
     strain = 0.5 * x @ edge_matrix(np.concatenate([a.stiffness, np.zeros(len(x_p))]),
                                    a.coupling_left, a.coupling_right,
                                    a.coupling_stiffness) @ x

@@ -103,7 +103,7 @@ def stroboscopic_step(scene: Scene, periods: int, initial=None, *,
                       event_tolerance: float = EVENT_TOLERANCE) -> StroboscopicStep:
     """φ and its Jacobian from ``initial`` = (x0, v0) (default at rest), in one run of the
     state with the 2N × 2N tangent flow. Arguments as ``monodromy``."""
-    n = len(scene.blades)
+    n = scene.arrays.n_blades
     run = integrate(scene, periods, method=method, samples_per_period=1,
                     event_tolerance=event_tolerance, initial=initial, event_capacity=0,
                     tangent=np.eye(2 * n)).run
@@ -171,7 +171,7 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
     seed : int
         Seed of the random initial tangent vectors.
     """
-    n = len(scene.blades)
+    n = scene.arrays.n_blades
     periods = check_int("lyapunov", "periods", periods, low=LYAPUNOV_BLOCKS)
     transient = check_int("lyapunov", "transient", transient, low=0)
     exponents = check_int("lyapunov", "exponents", exponents, low=1, high=2 * n)

@@ -226,7 +226,7 @@ def _modes(stuck):
 @njit
 def _regrouped_after(nodes, modes_before, modes):
     """Regroup ``modes`` into storage that held the grouping of ``modes_before``."""
-    store = new_switching(len(nodes.mass), len(modes))
+    store = new_switching(len(nodes.mass), len(modes), len(nodes.mass))
     fill_groups(nodes, modes_before, store)
     n_clusters, n_stuck = fill_groups(nodes, modes, store)
     return (store.labels.copy(), store.grounded[:n_clusters].copy(),
@@ -291,6 +291,7 @@ def test_the_effect_flags_follow_the_law_classes():
     assert generate.flags(arrays) == {"HAS_CONTACT_EVENTS": True, "HAS_STICK": True,
                                       "HAS_FRICTION": True, "HAS_REGULARISED": False,
                                       "HAS_COUPLINGS": False, "HAS_PRESCRIBED": False,
+                                      "HAS_STRUCTURES": False,
                                       "HAS_TANGENT": False}
     assert generate.flags(arrays, tangent=True)["HAS_TANGENT"]
 

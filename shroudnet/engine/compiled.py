@@ -57,6 +57,8 @@ from numba.core import caching
 
 _STEP = {"cache": True, "_nrt": False, "error_model": "numpy", "no_cfunc_wrapper": True,
          "fastmath": {"contract", "reassoc"}}
+#: The step path's options without caching (for code compiled inside its callers).
+STEP_OPTIONS = {key: value for key, value in _STEP.items() if key != "cache"}
 _NOT_FROM_PYTHON = {"no_cpython_wrapper": True}
 
 

@@ -13,7 +13,9 @@ import numpy as np
 from .advance import dense_motion
 from .codes import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 from .compiled import njit_inlined, njit_inlined_callable
-from .dynamics import interface_kinematics, relative_motion
+from .dispatch import by_scene
+from .dynamics import relative_motion
+from .structures import kinematics, structure_contact_guard
 from .tableau import DIP_POINTS
 
 
@@ -107,11 +109,14 @@ def stuck_crossed(topology, state, s, w):
 
 
 @njit_inlined
-def contact_guard(e, x, v, modes, s):
+def blade_contact_guard(e, x, v, modes, s):
     """Interface e's contact guard g (−δ while open, δ while closed) [m] and ġ [m/s]."""
     u, du = relative_motion(x, v, s.left, s.right, e)
     side = -s.sin_angle[e] if modes[e] == OPEN else s.sin_angle[e]
     return side * (u - s.gap[e]), side * du
+
+
+contact_guard = by_scene("contact_guard", blade_contact_guard, structure_contact_guard)
 
 
 @njit_inlined
@@ -176,8 +181,7 @@ def kinematic_guards(x, v, modes, s, w, contact, motion):
     """The contact and slip guards at (x, v) into ``contact`` and ``motion``, from the
     kinematics alone (left in w.penetration, w.rate, w.slip): no force is evaluated, so
     a stuck interface's breakaway margin there is not to be read."""
-    interface_kinematics(x, v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
-                         w.penetration, w.rate, w.slip)
+    kinematics(x, v, s, w.penetration, w.rate, w.slip)
     event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu, s.opens,
                  s.can_stick, contact, motion)
 

@@ -150,6 +150,14 @@ def interface_kinematics(x, v, left, right, gap, sin_angle, cos_angle,
         slip_velocity[e] = du * cos_angle[e]
 
 
+@njit_inlined
+def blade_kinematics(x, v, s, penetration, rate, slip_velocity):
+    """``interface_kinematics`` of the scene ``s``'s interfaces (``structures.kinematics``
+    joins it with the substructures' version)."""
+    interface_kinematics(x, v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
+                         penetration, rate, slip_velocity)
+
+
 @njit_inlined_callable
 def resultant_forces(x, v, q, damping, stiffness, left, right, interface_force, stuck,
                      resultant):

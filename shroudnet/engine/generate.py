@@ -45,7 +45,7 @@ from ..scene import Scene
 from .cache import cache_folder
 from .header import derivative_function, has_derivative, header, law_function
 from .kernel import PHASES
-from .records import KernelScene
+from .records import KernelScene, StructureScene
 from .regroup import fill_groups
 
 _ENGINE = Path(__file__).parent
@@ -105,6 +105,7 @@ def flags(arrays, tangent: bool = False) -> dict[str, bool]:
         "HAS_REGULARISED": any(f.exact is not f for f in frictions),
         "HAS_COUPLINGS": arrays.n_couplings > 0,
         "HAS_PRESCRIBED": arrays.n_prescribed > 0,
+        "HAS_STRUCTURES": arrays.is_structure,
         "HAS_TANGENT": tangent,
     }
 
@@ -155,7 +156,8 @@ def load_kernel(scene: Scene, tangent: bool = False, adaptive: bool = True) -> M
     normal_classes, friction_classes = _law_classes(arrays)
     effects = flags(arrays, tangent)
     if built_in(normal_classes, friction_classes):
-        effects = {flag: True for flag in effects} | {"HAS_TANGENT": tangent}
+        effects = {flag: True for flag in effects} | {
+            "HAS_TANGENT": tangent, "HAS_STRUCTURES": arrays.is_structure}
     return _kernel(tuple(normal_classes), tuple(friction_classes), tuple(effects.items()),
                    adaptive)
 
@@ -266,7 +268,7 @@ def _cached(driver) -> bool:
         return False
 
 
-def kernel_scene(scene: Scene) -> KernelScene:
+def kernel_scene(scene: Scene) -> KernelScene | StructureScene:
     """The scene's arrays with each law given as (index of its class, parameter row), and
     its prescribed-motion nodes after the blades (``KernelScene``)."""
     a = scene.arrays
@@ -289,7 +291,7 @@ def kernel_scene(scene: Scene) -> KernelScene:
     amplitudes = a.harmonic_amplitudes
     phases = np.concatenate([a.harmonic_phases, np.zeros((len(amplitudes), len(terms)))],
                             axis=1)
-    return KernelScene(
+    fields = dict(
         mass=nodes(a.mass), damping=nodes(a.damping), stiffness=nodes(a.stiffness),
         left=a.left, right=a.right,
         gap=a.gap, sin_angle=a.sin_angle, cos_angle=a.cos_angle, opens=a.opens,
@@ -308,6 +310,11 @@ def kernel_scene(scene: Scene) -> KernelScene:
         motion_phase=np.array([t.phase for t in terms], dtype=float),
         motion_times=times, motion_accelerations=accelerations,
         motion_knots=np.array([len(t.knot_times) for t in terms], dtype=np.int64))
+    if not a.is_structure:
+        return KernelScene(**fields)
+    return StructureScene(**fields, normal_rows=a.normal_rows, tangent_rows=a.tangent_rows,
+                          normal_gap=a.normal_gap, stiffness_matrix=a.structure_stiffness,
+                          damping_matrix=a.structure_damping)
 
 
 def _rows(laws) -> np.ndarray:

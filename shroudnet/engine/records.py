@@ -32,6 +32,19 @@ KernelScene = namedtuple("KernelScene", [
     "motion_times", "motion_accelerations", "motion_knots",
 ])
 
+#: A scene with substructures as the compiled loop sees it: the ``KernelScene`` fields,
+#: with one entry per degree of freedom (coordinate) where a ``KernelScene`` has one per
+#: blade, and the structure that those cannot express. A substructure's coordinates are
+#: its modal coordinates, mass-normalised (``mass`` 1), so the mass stays diagonal; its
+#: stiffness and damping, with the couplings', are the n × n ``stiffness_matrix`` and
+#: ``damping_matrix``. Interface e sees the penetration δ_e = n_e·x − ``normal_gap[e]`` and
+#: the slip velocity t_e·ẋ, with n_e and t_e the rows of ``normal_rows`` and
+#: ``tangent_rows``, and pushes the coordinates by −(N_e n_e + f_e t_e). The per-blade
+#: ``damping``, ``stiffness``, the couplings' and the angles' fields are unused.
+StructureScene = namedtuple("StructureScene", KernelScene._fields + (
+    "normal_rows", "tangent_rows", "normal_gap", "stiffness_matrix", "damping_matrix",
+))
+
 #: What a run is asked for, in seconds: the first sample time, the sample spacing and the
 #: number of samples (the last at ``last_sample``); the fixed step, or the first trial step
 #: of an adaptive run, and the number of fixed steps per sample; the adaptive tolerances
@@ -157,14 +170,17 @@ def new_work(n_blades, n_interfaces, n_prescribed):
 
 
 @njit_internal
-def new_switching(n_nodes, n_interfaces):
-    n, m = n_nodes, n_interfaces
+def new_switching(n_nodes, n_interfaces, square):
+    """A ``Switching`` for n_nodes nodes and n_interfaces interfaces, with G Gᵀ, its factor
+    and its inverse ``square`` × ``square``: n_nodes for stick clusters; for stick as
+    constraints (``constraints``), at least n_interfaces."""
+    n, m, q = n_nodes, n_interfaces, square
     return Switching(np.zeros(m, dtype=np.bool_), np.zeros(n, dtype=np.int64),
                      np.zeros(n, dtype=np.bool_), np.zeros(n, dtype=np.int64), np.zeros(n),
                      np.zeros((m, n)), np.zeros(m, dtype=np.int64),
                      np.zeros(n + 1, dtype=np.int64), np.zeros((m, 2), dtype=np.int64),
-                     np.zeros((m, 2)), np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n)),
-                     np.zeros(n),
+                     np.zeros((m, 2)), np.zeros((q, q)), np.zeros((q, q)), np.zeros((q, q)),
+                     np.zeros(q),
                      np.zeros(m, dtype=np.int64), np.zeros(m, dtype=np.bool_),
                      np.zeros(m, dtype=np.int64), np.zeros(n),
                      np.zeros(m, dtype=np.int64), np.zeros((m, 2 * n)), np.zeros(m),
@@ -213,18 +229,25 @@ def allocate(s, x0, v0, tangent0, controls, flow):
     arrays, the switches' storage, event log, output), with the tangent from ``tangent0``
     (2 n_nodes × k) for a kernel with the tangent ``flow``, else a ``NoTangent``."""
     n_nodes, n_interfaces, n_prescribed = len(s.mass), len(s.gap), len(s.motion_amplitude)
-    tangent = _in_python(new_tangent)(
+    tangent = plain(new_tangent)(
         tangent0, n_interfaces, controls.n_samples,
-        _in_python(new_work)(n_nodes, n_interfaces, n_prescribed)) if flow \
+        plain(new_work)(n_nodes, n_interfaces, n_prescribed)) if flow \
         else NoTangent(tangent0.copy())
     return (new_state(x0, v0, tangent, n_interfaces),
-            _in_python(new_work)(n_nodes, n_interfaces, n_prescribed),
-            _in_python(new_switching)(n_nodes, n_interfaces),
+            plain(new_work)(n_nodes, n_interfaces, n_prescribed),
+            plain(new_switching)(n_nodes, n_interfaces, square_size(s)),
             new_events(controls.event_capacity, controls.zeno_events),
             new_output(controls.n_samples, n_nodes, n_interfaces))
 
 
-def _in_python(allocator):
+def square_size(s) -> int:
+    """The side of a run's ``Switching.gram``: one row per node for stick clusters, per
+    interface too for stick as constraints (``constraints``)."""
+    n_nodes = len(s.mass)
+    return max(n_nodes, len(s.gap)) if isinstance(s, StructureScene) else n_nodes
+
+
+def plain(allocator):
     """The allocator as plain Python (numpy): compiled, it is callable from compiled code
     only."""
     return getattr(allocator, "py_func", allocator)

@@ -14,6 +14,8 @@ import numpy as np
 from .clusters import label_clusters
 from .codes import STICK
 from .compiled import njit_entry, njit_inlined, njit_step_exact, njit_step_merged
+from .constraints import project_onto_constraints, regroup_constraints
+from .dispatch import by_scene
 from .records import Topology, new_switching
 
 
@@ -67,7 +69,7 @@ def static_friction_operator(n_nodes, n_blades, left, right, cos_angle, stuck, l
     operator : float array (n_stuck, n_nodes)
     stuck_interfaces : int64 array (n_stuck,)
     """
-    g = new_switching(n_nodes, len(stuck))
+    g = new_switching(n_nodes, len(stuck), n_nodes)
     for e in range(len(stuck)):
         g.stuck[e] = stuck[e]
     for i in range(n_nodes):
@@ -141,8 +143,8 @@ def _spd_inverse(matrix, labels, lower, inverse):
     """The inverse of a symmetric positive definite matrix into ``inverse``, by Cholesky
     factorisation (into ``lower``), block-diagonal by ``labels``: an entry between two
     labels is zero in the matrix, and so in its factor and its inverse; those are left
-    out."""
-    n = len(matrix)
+    out. Only the first len(labels) rows and columns are read and written."""
+    n = len(labels)
     for i in range(n):
         for j in range(n):
             lower[i, j] = 0.0
@@ -200,7 +202,7 @@ def fill_groups(s, modes, g):
 
 
 @njit_step_merged
-def regroup(s, modes, g):
+def regroup_clusters(s, modes, g):
     """Stick clusters and the static friction operator of a set of modes, refilled into
     ``g`` (``records.Switching``): a ``Topology`` of views of it, valid until g is refilled.
 
@@ -212,7 +214,7 @@ def regroup(s, modes, g):
 
 
 @njit_step_exact
-def project_velocities(s, topology, values, first, momentum):
+def project_onto_clusters(s, topology, values, first, momentum):
     """One velocity per stick cluster in values[first:first + n_nodes], conserving its
     momentum; 0 in a grounded cluster, the prescribed node's in a driven one. ``momentum``
     is scratch, one entry per node. With ``first`` = 0 these are the state's velocities;
@@ -238,3 +240,10 @@ def project_velocities(s, topology, values, first, momentum):
         lost += 0.5 * s.mass[i] * (values[first + i] * values[first + i] - new * new)
         values[first + i] = new
     return lost
+
+
+#: The stick clusters (one-mass blades) or constraints (substructures) of a set of modes.
+regroup = by_scene("regroup", regroup_clusters, regroup_constraints)
+#: The velocities projected onto the stuck interfaces' clusters or constraints.
+project_velocities = by_scene("project_velocities", project_onto_clusters,
+                              project_onto_constraints)

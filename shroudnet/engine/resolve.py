@@ -8,7 +8,8 @@ Zeno guard.
 from .codes import (BREAKAWAY, CLOSING, OPEN, REVERSAL, SEPARATION, SLIP_NEGATIVE,
                     SLIP_POSITIVE, STICK, STICKING)
 from .compiled import njit_inlined, njit_step
-from .dynamics import interface_kinematics
+from .dispatch import by_scene
+from .structures import kinematics, structure_slip_acceleration
 
 
 @njit_step
@@ -16,8 +17,7 @@ def initial_modes(state, s, w, candidates):
     """Modes at the start, into state.modes: closed where δ > 0 (or the law never opens),
     stuck where possible; which interfaces are candidates for stick, into ``candidates``."""
     modes = state.modes
-    interface_kinematics(state.x, state.v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
-                         w.penetration, w.rate, w.slip)
+    kinematics(state.x, state.v, s, w.penetration, w.rate, w.slip)
     for e in range(len(modes)):
         candidates[e] = False
         if s.opens[e] and w.penetration[e] <= 0.0:
@@ -30,7 +30,7 @@ def initial_modes(state, s, w, candidates):
 
 
 @njit_inlined
-def relative_acceleration(s, e, acceleration):
+def blade_slip_acceleration(s, e, acceleration):
     """(ẍ_i − ẍ_j) cos α of interface e: the rate of change of its slip velocity."""
     value = 0.0
     if s.left[e] >= 0:
@@ -38,6 +38,10 @@ def relative_acceleration(s, e, acceleration):
     if s.right[e] >= 0:
         value -= acceleration[s.right[e]]
     return value * s.cos_angle[e]
+
+
+relative_acceleration = by_scene("relative_acceleration", blade_slip_acceleration,
+                                 structure_slip_acceleration)
 
 
 @njit_inlined

@@ -14,8 +14,12 @@ that do not commute are counted as singular, never silently multiplied in.
 """
 
 from .compiled import njit_inlined, njit_step, njit_step_exact
+from .constraints import reduce_to_constraints
+from .dispatch import by_scene
 from .dynamics import cluster_accelerations, excitation_rate, prescribed_acceleration
 from .regroup import project_velocities
+from .structures import (structure_breakaway_normal, structure_contact_normal,
+                         structure_saltations, structure_slip_normal)
 from .tangent import linearised_acceleration, time_scale
 
 #: A switch is grazing when its saltation's correction (f⁺ − P f⁻) nᵀ / ġ would stretch
@@ -51,7 +55,7 @@ def count_singular(t, e, g):
 
 
 @njit_step
-def reduce_to_clusters(normal, s, topology, rows):
+def reduce_on_clusters(normal, s, topology, rows):
     """n ← Pᵀ n: a guard's gradient as it acts on tangents of the stick clusters of
     ``topology`` (P as ``regroup.project_velocities``): each velocity component becomes
     its cluster's sum times the blade's share of the cluster's mass, 0 in a grounded
@@ -92,7 +96,7 @@ def same_surface(first, first_rate, second, second_rate):
 
 
 @njit_step
-def contact_normal(e, s, g):
+def blade_contact_normal(e, s, g):
     """∂g/∂y of interface e's contact guard (±δ, δ = (u − Δ) sin α) into g.guard_normal."""
     for r in range(len(g.guard_normal)):
         g.guard_normal[r] = 0.0
@@ -103,7 +107,7 @@ def contact_normal(e, s, g):
 
 
 @njit_step
-def slip_normal(e, s, g):
+def blade_slip_normal(e, s, g):
     """∂g/∂y of interface e's slip guard (± u̇ cos α) into g.guard_normal."""
     n = len(s.mass)
     for r in range(len(g.guard_normal)):
@@ -125,7 +129,7 @@ def _static_friction_change(k, sign, s, topology, g):
 
 
 @njit_step
-def breakaway_normal(e, sign, t, s, modes, topology, g):
+def blade_breakaway_normal(e, sign, t, s, modes, topology, g):
     """∂g/∂y into g.guard_normal, and ∂g/∂t returned, of the breakaway guard
     g = μ_s N_e − |f_e| of stuck interface e, whose static friction f_e has the sign
     ``sign``, from the slopes in g (linearised at the switch, in the modes before it).
@@ -216,7 +220,7 @@ COMMUTING = 1e-9
 
 
 @njit_step_exact
-def apply_saltations(t, count, s, topology, g, sw):
+def commuting_saltations(t, count, s, topology, g, sw):
     """Φ ← S Φ for switches of several interfaces at one instant, where that is well
     defined; returns whether it was (else nothing is changed).
 
@@ -300,3 +304,15 @@ def project_tangent(s, topology, g):
         project_velocities(s, topology, g.direction, len(s.mass), g.rows)
         for r in range(matrix.shape[0]):
             matrix[r, column] = g.direction[r]
+
+
+# Each joined with its substructures' version (``structures``, ``constraints``):
+#: n ← Pᵀ n, a guard's gradient on the tangents of the stuck interfaces' motion.
+reduce_to_clusters = by_scene("reduce_to_clusters", reduce_on_clusters, reduce_to_constraints)
+#: The gradients of the contact, slip and breakaway guards.
+contact_normal = by_scene("contact_normal", blade_contact_normal, structure_contact_normal)
+slip_normal = by_scene("slip_normal", blade_slip_normal, structure_slip_normal)
+breakaway_normal = by_scene("breakaway_normal", blade_breakaway_normal,
+                            structure_breakaway_normal)
+#: Several switches at one instant, where their saltations commute.
+apply_saltations = by_scene("apply_saltations", commuting_saltations, structure_saltations)

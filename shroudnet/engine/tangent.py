@@ -26,12 +26,14 @@ import math
 
 from .codes import OPEN
 from .compiled import njit_inlined, njit_step
+from .dispatch import by_scene
 from .dynamics import cluster_accelerations
+from .structures import structure_linearised_acceleration
 from .tableau import DP_A, DP_B, DP_E, DP_STAGES
 
 
 @njit_inlined
-def linearised_acceleration(direction, s, modes, topology, g):
+def blade_linearised_acceleration(direction, s, modes, topology, g):
     """δR (into g.resultant_change) and δẍ (into g.acceleration_change) along the state
     change ``direction`` (δx then δẋ, 2 n_blades), from the slopes in g."""
     n = len(s.mass)
@@ -70,6 +72,11 @@ def linearised_acceleration(direction, s, modes, topology, g):
             change[right] += force
     cluster_accelerations(change, topology.labels, topology.grounded, topology.masses,
                           g.rows, g.acceleration_change)
+
+
+#: δR and δẍ along a state change, for a scene of blades or of substructures.
+linearised_acceleration = by_scene("linearised_acceleration", blade_linearised_acceleration,
+                                   structure_linearised_acceleration)
 
 
 @njit_step

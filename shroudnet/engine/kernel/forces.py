@@ -12,15 +12,18 @@ from contact_laws.base import ZERO_PLUS_SPEED
 from shroudnet.engine.codes import OPEN, SLIP_POSITIVE, STICK
 from shroudnet.engine.compiled import (njit_entry, njit_inlined, njit_step,
                                        njit_step_merged)
+from shroudnet.engine.constraints import constrained_accelerations, prescribed_power
 from shroudnet.engine.detect import event_guards
 from shroudnet.engine.dynamics import (cluster_accelerations, continued_mu, coupling_forces,
                                        driven_accelerations, excitation_forces,
                                        interface_kinematics, prescribed_acceleration,
                                        resultant_forces, static_friction)
+from shroudnet.engine.structures import kinematics, structure_resultant
 
 if TYPE_CHECKING:
     from .generated import (HAS_COUPLINGS, HAS_FRICTION, HAS_PRESCRIBED, HAS_REGULARISED,
-                            HAS_STICK, friction_coefficient, friction_slope, normal_force)
+                            HAS_STICK, HAS_STRUCTURES, friction_coefficient, friction_slope,
+                            normal_force)
 
 
 @njit_inlined
@@ -93,7 +96,12 @@ def derivative(t, x, v, modes, topology, s, w, acceleration):
     Contact power is Σ N δ̇, friction power Σ f v over sliding interfaces: with stuck
     interfaces carrying no relative motion, d(kinetic + spring energy)/dt is
     excitation − damping − friction − contact.
+
+    With substructures (``HAS_STRUCTURES``) the stuck interfaces' static friction is part
+    of the accelerations (``constraints``) and lands in w.friction here.
     """
+    if HAS_STRUCTURES:
+        return structure_derivative(t, x, v, modes, topology, s, w, acceleration)
     interface_kinematics(x, v, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
                          w.penetration, w.rate, w.slip)
     law_forces(s, modes, w)
@@ -127,6 +135,33 @@ def derivative(t, x, v, modes, topology, s, w, acceleration):
     return excitation, damping, friction, contact
 
 
+@njit_inlined
+def structure_derivative(t, x, v, modes, topology, s, w, acceleration):
+    """``derivative`` of a scene with substructures: R from the laws and the structure
+    (``structures.structure_resultant``), ẍ and the static friction from the constraints
+    (``constraints.constrained_accelerations``)."""
+    kinematics(x, v, s, w.penetration, w.rate, w.slip)
+    law_forces(s, modes, w)
+    excitation_forces(t, s.amplitudes, s.cos_phase, s.sin_phase, s.excitation_frequency,
+                      w.q)
+    damping = structure_resultant(x, v, s, w)
+    friction = 0.0
+    contact = 0.0
+    for e in range(len(modes)):
+        friction += w.friction[e] * w.slip[e]
+        contact += w.normal[e] * w.rate[e]
+    if HAS_PRESCRIBED:
+        for p in range(len(w.drive)):
+            w.drive[p] = prescribed_acceleration(t, s, p)[0]
+    constrained_accelerations(s, topology, w.resultant, w.drive, acceleration, w.friction)
+    excitation = 0.0
+    if HAS_PRESCRIBED:
+        excitation = prescribed_power(s, topology, w.resultant, v, w.friction, len(w.drive))
+    for i in range(len(x)):
+        excitation += w.q[i] * v[i]
+    return excitation, damping, friction, contact
+
+
 @njit_step_merged
 def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
     """``derivative``, then static friction and guards into w (w.friction includes static).
@@ -135,7 +170,7 @@ def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
     once per switch call ``evaluate_guards_apart``.
     """
     powers = derivative(t, x, v, modes, topology, s, w, acceleration)
-    if HAS_STICK and len(topology.stuck_interfaces) > 0:
+    if HAS_STICK and not HAS_STRUCTURES and len(topology.stuck_interfaces) > 0:
         static_friction(topology.operator, topology.stuck_interfaces, s.mass, w.resultant,
                         acceleration, w.normal, s.sin_angle, s.left, s.right, w.imbalance,
                         w.friction)
@@ -157,8 +192,7 @@ def sample_forces(time, xt, vt, modes, topology, s, w):
     if HAS_STICK and len(topology.stuck_interfaces) > 0:
         stuck_forces(time, xt, vt, modes, topology, s, w)
         return
-    interface_kinematics(xt, vt, s.left, s.right, s.gap, s.sin_angle, s.cos_angle,
-                         w.penetration, w.rate, w.slip)
+    kinematics(xt, vt, s, w.penetration, w.rate, w.slip)
     law_forces(s, modes, w)
 
 
@@ -167,5 +201,7 @@ def stuck_forces(time, xt, vt, modes, topology, s, w):
     """The forces, static friction included, at the state (xt, vt) inside a step, into w's
     scratch (the step's end guards in w.contact / w.motion are kept)."""
     derivative(time, xt, vt, modes, topology, s, w, w.a_sample)
+    if HAS_STRUCTURES:
+        return
     static_friction(topology.operator, topology.stuck_interfaces, s.mass, w.resultant,
                     w.a_sample, w.normal, s.sin_angle, s.left, s.right, w.imbalance, w.friction)

@@ -23,6 +23,9 @@ HAS_REGULARISED: bool = True
 HAS_COUPLINGS: bool = True
 #: The scene has prescribed-motion nodes.
 HAS_PRESCRIBED: bool = True
+#: The scene has substructures (``records.StructureScene``): its interfaces act along rows
+#: of the coordinates, and stuck ones are constraints (``constraints``), not clusters.
+HAS_STRUCTURES: bool = False
 #: The run integrates the tangent flow; otherwise its state holds a ``records.NoTangent``,
 #: whose fields are not to be read.
 HAS_TANGENT: bool = False

@@ -26,7 +26,7 @@ from shroudnet.engine.saltation import apply_saltation, apply_saltations, projec
 
 if TYPE_CHECKING:
     from .forces import evaluate_guards_apart
-    from .generated import HAS_PRESCRIBED, HAS_TANGENT
+    from .generated import HAS_PRESCRIBED, HAS_STRUCTURES, HAS_TANGENT
     from .tangent import crossed_gradients, crossings_coincide, guard_gradient
 
 
@@ -88,7 +88,7 @@ def settle(t, state, topology, s, w, sw):
     for _ in range(4 * n + 2):
         if not same_stuck(topology, modes):
             topology = regroup(s, modes, sw)
-        if HAS_PRESCRIBED:
+        if HAS_PRESCRIBED and not HAS_STRUCTURES:
             tie = overconstrained(topology, candidates, modes, s)
             if tie >= 0:  # a candidate would tie motions that differ: it slips, a way untried
                 direction = SLIP_NEGATIVE if tried[tie] & direction_bit(SLIP_POSITIVE) \

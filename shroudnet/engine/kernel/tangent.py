@@ -12,11 +12,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from shroudnet.engine.codes import OPEN, SLIP_POSITIVE, STICK
-from shroudnet.engine.compiled import (njit_entry, njit_step, njit_step_exact,
-                                       njit_step_merged)
+from shroudnet.engine.compiled import (njit_inlined, njit_step, njit_step_callable,
+                                       njit_step_exact, njit_step_merged)
 from shroudnet.engine.detect import crossed, guard_crossed
 from shroudnet.engine.dynamics import static_friction
-from shroudnet.engine.records import new_switching, new_tangent, new_work
+from shroudnet.engine.records import new_switching, new_tangent, new_work, plain, square_size
 from shroudnet.engine.regroup import regroup
 from shroudnet.engine.saltation import (breakaway_normal, contact_normal, reduce_to_clusters,
                                         same_surface, slip_normal)
@@ -26,8 +26,27 @@ from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
 
 if TYPE_CHECKING:
     from .forces import derivative, sliding_coefficient
-    from .generated import (HAS_FRICTION, HAS_REGULARISED, friction_coefficient,
-                            friction_slope, normal_force_gradient)
+    from .generated import (HAS_FRICTION, HAS_REGULARISED, HAS_STRUCTURES,
+                            friction_coefficient, friction_slope, normal_force_gradient)
+
+
+@njit_inlined
+def friction_slopes(s, e, mode, w):
+    """(μ, σ, ∂f/∂w) of the sliding friction f = μ σ N of interface e in ``mode``, at the
+    slip velocity w in w.slip: σ = ±1 by the slip mode and μ at σw
+    (``sliding_coefficient``), so ∂f/∂w = N μ'(σw); for a regularised law σ = tanh(w/ε)
+    and μ at |w|, so ∂f/∂w = N (μ'(|w|) sgn(w) σ + μ σ')."""
+    kind, params, slip = s.friction_kind[e], s.friction_params[e], w.slip[e]
+    if HAS_REGULARISED and s.regularisation[e] > 0.0:
+        mu = friction_coefficient(kind, params, abs(slip))
+        sigma = math.tanh(slip / s.regularisation[e])
+        d_sigma = (1.0 - sigma * sigma) / s.regularisation[e]
+        sign = 1.0 if slip >= 0.0 else -1.0
+        return mu, sigma, w.normal[e] * (friction_slope(kind, params, abs(slip)) * sign
+                                         * sigma + mu * d_sigma)
+    sigma = 1.0 if mode == SLIP_POSITIVE else -1.0
+    mu, slope = sliding_coefficient(kind, params, sigma * slip)
+    return mu, sigma, w.normal[e] * slope
 
 
 @njit_step
@@ -37,7 +56,11 @@ def linearise(t, x, v, modes, topology, s, g):
     F = N sin α + f cos α, with f = μ(|w|) N σ, w = u̇ cos α, σ = ±1 by the slip mode
     and μ at σw (``sliding_coefficient``): ∂f/∂u = μ σ ∂N/∂u, ∂f/∂u̇ = μ σ ∂N/∂u̇ +
     N μ'(σw) cos α; for a regularised law σ = tanh(w/ε) and μ at |w|, so the last term is
-    N (μ'(|w|) sgn(w) σ + μ σ') cos α (paper eqs. 2–6)."""
+    N (μ'(|w|) sgn(w) σ + μ σ') cos α (paper eqs. 2–6).
+
+    With substructures (``HAS_STRUCTURES``) the normal and slip directions are rows of
+    their own (``structures``), so the slopes are kept apart: ∂N/∂δ and ∂N/∂δ̇, then
+    ∂f/∂N = μσ and ∂f/∂w (w the slip velocity), the last two in force_u and force_du."""
     derivative(t, x, v, modes, topology, s, g.work, g.acceleration)
     w = g.work
     for e in range(len(modes)):
@@ -47,9 +70,17 @@ def linearise(t, x, v, modes, topology, s, g):
         g.force_du[e] = 0.0
         if modes[e] == OPEN:
             continue
-        sine, cosine = s.sin_angle[e], s.cos_angle[e]
         d_penetration, d_rate = normal_force_gradient(s.normal_kind[e], s.normal_params[e],
                                                       w.penetration[e], w.rate[e])
+        if HAS_STRUCTURES:
+            g.normal_u[e] = d_penetration
+            g.normal_du[e] = d_rate
+            if modes[e] != STICK and HAS_FRICTION and s.friction_kind[e] >= 0:
+                mu, sigma, d_slip = friction_slopes(s, e, modes[e], w)
+                g.force_u[e] = mu * sigma
+                g.force_du[e] = d_slip
+            continue
+        sine, cosine = s.sin_angle[e], s.cos_angle[e]
         g.normal_u[e] = d_penetration * sine
         g.normal_du[e] = d_rate * sine
         if modes[e] == STICK:
@@ -57,33 +88,32 @@ def linearise(t, x, v, modes, topology, s, g):
         force_u = sine * g.normal_u[e]
         force_du = sine * g.normal_du[e]
         if HAS_FRICTION and s.friction_kind[e] >= 0:
-            kind, params, slip = s.friction_kind[e], s.friction_params[e], w.slip[e]
-            if HAS_REGULARISED and s.regularisation[e] > 0.0:
-                mu = friction_coefficient(kind, params, abs(slip))
-                sigma = math.tanh(slip / s.regularisation[e])
-                d_sigma = (1.0 - sigma * sigma) / s.regularisation[e]
-                sign = 1.0 if slip >= 0.0 else -1.0
-                d_slip = w.normal[e] * (friction_slope(kind, params, abs(slip)) * sign * sigma
-                                        + mu * d_sigma)
-            else:
-                sigma = 1.0 if modes[e] == SLIP_POSITIVE else -1.0
-                mu, slope = sliding_coefficient(kind, params, sigma * slip)
-                d_slip = w.normal[e] * slope
+            mu, sigma, d_slip = friction_slopes(s, e, modes[e], w)
             force_u += cosine * mu * sigma * g.normal_u[e]
             force_du += cosine * (mu * sigma * g.normal_du[e] + d_slip * cosine)
         g.force_u[e] = force_u
         g.force_du[e] = force_du
 
 
-@njit_entry
 def linearise_at(t, x, v, modes, s, tangent0):
     """``linearise`` and the vector field's Jacobian at (t, x, v) in ``modes``, callable
     from Python for tests: returns (J, ẍ), J = ∂(ẋ, ẍ)/∂(x, ẋ) (2 n_blades square)."""
     n = len(x)
-    g = new_tangent(tangent0, len(modes), 1, new_work(n, len(modes), len(s.motion_amplitude)))
-    topology = regroup(s, modes, new_switching(n, len(modes)))
-    linearise(t, x, v, modes, topology, s, g)
+    g = plain(new_tangent)(tangent0, len(modes), 1,
+                           plain(new_work)(n, len(modes), len(s.motion_amplitude)))
     jacobian = np.zeros((2 * n, 2 * n))
+    fill_jacobian(t, x, v, modes, s, g, plain(new_switching)(n, len(modes), square_size(s)),
+                  jacobian)
+    return jacobian, g.acceleration.copy()
+
+
+@njit_step_callable
+def fill_jacobian(t, x, v, modes, s, g, sw, jacobian):
+    """``linearise_at``'s Jacobian into ``jacobian``, in storage allocated by the caller
+    (g: ``records.Tangent``, sw: ``records.Switching``)."""
+    n = len(x)
+    topology = regroup(s, modes, sw)
+    linearise(t, x, v, modes, topology, s, g)
     for r in range(2 * n):
         for q in range(2 * n):
             g.direction[q] = 1.0 if q == r else 0.0
@@ -91,7 +121,6 @@ def linearise_at(t, x, v, modes, s, tangent0):
         for i in range(n):
             jacobian[i, r] = g.direction[n + i]
             jacobian[n + i, r] = g.acceleration_change[i]
-    return jacobian, g.acceleration.copy()
 
 
 @njit_step
@@ -133,9 +162,10 @@ def guard_gradient(t, e, state, topology, s, w):
         return 0.0
     linearise(t, state.x, state.v, state.modes, topology, s, g)
     gw = g.work
-    static_friction(topology.operator, topology.stuck_interfaces, s.mass, gw.resultant,
-                    g.acceleration, gw.normal, s.sin_angle, s.left, s.right, gw.imbalance,
-                    gw.friction)
+    if not HAS_STRUCTURES:  # substructures: the static friction came with the accelerations
+        static_friction(topology.operator, topology.stuck_interfaces, s.mass, gw.resultant,
+                        g.acceleration, gw.normal, s.sin_angle, s.left, s.right,
+                        gw.imbalance, gw.friction)
     sign = 1.0 if gw.friction[e] >= 0.0 else -1.0
     return breakaway_normal(e, sign, t, s, state.modes, topology, g)
 

@@ -1,0 +1,213 @@
+"""Lowering a scene with substructures to the arrays the engine works on.
+
+Every moving node contributes coordinates: a ``Blade`` its displacement x (mass m); a
+``Substructure`` its modal coordinates η at the scene's speed, q = Φ η with Φ the
+mass-normalised modes of K(Ω) φ = ω² M φ, so that every coordinate has mass 1 and the
+mass stays diagonal (``records.StructureScene``). Prescribed-motion nodes follow, one
+coordinate each. Each point of a node becomes a row block of the coordinates
+(r_p = Φ_p Φ η), and each edge the difference D = P_a − P_b of its two points' blocks:
+
+- an interface gives the rows n·D and t·D (with its unit directions), or sin α D and
+  cos α D with the gap Δ sin α (the angle form, between points of one component);
+- a coupling adds k DᵀD to the stiffness and c DᵀD to the damping (isotropic in its
+  points' components).
+
+The excitation Q_i(t) of node i acts on its coordinates along Φᵀ b_i (its load vector),
+scaled by its signed ``excitation_scale``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+
+from .blade import Blade
+from .group import BLADE_POINT
+
+#: Below this |cos α| (or |t·D|) friction has no tangential component: the interface never
+#: sticks (as for blades, ``scene._NO_TANGENTIAL``).
+NO_TANGENTIAL = 1e-12
+
+
+@dataclass(frozen=True, eq=False)
+class Layout:
+    """Where each moving node's coordinates sit in the state, and how its degrees of
+    freedom and points follow from them.
+
+    ``nodes`` by position; ``offsets[i]`` the first coordinate of node i and
+    ``sizes[i]`` their number; ``bases[i]`` the n_i × n_i matrix Φ with q_i = Φ η_i (the
+    node's own degrees of freedom from its coordinates); ``points[i]`` maps each point name
+    to its d × n_i matrix in the coordinates (r_p = Φ_p Φ η_i)."""
+
+    nodes: tuple
+    offsets: tuple[int, ...]
+    sizes: tuple[int, ...]
+    bases: tuple[np.ndarray, ...]
+    points: tuple[dict, ...]
+
+    @property
+    def n_coordinates(self) -> int:
+        return int(sum(self.sizes))
+
+    def position(self, node) -> int:
+        if node not in self.nodes:
+            raise ValueError(f"unknown node {node!r}: give one of {list(self.nodes)}")
+        return self.nodes.index(node)
+
+    def coordinates(self, node) -> slice:
+        """The state's columns of ``node``'s coordinates."""
+        i = self.position(node)
+        return slice(self.offsets[i], self.offsets[i] + self.sizes[i])
+
+    def point(self, node, point: str | None = None) -> np.ndarray:
+        """The d × n_i matrix of ``node``'s point (its only one when None) in its
+        coordinates."""
+        points = self.points[self.position(node)]
+        if point is None:
+            if len(points) != 1:
+                raise ValueError(f"node {node!r} has points {list(points)}: name one")
+            return next(iter(points.values()))
+        if point not in points:
+            raise ValueError(f"node {node!r} has no point {point!r}; its points are "
+                             f"{list(points)}")
+        return points[point]
+
+
+def static_scale(squared) -> np.ndarray:
+    """s_k = (ω_1/ω_k)² of each mode, ω_1 the lowest nonzero natural frequency (1 for a
+    rigid-body mode): the coordinates ξ_k = η_k/s_k respond to a static load alike,
+    whatever their frequency, so one absolute tolerance means the same for all of them."""
+    squared = np.clip(np.asarray(squared, dtype=float), 0.0, None)
+    moving = squared[squared > 0.0]
+    if not len(moving):
+        return np.ones(len(squared))
+    return np.where(squared > 0.0, moving.min() / np.where(squared > 0.0, squared, 1.0), 1.0)
+
+
+def _node_model(body, speed_rpm):
+    """(mass vector, K̃, C̃, Φ, points in coordinates, load in coordinates) of a node."""
+    if isinstance(body, Blade):
+        return (np.array([float(body.mass)]), np.array([[body.stiffness_at(speed_rpm)]]),
+                np.array([[float(body.damping)]]), np.eye(1), {BLADE_POINT: np.eye(1)},
+                np.ones(1))
+    matrices = body.matrices_at(speed_rpm)
+    squared, shapes = scipy.linalg.eigh(matrices.stiffness, matrices.mass)
+    scale = static_scale(squared)
+    shapes = shapes * scale[None, :]
+
+    def projected(matrix):
+        value = shapes.T @ matrix @ shapes
+        return 0.5 * (value + value.T)
+
+    points = {name: np.atleast_2d(body.point(name)) @ shapes for name in body.points}
+    return (scale**2, projected(matrices.stiffness), projected(matrices.damping),
+            shapes, points, shapes.T @ body.load_vector)
+
+
+def lower(scene) -> dict:
+    """The ``SceneArrays`` fields of a scene with substructures (see the module)."""
+    group = scene.group
+    names = group.blades
+    prescribed = group.prescribed
+    models = [_node_model(group.blade(name), scene.speed_rpm) for name in names]
+    sizes = [len(model[0]) for model in models]
+    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
+    n_free = int(offsets[-1])
+    n = n_free + len(prescribed)
+    layout = Layout(tuple(names), tuple(int(o) for o in offsets[:-1]), tuple(sizes),
+                    tuple(model[3] for model in models), tuple(model[4] for model in models))
+    position = {name: i for i, name in enumerate(names)}
+    prescribed_column = {name: n_free + p for p, (name, _) in enumerate(prescribed)}
+
+    def block(node, point):
+        """The rows of a point in all the coordinates (d × n); None at a fixed node."""
+        if node in position:
+            i = position[node]
+            local = layout.point(node, point)
+            rows = np.zeros((local.shape[0], n))
+            rows[:, offsets[i]:offsets[i] + sizes[i]] = local
+            return rows
+        if node in prescribed_column:
+            rows = np.zeros((1, n))
+            rows[0, prescribed_column[node]] = 1.0
+            return rows
+        return None
+
+    def difference(left, right, points, what):
+        a, b = block(left, points[0]), block(right, points[1])
+        if a is not None and b is not None and a.shape[0] != b.shape[0]:
+            raise ValueError(f"{what} ({left!r}, {right!r}) joins points of {a.shape[0]} and "
+                             f"{b.shape[0]} components")
+        if a is None:
+            return -b
+        return a if b is None else a - b
+
+    stiffness = np.zeros((n, n))
+    damping = np.zeros((n, n))
+    for i, model in enumerate(models):
+        where = slice(offsets[i], offsets[i] + sizes[i])
+        stiffness[where, where] = model[1]
+        damping[where, where] = model[2]
+    for (left, right, coupling), points in zip(group.couplings, group.edge_points("coupling")):
+        d = difference(left, right, points, "coupling")
+        stiffness += coupling.stiffness * d.T @ d
+        damping += coupling.damping * d.T @ d
+
+    interfaces = group.interfaces
+    m = len(interfaces)
+    normal_rows, tangent_rows = np.zeros((m, n)), np.zeros((m, n))
+    normal_gap, sin_angle, cos_angle = np.zeros(m), np.ones(m), np.ones(m)
+    for e, ((left, right, interface), points) in enumerate(
+            zip(interfaces, group.edge_points("interface"))):
+        d = difference(left, right, points, "interface")
+        if interface.normal_direction is None:
+            angle = interface.angle
+            sin_angle[e] = math.sin(angle)
+            cos_angle[e] = 0.0 if angle == math.pi / 2 else math.cos(angle)
+            normal_rows[e] = sin_angle[e] * d[0]
+            tangent_rows[e] = cos_angle[e] * d[0]
+            normal_gap[e] = interface.gap * sin_angle[e]
+        else:
+            normal_rows[e] = np.asarray(interface.normal_direction) @ d
+            tangent_rows[e] = np.asarray(interface.tangent_direction) @ d
+            normal_gap[e] = interface.gap
+
+    bodies = [group.blade(name) for name in names]
+    load = np.concatenate([float(body.excitation_scale) * model[5]
+                           for body, model in zip(bodies, models)])
+    node_phases = scene.excitation.blade_phases(len(names)).astype(float)
+    node_harmonics = scene.excitation.harmonic_phases(len(names)).astype(float)
+    amplitudes = np.array(scene.excitation.amplitudes, dtype=float)
+    frictions = tuple(i.friction for _, _, i in interfaces)
+    exact = np.array([f is not None and f.regularisation_velocity == 0.0 for f in frictions],
+                     dtype=bool)
+    tangential = np.abs(tangent_rows).max(axis=1, initial=0.0) > NO_TANGENTIAL
+    none = np.zeros(0, dtype=np.int64)
+    mass = np.concatenate([model[0] for model in models])
+    return dict(
+        mass=mass, damping=np.diag(damping)[:n_free].copy(),
+        stiffness=np.diag(stiffness)[:n_free].copy(),
+        left=np.full(m, -1, dtype=np.int64), right=np.full(m, -1, dtype=np.int64),
+        gap=np.array([i.gap for _, _, i in interfaces], dtype=float),
+        sin_angle=sin_angle, cos_angle=cos_angle,
+        normal_laws=tuple(i.normal for _, _, i in interfaces), friction_laws=frictions,
+        opens=np.array([i.normal.opens for _, _, i in interfaces], dtype=bool),
+        can_stick=exact & tangential,
+        static_mu=np.array([0.0 if f is None else f.static_coefficient for f in frictions]),
+        regularisation=np.array([0.0 if f is None else f.regularisation_velocity
+                                 for f in frictions]),
+        amplitudes=amplitudes,
+        phases=np.repeat(node_phases, sizes),
+        excitation_frequency=scene.excitation.engine_order * scene.omega,
+        excitation_scale=load,
+        harmonic_amplitudes=amplitudes[:, None] * load[None, :],
+        harmonic_phases=np.repeat(node_harmonics, sizes, axis=1),
+        coupling_left=none, coupling_right=none,
+        coupling_stiffness=np.zeros(0), coupling_damping=np.zeros(0),
+        motions=tuple(motion for _, motion in prescribed),
+        normal_rows=normal_rows, tangent_rows=tangent_rows, normal_gap=normal_gap,
+        structure_stiffness=stiffness, structure_damping=damping, layout=layout,
+    )
