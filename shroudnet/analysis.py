@@ -71,8 +71,8 @@ def amplitude_spectrum(signal, samples_per_period: int, *, window: str = "hann")
 def spectrum(sim: Simulation, blade: Hashable | int, skip: int, *,
              window: str = "hann") -> Spectrum:
     """Amplitude spectrum of a blade's displacement over whole periods after ``skip``."""
-    i = sim.scene.blade_position(blade)
-    x = sim.x[steady_rows(sim, skip, "spectrum"), i][:-1]  # whole periods: drop the last
+    x = sim.scene.response_of(sim.x[steady_rows(sim, skip, "spectrum")], blade)[:-1]  # whole
+    # periods: the last sample is dropped
     return amplitude_spectrum(x, sim.samples_per_period, window=window)
 
 
@@ -196,9 +196,9 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
     ``exponent=False`` the 0–1 test decides instead, as ``classify_section`` does without
     an exponent.
     """
-    i = sim.scene.blade_position(blade)
     rows = steady_rows(sim, skip, "classify")
-    scale = (np.abs(sim.x[rows, i]).max(), np.abs(sim.v[rows, i]).max())
+    scale = (np.abs(sim.scene.response_of(sim.x[rows], blade)).max(),
+             np.abs(sim.scene.response_of(sim.v[rows], blade)).max())
     points = sim.poincare(blade, skip=skip)
     broadband = broadband_fraction(spectrum(sim, blade, skip))
     recorded = sim.periods - rows.start // sim.samples_per_period  # skip as a checked int

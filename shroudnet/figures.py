@@ -30,12 +30,14 @@ def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: 
     Displacement history, phase portrait with Poincaré points, amplitude spectrum against
     f/f_e, and the impact (normal) and friction forces of the blade's interfaces.
     """
-    i = sim.scene.blade_position(blade)
     rows = slice(skip * sim.samples_per_period, None)
-    t, x, v = sim.t[rows], sim.x[rows, i], sim.v[rows, i]
+    t = sim.t[rows]
+    x, v = (sim.scene.response_of(values[rows], blade) for values in (sim.x, sim.v))
     shown = slice(None, shown_periods * sim.samples_per_period + 1)
-    a = sim.scene.arrays
-    own = np.flatnonzero((a.left == i) | (a.right == i))
+    label = sim.scene.responses[sim.scene.response_position(blade)]
+    node = label[0] if sim.scene.arrays.is_structure else label
+    own = np.array([e for e, (left, right, _) in enumerate(sim.scene.group.interfaces)
+                    if node in (left, right)], dtype=int)
     figure = Figure(figsize=(11, 8), layout="constrained")
     axes = figure.subplot_mosaic([["history", "history"], ["phase", "spectrum"],
                                   ["impact", "friction"]])
@@ -292,9 +294,15 @@ def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
     velocity, over its law's μ(|v|) sgn v."""
     left, right, face = sim.scene.group.interfaces[interface]
     blade = left if left in sim.scene.blades else right
-    i = sim.scene.blade_position(blade)
     rows = slice(skip * sim.samples_per_period, None)
-    t, x, v = sim.t[rows], sim.x[rows, i], sim.v[rows, i]
+    t = sim.t[rows]
+    if sim.scene.arrays.is_structure:  # the displacement along the interface's tangent
+        tangent = sim.scene.arrays.tangent_rows[interface, :sim.x.shape[1]]
+        blade = f"t·r, interface {interface}"
+        x, v = sim.x[rows] @ tangent, sim.v[rows] @ tangent
+    else:
+        i = sim.scene.blade_position(blade)
+        x, v = sim.x[rows, i], sim.v[rows, i]
     stuck = sim.modes[rows, interface] == Mode.STICK
     normal, friction = sim.normal_force[rows, interface], sim.friction_force[rows, interface]
     a = sim.scene.arrays
@@ -337,6 +345,8 @@ def _slip_velocity(sim: Simulation, interface: int) -> np.ndarray:
     a = sim.scene.arrays
     _, v_p = a.prescribed_state(sim.t)
     velocities = np.concatenate([sim.v, v_p], axis=1)
+    if a.is_structure:
+        return velocities @ a.tangent_rows[interface]
     rate = np.zeros(len(sim.t))
     if a.left[interface] >= 0:
         rate += velocities[:, a.left[interface]]

@@ -47,7 +47,8 @@ class PeriodicOrbit:
     the Floquet multipliers (eigenvalues of ``monodromy``), complex, by descending modulus;
     a stick phase gives zeros. ``residual``: max |φ(y) − y| over ``scale``, the state scale
     [m] (velocities count divided by l Ω). ``events``: the switches over one orbit, in
-    order. ``peak``: each blade's max |x| [m] over the orbit; ``mean_square``: each blade's
+    order. ``peak``: each response's max |x| [m] over the orbit (``Scene.responses``: a
+    blade's x, or a component of a point); ``mean_square``: each one's
     E_ρ = ∫x² dt / (k T_e) [m²] (paper §3.2). ``singular``: switches on the orbit where the
     map is not differentiable (grazing, or several independent interfaces at once); where
     there are any, the monodromy matrix and the multipliers are not to be trusted, and
@@ -98,12 +99,13 @@ class PeriodicOrbit:
         return counts
 
     def amplitude(self, blade) -> float:
-        """max |x| [m] of ``blade`` (a name or a position) over the orbit."""
-        return float(self.peak[self.scene.blade_position(blade)])
+        """max |x| [m] of ``blade`` (a name or a position; with substructures a point
+        component, ``Scene.response_position``) over the orbit."""
+        return float(self.peak[self.scene.response_position(blade)])
 
     def energy_density(self, blade) -> float:
-        """E_ρ [m²] of ``blade`` over the orbit."""
-        return float(self.mean_square[self.scene.blade_position(blade)])
+        """E_ρ [m²] of ``blade`` (as ``amplitude``) over the orbit."""
+        return float(self.mean_square[self.scene.response_position(blade)])
 
 
 def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
@@ -280,8 +282,8 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
                          multipliers=multipliers, monodromy=step.jacobian,
                          residual=float(residual), scale=float(scale),
                          iterations=iterations, events=run.events,
-                         peak=periodic_peak(run.x[:-1]),
-                         mean_square=np.mean(run.x[:-1] ** 2, axis=0),
+                         peak=periodic_peak(scene.responses_of(run.x[:-1])),
+                         mean_square=np.mean(scene.responses_of(run.x[:-1]) ** 2, axis=0),
                          singular=step.singular, history=run if history else None)
 
 

@@ -17,13 +17,10 @@ import numpy as np
 from contact_laws import FrictionLaw, NormalLaw, check_real
 
 from .excitation import EngineOrderWave, Excitation, ExplicitPhases
-from .group import BladeGroup
+from .group import BLADE_POINT, BladeGroup
 from .motion import Motion
-from .structural import Layout, lower
+from .structural import NO_TANGENTIAL, Layout, law_arrays, lower
 from .substructure import Substructure
-
-#: Below this |cos α| friction has no component along x: such an interface never sticks.
-_NO_TANGENTIAL = 1e-12
 
 
 @dataclass(frozen=True, eq=False)
@@ -225,6 +222,87 @@ class Scene:
                          f"0..{len(names) - 1}")
 
     @cached_property
+    def responses(self) -> tuple:
+        """The scalar responses a scene reports peaks, Poincaré points and spectra of: its
+        blades' displacements by name; with substructures, every component of every
+        point of every node, as (node, point, component)."""
+        a = self.arrays
+        if not a.is_structure:
+            return tuple(self.blades)
+        return tuple((node, point, k) for node, points in zip(a.layout.nodes, a.layout.points)
+                     for point, rows in points.items() for k in range(rows.shape[0]))
+
+    @cached_property
+    def response_matrix(self) -> np.ndarray:
+        """R (n_responses × n_coordinates): the ``responses`` are R x."""
+        a = self.arrays
+        if not a.is_structure:
+            return np.eye(a.n_blades)
+        return np.vstack([self.point_rows(node, point)[k] for node, point, k in self.responses])
+
+    def response_position(self, target) -> int:
+        """The position in ``responses`` of ``target``: a blade's name or position; with
+        substructures a node (of one point of one component), (node, point) (a point of one
+        component), (node, point, component), or a position."""
+        if not self.arrays.is_structure:
+            return self.blade_position(target)
+        labels = self.responses
+        if isinstance(target, int | np.integer) and not isinstance(target, bool):
+            if 0 <= target < len(labels):
+                return int(target)
+        else:
+            found = [i for i, (node, point, k) in enumerate(labels)
+                     if target in (node, (node, point), (node, point, k))]
+            if len(found) == 1:
+                return found[0]
+            if found:
+                raise ValueError(f"{target!r} has {len(found)} components; name one as "
+                                 "(node, point, component)")
+        raise ValueError(f"unknown response {target!r}: give (node, point, component) "
+                         f"from {list(labels)[:6]}{' …' if len(labels) > 6 else ''}, "
+                         f"or a position 0..{len(labels) - 1}")
+
+    def response_of(self, values: np.ndarray, target) -> np.ndarray:
+        """``target``'s response (``response_position``) from state rows ``values`` (by
+        blade, or by coordinate): a column of them for blades, R_target · values else."""
+        i = self.response_position(target)
+        if not self.arrays.is_structure:
+            return values[..., i]
+        return values @ self.response_matrix[i]
+
+    def responses_of(self, values: np.ndarray) -> np.ndarray:
+        """Every response from state rows ``values``: ``values`` itself for blades."""
+        return values if not self.arrays.is_structure else values @ self.response_matrix.T
+
+    def point_rows(self, node: Hashable, point: str | None = None) -> np.ndarray:
+        """R (d × n_coordinates): the displacement r = R x [m] of ``node``'s ``point`` from
+        the state's displacements x (by coordinate; by blade without substructures). A
+        ``Blade``'s one point is its displacement (R = e_i); a substructure's point needs
+        its name unless it has one point only."""
+        a = self.arrays
+        if not a.is_structure:
+            rows = np.zeros((1, a.n_blades))
+            if point not in (None, BLADE_POINT):
+                raise ValueError(f"blade {node!r} has the one point {BLADE_POINT!r}, not "
+                                 f"{point!r}")
+            rows[0, self.blade_position(node)] = 1.0
+            return rows
+        local = a.layout.point(node, point)
+        rows = np.zeros((local.shape[0], a.n_blades))
+        rows[:, a.layout.coordinates(node)] = local
+        return rows
+
+    def dof_rows(self, node: Hashable) -> np.ndarray:
+        """T (n_i × n_coordinates): ``node``'s own degrees of freedom q_i = T x from the
+        state's displacements (for a ``Blade``, its x)."""
+        a = self.arrays
+        if not a.is_structure:
+            return self.point_rows(node)
+        rows = np.zeros((a.layout.sizes[a.layout.position(node)], a.n_blades))
+        rows[:, a.layout.coordinates(node)] = a.layout.bases[a.layout.position(node)]
+        return rows
+
+    @cached_property
     def arrays(self) -> SceneArrays:
         """The scene lowered to flat arrays (computed once): by blade, or with
         substructures by coordinate (``structural``)."""
@@ -240,9 +318,8 @@ class Scene:
         interfaces = [interface for _, _, interface in edges]
         angle = np.array([i.angle for i in interfaces], dtype=float)
         cos_angle = np.where(angle == math.pi / 2, 0.0, np.cos(angle))
-        frictions = tuple(i.friction for i in interfaces)
-        exact = np.array([f is not None and f.regularisation_velocity == 0.0 for f in frictions],
-                         dtype=bool)
+        laws = law_arrays(interfaces)
+        exact = laws.pop("exact")
         scale = np.array([b.excitation_scale for b in blades], dtype=float)
         return SceneArrays(
             mass=np.array([b.mass for b in blades], dtype=float),
@@ -253,13 +330,8 @@ class Scene:
             gap=np.array([i.gap for i in interfaces], dtype=float),
             sin_angle=np.sin(angle),
             cos_angle=cos_angle,
-            normal_laws=tuple(i.normal for i in interfaces),
-            friction_laws=frictions,
-            opens=np.array([i.normal.opens for i in interfaces], dtype=bool),
-            can_stick=exact & (np.abs(cos_angle) > _NO_TANGENTIAL),
-            static_mu=np.array([0.0 if f is None else f.static_coefficient for f in frictions]),
-            regularisation=np.array([0.0 if f is None else f.regularisation_velocity
-                                     for f in frictions]),
+            **laws,
+            can_stick=exact & (np.abs(cos_angle) > NO_TANGENTIAL),
             amplitudes=np.array(self.excitation.amplitudes, dtype=float),
             phases=self.excitation.blade_phases(len(names)).astype(float),
             excitation_frequency=self.excitation.engine_order * self.omega,

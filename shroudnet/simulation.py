@@ -100,10 +100,10 @@ class Simulation:
         ``blade`` is a name or a 0-based position; ``skip`` as ``steady_rows`` takes it.
         Returns an array (n_points × 2), periods − skip + 1 points.
         """
-        i = self.scene.blade_position(blade)
         rows = slice(steady_rows(self, skip, "Simulation.poincare").start, None,
                      self.samples_per_period)
-        return np.column_stack([self.x[rows, i], self.v[rows, i]])
+        return np.column_stack([self.scene.response_of(self.x[rows], blade),
+                                self.scene.response_of(self.v[rows], blade)])
 
     def energy_density(self, blade: Hashable | int, skip: int) -> float:
         """E_ρ = ∫ x² dt / (t2 − t1) [m²] of a blade after ``skip`` periods (the paper's §3.2).
@@ -112,10 +112,23 @@ class Simulation:
         the transient is not the steady response's. It is taken as ``steady_rows`` takes it;
         give 0 for a run that starts on the steady state.
         """
-        i = self.scene.blade_position(blade)
         rows = steady_rows(self, skip, "Simulation.energy_density")
-        t, x = self.t[rows], self.x[rows, i]
+        t, x = self.t[rows], self.scene.response_of(self.x[rows], blade)
         return float(np.trapezoid(x * x, t) / (t[-1] - t[0]))
+
+    def displacement(self, node: Hashable, point: str | None = None) -> np.ndarray:
+        """The displacement r [m] of ``node``'s ``point`` at every sample (n_t × d); a
+        ``Blade``'s one point is its x (``Scene.point_rows``)."""
+        return self.x @ self.scene.point_rows(node, point).T
+
+    def velocity(self, node: Hashable, point: str | None = None) -> np.ndarray:
+        """The velocity ṙ [m/s] of ``node``'s ``point`` at every sample (n_t × d)."""
+        return self.v @ self.scene.point_rows(node, point).T
+
+    def dofs(self, node: Hashable) -> np.ndarray:
+        """``node``'s own degrees of freedom q at every sample (n_t × n_i), in its
+        substructure's units; expand a reduced one with ``Substructure.expand``."""
+        return self.x @ self.scene.dof_rows(node).T
 
 
 def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:

@@ -27,8 +27,8 @@ import scipy.linalg
 from .blade import Blade
 from .group import BLADE_POINT
 
-#: Below this |cos α| (or |t·D|) friction has no tangential component: the interface never
-#: sticks (as for blades, ``scene._NO_TANGENTIAL``).
+#: Below this |cos α| of a blade's interface, or max |t_e| of a substructure's, friction
+#: has no tangential component: the interface never sticks.
 NO_TANGENTIAL = 1e-12
 
 
@@ -74,6 +74,22 @@ class Layout:
             raise ValueError(f"node {node!r} has no point {point!r}; its points are "
                              f"{list(points)}")
         return points[point]
+
+
+def law_arrays(interfaces) -> dict:
+    """The ``SceneArrays`` fields of the interfaces' laws: ``normal_laws``,
+    ``friction_laws``, ``opens``, ``static_mu`` (μ_s, 0 without friction) and
+    ``regularisation`` (v_ε of a regularised law, else 0), and ``exact``: whether each has
+    an exact friction law, which may stick."""
+    frictions = tuple(i.friction for i in interfaces)
+    return dict(
+        normal_laws=tuple(i.normal for i in interfaces), friction_laws=frictions,
+        opens=np.array([i.normal.opens for i in interfaces], dtype=bool),
+        static_mu=np.array([0.0 if f is None else f.static_coefficient for f in frictions]),
+        regularisation=np.array([0.0 if f is None else f.regularisation_velocity
+                                 for f in frictions]),
+        exact=np.array([f is not None and f.regularisation_velocity == 0.0
+                        for f in frictions], dtype=bool))
 
 
 def static_scale(squared) -> np.ndarray:
@@ -181,9 +197,8 @@ def lower(scene) -> dict:
     node_phases = scene.excitation.blade_phases(len(names)).astype(float)
     node_harmonics = scene.excitation.harmonic_phases(len(names)).astype(float)
     amplitudes = np.array(scene.excitation.amplitudes, dtype=float)
-    frictions = tuple(i.friction for _, _, i in interfaces)
-    exact = np.array([f is not None and f.regularisation_velocity == 0.0 for f in frictions],
-                     dtype=bool)
+    laws = law_arrays([interface for _, _, interface in interfaces])
+    exact = laws.pop("exact")
     tangential = np.abs(tangent_rows).max(axis=1, initial=0.0) > NO_TANGENTIAL
     none = np.zeros(0, dtype=np.int64)
     mass = np.concatenate([model[0] for model in models])
@@ -192,13 +207,7 @@ def lower(scene) -> dict:
         stiffness=np.diag(stiffness)[:n_free].copy(),
         left=np.full(m, -1, dtype=np.int64), right=np.full(m, -1, dtype=np.int64),
         gap=np.array([i.gap for _, _, i in interfaces], dtype=float),
-        sin_angle=sin_angle, cos_angle=cos_angle,
-        normal_laws=tuple(i.normal for _, _, i in interfaces), friction_laws=frictions,
-        opens=np.array([i.normal.opens for _, _, i in interfaces], dtype=bool),
-        can_stick=exact & tangential,
-        static_mu=np.array([0.0 if f is None else f.static_coefficient for f in frictions]),
-        regularisation=np.array([0.0 if f is None else f.regularisation_velocity
-                                 for f in frictions]),
+        sin_angle=sin_angle, cos_angle=cos_angle, **laws, can_stick=exact & tangential,
         amplitudes=amplitudes,
         phases=np.repeat(node_phases, sizes),
         excitation_frequency=scene.excitation.engine_order * scene.omega,

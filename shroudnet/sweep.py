@@ -115,7 +115,7 @@ def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient
                       classification=classify(sim, blade, skip=0, tolerance=tolerance,
                                               exponent=exponent),
                       final_state=(sim.x[-1].copy(), sim.v[-1].copy()),
-                      peak=np.abs(sim.x).max(axis=0))
+                      peak=np.abs(sim.scene.responses_of(sim.x)).max(axis=0))
 
 
 def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,

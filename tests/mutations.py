@@ -51,8 +51,10 @@ SOURCE_FOLDERS = ("shroudnet", "contact_laws")
 #: The parts of the code the mutations must reach, each by at least one: the contact laws,
 #: the scene's model, the compiled loop (forces, events, modes), the energy ledger, the
 #: tangent flow and its saltation matrices, periodic orbits (Newton on the stroboscopic
-#: map) and continuation (its bifurcation test functions).
-LAYERS = ("laws", "model", "loop", "ledger", "tangent", "orbits", "continuation")
+#: map), continuation (its bifurcation test functions) and stick as constraints (the
+#: substructures' multipliers and projection).
+LAYERS = ("laws", "model", "loop", "ledger", "tangent", "orbits", "continuation",
+          "constraints")
 
 #: Tests that check the physics, run against every mutation unless it names its own.
 PHYSICS_TESTS = (
@@ -86,6 +88,13 @@ DOUBLING = ("tests/test_orbits.py::"
             "test_a_period_doubling_starts_a_doubled_branch_that_a_transient_lands_on")
 TORUS = ("tests/test_orbits.py::"
          "test_the_papers_resonance_loses_period_one_at_a_torus_bifurcation")
+
+
+#: The tests of substructures: one-degree-of-freedom ones against the blades, and a
+#: multi-degree-of-freedom orbit's monodromy against differences.
+ONE_DOF = "tests/test_structures.py::test_one_dof_substructures_reproduce_the_blades"
+MULTI_DOF_MONODROMY = ("tests/test_structures.py::test_monodromy_of_a_multi_dof_orbit_with_"
+                       "impacts_stick_and_breakaway_agrees_with_differences")
 
 
 @dataclass(frozen=True)
@@ -186,8 +195,8 @@ MUTATIONS = (
              "(under a constant load its whole gradient and ∂g/∂t flip, which S does not "
              "see: a spring pad's μ_s δN does not flip)", (SPRING_BREAKAWAY,)),
     Mutation("breakaway-normal-without-the-load", "tangent",
-             "g.guard_normal[r] = s.static_mu[e] * normal_change",
-             "g.guard_normal[r] = 0.0 * normal_change",
+             "g.guard_normal[r] = s.static_mu[e] * normal_change \\",
+             "g.guard_normal[r] = 0.0 * normal_change \\",
              "the breakaway guard μ_s N − |f| is differentiated as if N were constant (as it "
              "is for a constant load, not for a spring pad)", (SPRING_BREAKAWAY,)),
     Mutation("saltations-at-one-instant-drop-jumps", "tangent",
@@ -229,6 +238,29 @@ MUTATIONS = (
              "np.prod(values[i] * values[j] + 1.0)",
              "a torus bifurcation is located on Π (μ_i μ_j + 1), which never vanishes on the "
              "unit circle", (TORUS,)),
+    # ---- constraints: stick of substructures, λ = (G M⁻¹ Gᵀ)⁺ G M⁻¹ R ------------------
+    Mutation("constraint-gram-without-inverse-mass", "constraints",
+             "                value += rows[ea, i] * rows[eb, i] / s.mass[i]",
+             "                value += rows[ea, i] * rows[eb, i]",
+             "the constraint solve takes G Gᵀ for G M⁻¹ Gᵀ: the static friction of stuck "
+             "substructures is wrong wherever the coordinates' masses differ from 1",
+             (ONE_DOF, MULTI_DOF_MONODROMY)),
+    Mutation("constraint-force-sign", "constraints",
+             "            acceleration[i] -= rows[e, i] * value",
+             "            acceleration[i] += rows[e, i] * value",
+             "the multipliers push the coordinates the wrong way: stuck interfaces slide",
+             (ONE_DOF,)),
+    Mutation("constraint-projection-by-velocity", "constraints",
+             "            weight = s.mass[i] if i < free else 1.0",
+             "            weight = 1.0",
+             "velocities are projected onto the constraints Euclidean-orthogonally, not "
+             "M-orthogonally: stick onset does not conserve momentum",
+             (ONE_DOF,)),
+    Mutation("structure-breakaway-gradient-sign", "constraints",
+             "        g.guard_normal[r] = s.static_mu[e] * normal_change - sign * change",
+             "        g.guard_normal[r] = s.static_mu[e] * normal_change + sign * change",
+             "the breakaway guard's gradient of a stuck substructure interface takes +|λ|",
+             (MULTI_DOF_MONODROMY,)),
 )
 
 
