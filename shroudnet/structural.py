@@ -30,6 +30,9 @@ from .group import BLADE_POINT
 #: Below this |cos α| of a blade's interface, or max |t_e| of a substructure's, friction
 #: has no tangential component: the interface never sticks.
 NO_TANGENTIAL = 1e-12
+#: Entries of a substructure's modal stiffness or damping below this fraction of its
+#: largest are rounding (ΦᵀKΦ is diagonal in exact arithmetic), and are dropped.
+ROUNDING = 1e-12
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,8 +118,13 @@ def _node_model(body, speed_rpm):
     shapes = shapes * scale[None, :]
 
     def projected(matrix):
+        """ΦᵀAΦ, symmetric, with the rounding left off the diagonal of a matrix the modes
+        diagonalise set to 0 (below ``ROUNDING`` of its largest entry), so that the
+        engine's products skip it."""
         value = shapes.T @ matrix @ shapes
-        return 0.5 * (value + value.T)
+        value = 0.5 * (value + value.T)
+        value[np.abs(value) <= ROUNDING * np.abs(value).max(initial=0.0)] = 0.0
+        return value
 
     points = {name: np.atleast_2d(body.point(name)) @ shapes for name in body.points}
     return (scale**2, projected(matrices.stiffness), projected(matrices.damping),

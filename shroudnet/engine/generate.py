@@ -312,9 +312,21 @@ def kernel_scene(scene: Scene) -> KernelScene | StructureScene:
         motion_knots=np.array([len(t.knot_times) for t in terms], dtype=np.int64))
     if not a.is_structure:
         return KernelScene(**fields)
-    return StructureScene(**fields, normal_rows=a.normal_rows, tangent_rows=a.tangent_rows,
-                          normal_gap=a.normal_gap, stiffness_matrix=a.structure_stiffness,
-                          damping_matrix=a.structure_damping)
+    support = (a.normal_rows != 0.0) | (a.tangent_rows != 0.0)
+    pattern = (a.structure_stiffness != 0.0) | (a.structure_damping != 0.0)
+    rows, columns = np.nonzero(pattern)
+    return StructureScene(
+        **fields, normal_rows=a.normal_rows, tangent_rows=a.tangent_rows,
+        normal_gap=a.normal_gap, support_start=_starts(support.sum(axis=1)),
+        support_index=np.nonzero(support)[1].astype(np.int64),
+        matrix_start=_starts(pattern.sum(axis=1)), matrix_column=columns.astype(np.int64),
+        stiffness_entry=a.structure_stiffness[rows, columns],
+        damping_entry=a.structure_damping[rows, columns])
+
+
+def _starts(counts) -> np.ndarray:
+    """Where each row's entries start in a compressed store, and the end (len + 1)."""
+    return np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
 
 
 def _rows(laws) -> np.ndarray:

@@ -36,13 +36,17 @@ KernelScene = namedtuple("KernelScene", [
 #: with one entry per degree of freedom (coordinate) where a ``KernelScene`` has one per
 #: blade, and the structure that those cannot express. A substructure's coordinates are
 #: its modal coordinates, mass-normalised (``mass`` 1), so the mass stays diagonal; its
-#: stiffness and damping, with the couplings', are the n × n ``stiffness_matrix`` and
-#: ``damping_matrix``. Interface e sees the penetration δ_e = n_e·x − ``normal_gap[e]`` and
-#: the slip velocity t_e·ẋ, with n_e and t_e the rows of ``normal_rows`` and
-#: ``tangent_rows``, and pushes the coordinates by −(N_e n_e + f_e t_e). The per-blade
-#: ``damping``, ``stiffness``, the couplings' and the angles' fields are unused.
+#: stiffness K and damping C, with the couplings', are n × n matrices stored by rows
+#: (compressed: row i's entries are ``matrix_start[i]`` … ``matrix_start[i + 1]`` − 1 of
+#: ``matrix_column``, ``stiffness_entry`` and ``damping_entry``; a substructure's own are
+#: diagonal). Interface e sees the penetration δ_e = n_e·x − ``normal_gap[e]`` and the
+#: slip velocity t_e·ẋ, with n_e and t_e the rows of ``normal_rows`` and ``tangent_rows``,
+#: nonzero only at its coordinates ``support_index[support_start[e]:support_start[e +
+#: 1]]``, and pushes the coordinates by −(N_e n_e + f_e t_e). The per-blade ``damping``,
+#: ``stiffness``, the couplings' and the angles' fields are unused.
 StructureScene = namedtuple("StructureScene", KernelScene._fields + (
-    "normal_rows", "tangent_rows", "normal_gap", "stiffness_matrix", "damping_matrix",
+    "normal_rows", "tangent_rows", "normal_gap", "support_start", "support_index",
+    "matrix_start", "matrix_column", "stiffness_entry", "damping_entry",
 ))
 
 #: What a run is asked for, in seconds: the first sample time, the sample spacing and the
