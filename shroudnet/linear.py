@@ -23,11 +23,32 @@ sectors' amplitudes vary round the ring as cos(2π ND s/N + θ). ND is read from
 shape by a discrete Fourier transform over the sectors (harmonics k and N − k are one
 ND), so that mistuned rings are labelled by their dominant diameter. An engine order l
 excites the diameter ND = min(l mod N, N − l mod N) only (``excited_diameter``).
+
+A group with substructures (DESIGN §7) is solved in the coordinates of its state
+(``SceneArrays.layout``: each node's modal coordinates, mass diag(m̃)), with the same two
+limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, v_e = t_e·ẋ):
+
+- ``"open"``: K̃ x = ω² M̃ x, K̃ the nodes' stiffness with the couplings
+  (``SceneArrays.stiffness_matrix``), the interfaces carrying nothing;
+- ``"stuck"``: every interface that can stick (an exact friction law, t_e ≠ 0) holds
+  t_e·x = 0, a constraint, while its normal force still acts along n_e; so every interface
+  closed at rest (−Δ_e > 0, or a law that never opens), stuck or sliding, adds the spring
+  ∂N/∂δ n_e n_eᵀ. The constraints G x = 0 (one row t_e per stuck interface) are eliminated
+  by an orthonormal basis T of the null space of G (redundant rows, as round an all-stuck
+  ring, are dropped by its rank), and Tᵀ K T z = ω² Tᵀ M T z is solved. For one-mass
+  blades (t_e ∥ n_e) this is the stick clusters above.
+
+``shapes`` stay by coordinate (mass-normalised: the kinetic energy is the physical one);
+``LinearModes.node_shapes`` and ``point_shapes`` read them in a node's own degrees of
+freedom q_i or as a point's displacement r_p. The nodal diameter of a ring of substructures
+is read, as for blades, from the DFT over the sectors of each node's own degrees of freedom
+q_i (so that sectors whose coordinates differ, as mistuned ones do, are compared in the same
+physical terms).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Hashable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -47,8 +68,9 @@ class LinearModes:
     """Natural frequencies and mode shapes of a scene's linearised group.
 
     ``frequencies`` [Hz] ascending; ``shapes`` one mass-normalised column per mode, rows
-    by blade position [1/√kg]; ``nodal_diameters`` the ND of each mode for a group of
-    ``sectors`` identical sectors, else None.
+    by blade position [1/√kg] (with substructures, by coordinate of the state: read them
+    with ``node_shapes`` or ``point_shapes``); ``nodal_diameters`` the ND of each mode for a
+    group of ``sectors`` identical sectors, else None; ``scene`` the scene they are of.
     """
 
     frequencies: np.ndarray
@@ -57,6 +79,27 @@ class LinearModes:
     contacts: str
     sectors: int | None
     speed_rpm: float
+    scene: Scene | None = None
+
+    def node_shapes(self, node: Hashable) -> np.ndarray:
+        """The mode shapes in ``node``'s own degrees of freedom q_i (n_i × modes; column k
+        is mode k, mass-normalised with the whole group) [1/√kg for displacements]: for a
+        ``Blade``, its displacement x (1 × modes); for a substructure, its q (of
+        ``Substructure.matrices_at``), so that ``Substructure.expand`` takes a reduction's
+        shape back to its full model."""
+        return self._scene("node_shapes").dof_rows(node) @ self.shapes
+
+    def point_shapes(self, node: Hashable, point: str | None = None) -> np.ndarray:
+        """The displacement r_p = Φ_p q_i of ``node``'s ``point`` in each mode (d × modes)
+        [m per √kg]; a ``Blade``'s one point is its x, and a substructure with one point
+        needs no name."""
+        return self._scene("point_shapes").point_rows(node, point) @ self.shapes
+
+    def _scene(self, method: str) -> Scene:
+        if self.scene is None:
+            raise ValueError(f"LinearModes.{method} needs the scene: these modes were made "
+                             "without one (linear_modes gives it)")
+        return self.scene
 
     def of_diameter(self, nodal_diameter: int) -> np.ndarray:
         """The frequencies [Hz] of the modes of one nodal diameter, ascending."""
@@ -100,8 +143,9 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
         The limit of the interfaces (module docstring).
     sectors : int, optional
         N, for a ring of N identical sectors whose nodes are numbered sector by sector
-        (position p in sector p // (n_blades/N)); taken from the group where it was built
-        as a ring or a bladed disc.
+        (the node at position p in sector p // (nodes/N)); taken from the group where it
+        was built as a ring or a bladed disc. With substructures, every sector must have
+        as many degrees of freedom.
 
     Examples
     --------
@@ -118,30 +162,71 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
     if contacts not in CONTACTS:
         raise ValueError(f"linear_modes: contacts must be one of {CONTACTS}, got {contacts!r}")
     a = scene.arrays
-    n = a.n_blades
     if sectors is None:
         sectors = scene.group.graph.graph.get("sectors")
     if sectors is not None:
         sectors = check_int("linear_modes", "sectors", sectors, low=1)
-        if n % sectors:
+        if len(scene.blades) % sectors:
             raise ValueError(f"linear_modes: sectors = {sectors} does not divide the "
-                             f"{n} blades into equal sectors")
-    stiffness = a.stiffness_matrix()
-    stuck = np.zeros(a.n_interfaces, dtype=bool)
-    if contacts == "stuck":
-        stuck = a.can_stick.copy()
-        stiffness = stiffness + _sliding_contacts(a, ~stuck)
-    basis = _cluster_basis(a, stuck)
-    mass = basis.T @ np.diag(a.mass) @ basis
+                             f"{len(scene.blades)} blades into equal sectors")
+    if a.is_structure:
+        basis, stiffness = _structure_limit(a, contacts)
+    else:
+        stiffness = a.stiffness_matrix()
+        stuck = np.zeros(a.n_interfaces, dtype=bool)
+        if contacts == "stuck":
+            stuck = a.can_stick.copy()
+            stiffness = stiffness + _sliding_contacts(a, ~stuck)
+        basis = _cluster_basis(a, stuck)
     if basis.shape[1] == 0:
         raise ValueError("linear_modes: with every interface stuck nothing moves: every "
                          "blade is stuck to a fixed node")
+    mass = basis.T @ np.diag(a.mass) @ basis
     eigenvalues, vectors = scipy.linalg.eigh(basis.T @ stiffness @ basis, mass)
     frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
     shapes = basis @ vectors
-    diameters = None if sectors is None else nodal_diameters(shapes, sectors)
+    diameters = None
+    if sectors is not None:
+        diameters = nodal_diameters(_by_degree_of_freedom(scene, shapes, sectors), sectors)
     return LinearModes(frequencies=frequencies, shapes=shapes, nodal_diameters=diameters,
-                       contacts=contacts, sectors=sectors, speed_rpm=scene.speed_rpm)
+                       contacts=contacts, sectors=sectors, speed_rpm=scene.speed_rpm,
+                       scene=scene)
+
+
+def _structure_limit(a, contacts) -> tuple[np.ndarray, np.ndarray]:
+    """(T, K) of a scene with substructures in the limit ``contacts`` (module docstring):
+    x = T z spans the motions the stuck interfaces allow (T orthonormal), and K is K̃ plus
+    the normal springs of the interfaces closed at rest. A prescribed-motion coordinate is
+    held (its columns of the rows dropped)."""
+    n = a.n_blades
+    stiffness = a.stiffness_matrix()
+    if contacts == "open":
+        return np.eye(n), stiffness
+    for e in range(a.n_interfaces):
+        penetration = -a.normal_gap[e]
+        if penetration > 0.0 or not a.opens[e]:
+            gradient = a.normal_laws[e].gradient(max(penetration, 0.0), 0.0)[0]
+            normal = a.normal_rows[e, :n]
+            stiffness = stiffness + gradient * np.outer(normal, normal)
+    constraints = a.tangent_rows[a.can_stick, :n]
+    if not len(constraints):
+        return np.eye(n), stiffness
+    return scipy.linalg.null_space(constraints), stiffness
+
+
+def _by_degree_of_freedom(scene: Scene, shapes: np.ndarray, sectors: int) -> np.ndarray:
+    """``shapes`` in the nodes' own degrees of freedom, nodes by position (a scene of blades:
+    ``shapes`` itself), checked to give every sector as many rows."""
+    if not scene.arrays.is_structure:
+        return shapes
+    rows = [scene.dof_rows(node) @ shapes for node in scene.blades]
+    per_sector = len(rows) // sectors
+    sizes = {sum(len(r) for r in rows[s * per_sector:(s + 1) * per_sector])
+             for s in range(sectors)}
+    if len(sizes) != 1:
+        raise ValueError(f"linear_modes: the {sectors} sectors have different numbers of "
+                         f"degrees of freedom ({sorted(sizes)}): they are not identical")
+    return np.vstack(rows)
 
 
 def _sliding_contacts(a, candidates) -> np.ndarray:
