@@ -13,6 +13,12 @@ nodes) are made stiffer by (1 + ε_s)²: their springs to ground (a frequency mo
 scaled by 1 + ε_s) and their couplings, a coupling between two mistuned nodes by
 (1 + ε_a)(1 + ε_b). A blade on a rigid disc then has its frequencies scaled by 1 + ε_s
 exactly, its mode shapes unchanged.
+
+A ``Substructure`` node is mistuned the same way: its stiffness K(Ω) = K₀ + Ω² K₁ by
+(1 + ε)² (both matrices), or, for modal data, each mode's frequency model by 1 + ε; its
+mass, damping matrix and points are kept, so each of its natural frequencies, at every
+speed, is scaled by 1 + ε and its mode shapes are unchanged. Its amplitude in a study is
+the largest of its points' components.
 """
 
 from __future__ import annotations
@@ -30,6 +36,7 @@ from .group import BladeGroup
 from .methods import TRANSIENT, Adaptive
 from .scene import Scene
 from .simulation import SimulationError
+from .substructure import Substructure
 from .sweep import sweep
 
 
@@ -107,19 +114,46 @@ def mistuned_group(scene: Scene, factors,
     group = BladeGroup()
     for name, data in scene.group.graph.nodes(data=True):
         if data["blade"] is not None:
-            group.add_blade(name, _scaled_blade(data["blade"], factor[name]))
+            group.add_blade(name, _scaled_node(data["blade"], factor[name]))
         elif data.get("motion") is not None:
             group.add_prescribed(name, data["motion"])
         else:
             group.add_fixed(name)
-    for left, right, interface in scene.group.interfaces:
-        group.connect(left, right, interface)
-    for left, right, coupling in scene.group.couplings:
+    for (left, right, interface), points in zip(scene.group.interfaces,
+                                                scene.group.edge_points("interface")):
+        group.connect(*_ends(left, right, points), interface)
+    for (left, right, coupling), points in zip(scene.group.couplings,
+                                               scene.group.edge_points("coupling")):
         ends = [factor[n] for n in (left, right) if n in mistuned]
         scale = 1.0 if not ends else ends[0] ** 2 if len(ends) == 1 else ends[0] * ends[1]
-        group.connect(left, right, replace(coupling, stiffness=coupling.stiffness * scale))
+        group.connect(*_ends(left, right, points),
+                      replace(coupling, stiffness=coupling.stiffness * scale))
     group.graph.graph.update(scene.group.graph.graph)
     return group
+
+
+def _ends(left, right, points):
+    """An edge's two ends for ``BladeGroup.connect``: (node, point) where it joins a named
+    point, the node alone where it does not."""
+    return tuple(node if point is None else (node, point)
+                 for node, point in zip((left, right), points))
+
+
+def _scaled_node(body: Blade | Substructure, factor: float) -> Blade | Substructure:
+    """``body`` with its natural frequencies scaled by ``factor`` (module docstring)."""
+    if isinstance(body, Substructure):
+        return _scaled_substructure(body, factor)
+    return _scaled_blade(body, factor)
+
+
+def _scaled_substructure(body: Substructure, factor: float) -> Substructure:
+    if factor == 1.0:
+        return body
+    if body.modal_frequencies is not None:
+        return replace(body, modal_frequencies=tuple(_scaled_frequency(model, factor)
+                                                     for model in body.modal_frequencies))
+    speed = None if body.stiffness_speed is None else body.stiffness_speed * factor**2
+    return replace(body, stiffness=body.stiffness * factor**2, stiffness_speed=speed)
 
 
 def _scaled_blade(blade: Blade, factor: float) -> Blade:
@@ -127,17 +161,19 @@ def _scaled_blade(blade: Blade, factor: float) -> Blade:
         return blade
     if blade.stiffness is not None:
         return replace(blade, stiffness=blade.stiffness * factor**2)
-    model = blade.frequency
+    return replace(blade, frequency=_scaled_frequency(blade.frequency, factor))
+
+
+def _scaled_frequency(model, factor: float):
+    """A frequency model whose f(Ω) is ``factor`` times ``model``'s at every speed."""
     if isinstance(model, ConstantFrequency):
-        scaled = ConstantFrequency(hz=model.hz * factor)
-    elif isinstance(model, Southwell):
-        scaled = Southwell(f0=model.f0 * factor, coefficient=model.coefficient * factor**2)
-    elif isinstance(model, FrequencyTable):
-        scaled = FrequencyTable(speeds_rpm=model.speeds_rpm,
-                                frequencies=tuple(f * factor for f in model.frequencies))
-    else:  # pragma: no cover - Blade accepts no other model
-        raise TypeError(f"cannot scale the frequency model {model!r}")
-    return replace(blade, frequency=scaled)
+        return ConstantFrequency(hz=model.hz * factor)
+    if isinstance(model, Southwell):
+        return Southwell(f0=model.f0 * factor, coefficient=model.coefficient * factor**2)
+    if isinstance(model, FrequencyTable):
+        return FrequencyTable(speeds_rpm=model.speeds_rpm,
+                              frequencies=tuple(f * factor for f in model.frequencies))
+    raise TypeError(f"cannot scale the frequency model {model!r}")  # pragma: no cover
 
 
 def mistuning_study(scene: Scene, *, spread: float, samples: int,
@@ -150,8 +186,9 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
 
     Every sample, and the tuned group, runs at every speed of ``speeds_rpm`` (one
     ``sweep``, on every core or on ``executor``, a dask cluster included); a point keeps
-    the peak |x| of each node over ``record`` periods after ``transient`` ones, sampled
-    ``samples_per_period`` times a period.
+    the peak |x| of each node (of a substructure, the largest over its points' components)
+    over ``record`` periods after ``transient`` ones, sampled ``samples_per_period`` times a
+    period.
 
     Parameters
     ----------
@@ -210,6 +247,10 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
         raise SimulationError(f"mistuning_study: {len(failed)} of the runs failed, the "
                               f"first: {failed[0]} (sample×speed k is sample "
                               f"k // {len(speeds)}, speed k % {len(speeds)})")
-    peaks = result.peaks()[:, mistuned].max(axis=1).reshape(samples + 1, len(speeds))
+    columns = mistuned
+    if scene.arrays.is_structure:  # the sweep keeps a peak per point component
+        chosen = set(blades)
+        columns = [k for k, (node, _, _) in enumerate(scene.responses) if node in chosen]
+    peaks = result.peaks()[:, columns].max(axis=1).reshape(samples + 1, len(speeds))
     return MistuningStudy(spread=spread, speeds_rpm=np.array(speeds), patterns=patterns,
                           peaks=peaks, blades=tuple(blades), sectors=sectors)
