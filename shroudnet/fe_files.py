@@ -34,13 +34,14 @@ TRIPLET_SUFFIXES = ("_rows", "_cols", "_values", "_shape")
 class FEMatrices:
     """The matrices read from one file: each an (N, N) float ndarray or ``csr_array``.
 
-    ``damping`` is None where it was not asked for.
+    ``damping`` and ``stiffness_speed`` are None where they were not asked for.
     """
 
     path: Path
     mass: object
     stiffness: object
     damping: object = None
+    stiffness_speed: object = None
 
     @property
     def n_dofs(self) -> int:
@@ -48,16 +49,18 @@ class FEMatrices:
         return self.mass.shape[0]
 
 
-def read_matrices(path, mass: str = "M", stiffness: str = "K",
-                  damping: str | None = None) -> FEMatrices:
-    """Read M and K (and C if ``damping`` names it) from an ``.npz`` or ``.mat`` file.
+def read_matrices(path, mass: str = "M", stiffness: str = "K", damping: str | None = None,
+                  stiffness_speed: str | None = None) -> FEMatrices:
+    """Read M and K (and C, K₁ where ``damping``, ``stiffness_speed`` name them) from an
+    ``.npz`` or ``.mat`` file.
 
     Parameters
     ----------
     path : str or Path
         The file; its extension, ``.npz`` or ``.mat``, says how to read it.
-    mass, stiffness, damping : str
-        The names of the matrices in the file.
+    mass, stiffness, damping, stiffness_speed : str
+        The names of the matrices in the file (K₁ of K(Ω) = K₀ + Ω² K₁: see
+        ``Substructure.stiffness_speed``).
 
     Returns
     -------
@@ -81,7 +84,8 @@ def read_matrices(path, mass: str = "M", stiffness: str = "K",
     if not path.is_file():
         raise FileNotFoundError(f"read_matrices: no file {str(path)!r}")
     arrays = _read_npz(path) if path.suffix.lower() == ".npz" else _read_mat(path)
-    names = {"mass": mass, "stiffness": stiffness, "damping": damping}
+    names = {"mass": mass, "stiffness": stiffness, "damping": damping,
+             "stiffness_speed": stiffness_speed}
     matrices = {}
     for field, name in names.items():
         if name is None:
