@@ -49,7 +49,58 @@ A scene file holds one document (SI units; speeds in rev/min)::
     method = "adaptive"               # or "fixed" (steps_per_period) or "accuracy" (target)
     periods = 400
     transient = 300                   # periods left out of summaries and figures
-    blade = "blade2"                  # the blade they are about
+    blade = "blade2"                  # the blade they are about (with substructures,
+                                      # a point's component: see below)
+
+A node may be a linear structure of many degrees of freedom instead (a ``Substructure``,
+with named points r_p = Φ_p q): a ``[[blades]]`` table with ``file``, ``modal`` or ``beam``,
+or with its matrices inline::
+
+    [[blades]]
+    name = "blade1"
+    file = "blade.npz"                # M and K from a .npz or .mat file (fe_files); a
+                                      # relative path is read from this file's folder
+    names = {mass = "M", stiffness = "K"}   # their names in the file (these by default);
+                                      # also damping = "C", stiffness_speed = "K1" (K₁ of
+                                      # K(Ω) = K₀ + Ω² K₁); optional
+    points = {shroud = [[0.0, …], [0.0, …]], load = [0.0, …]}   # Φ_p: d × n, d ≤ 3 [m]
+    load = "load"                     # where Q(t) acts: a point of one component, or
+                                      # {point = "shroud", direction = [0.0, 1.0]}, or b
+                                      # (n numbers); optional (see Substructure.load)
+    damping_ratios = 0.002            # modal damping ζ: one, or one per mode; optional
+    excitation_scale = 1.0            # s, signed for a substructure; optional
+    reduce = {method = "craig_bampton", boundary = [0, 1], modes = 8}   # optional; or
+                                      # {method = "modal_truncation", modes = 8}
+
+    [[blades]]                        # modal data, as an FE modal analysis prints it
+    name = "blade2"
+    modal = {frequencies = [180.0, {f0 = 420.0, coefficient = 2.0}], masses = [0.05, 0.04]}
+                                      # f_k as a blade's frequency above; m_k [kg]
+    damping_ratios = 0.005            # required here (0: undamped)
+    points = {shroud = [[1.0, 0.3], [0.2, 1.0]], load = [0.8, 0.5]}   # shapes: d × modes
+
+    [[blades]]                        # a clamped beam (beam.cantilever_beam: its keywords);
+    name = "blade3"                   # points "shroud" (d = 2, the tip) and "load"
+    beam = {length = 0.1, youngs_modulus = 2e11, density = 7800.0, width = 0.02, thickness = 0.004}
+    damping_ratios = 0.002            # excitation_scale and reduce as above; optional
+
+    [[interfaces]]                    # an end is then [node, point]; between points of d
+    left = ["blade1", "shroud"]       # components, unit directions in the points' frame
+    right = ["blade3", "shroud"]      # replace the angle (Interface)
+    gap = -2e-6
+    normal_direction = [0.8, 0.6]
+    tangent_direction = [-0.6, 0.8]
+    normal = {law = "LinearSpring", stiffness = 2e5}
+
+A node's matrices may also be written inline: ``mass = [[…], …]``, ``stiffness``, and
+optionally ``damping``, ``stiffness_speed`` (rows of numbers, or ``{shape = [n, n],
+rows = […], columns = […], values = […]}`` for a sparse one, indices from 0), with
+``points``; that is how ``document`` writes a substructure built in Python. A node read from a
+file, built as a beam or reduced is written back as it was given, its file by absolute
+path (or relative to ``document``'s ``folder``: ``save`` writes a scene file so). With
+substructures, ``[run] blade`` is a component of a point, ``["blade1", "shroud", 0]``, or
+a node of one point of one component, or a position in ``Scene.responses`` (0, the
+first, by default).
 
 Identical blades may be given once instead, as ``[group]`` with ``shape = "ring"`` or
 ``"chain"``, ``count``, ``blade = {…}`` and ``interface = {…}``; a bladed disc of
@@ -80,17 +131,27 @@ the file, the key and what is allowed there.
 from __future__ import annotations
 
 import dataclasses
+import inspect
+import json
 import math
+import os
+import re
 import sys
 import tomllib
+import weakref
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
 from typing import Any
 
+import numpy as np
+import scipy.sparse
+
 import contact_laws
 
+from . import fe_files
+from .beam import cantilever_beam
 from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
 from .coupling import Coupling
 from .excitation import (NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation,
@@ -99,7 +160,9 @@ from .group import BladeGroup
 from .interface import Interface
 from .methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive, FixedStep
 from .motion import ConstantVelocity, HarmonicMotion, MotionTable
+from .reduction import craig_bampton, modal_truncation
 from .scene import Scene
+from .substructure import Substructure
 
 
 class SceneFileError(ValueError):
@@ -115,7 +178,7 @@ class RunSettings:
     transient: int = TRANSIENT
     samples_per_period: int = 100
     event_tolerance: float = EVENT_TOLERANCE
-    blade: str | int = 1
+    blade: str | int | tuple = 1
 
     def __post_init__(self):
         for name in ("periods", "samples_per_period"):
@@ -134,7 +197,9 @@ Laws = Iterable[type | ModuleType]
 
 @dataclass(frozen=True)
 class SceneFile:
-    """A scene file read: the scene, its run settings and the document they came from."""
+    """A scene file read: the scene, its run settings and the document they came from
+    (with the paths of the matrix files it names made absolute, so that it reads the same
+    from any folder)."""
 
     scene: Scene
     run: RunSettings
@@ -149,7 +214,7 @@ def load(path: str | Path, *, laws: Laws = ()) -> SceneFile:
     """
     path = Path(path)
     document = _parse(path, _text(path))
-    return read(document, source=str(path), laws=laws)
+    return read(document, source=str(path), laws=laws, folder=path.parent)
 
 
 def _text(path: Path) -> str:
@@ -183,20 +248,25 @@ def _parse(path: Path, text: str) -> dict:
                              "deeply to read") from None
 
 
-def read(document: dict, *, source: str = "scene", laws: Laws = ()) -> SceneFile:
+def read(document: dict, *, source: str = "scene", laws: Laws = (),
+         folder: str | Path | None = None) -> SceneFile:
     """Build the scene and run settings of a document (a parsed scene file).
 
-    ``laws`` as for ``load``.
+    ``laws`` as for ``load``. ``folder``: where the relative paths of matrix files are
+    read from (default: the current folder).
     """
     own = _own_laws(laws)
     try:
         if not isinstance(document, dict):
             raise _KeyError("the file", "must be a table of keys, got "
                                         f"{type(document).__name__}")
+        document = _absolute_files(document, folder)
         scene, run = _scene(document, own), _run(document.get("run", {}))
-        if "blade" not in document.get("run", {}) and len(scene.blades) == 1:
+        structure = scene.group.has_substructures
+        if "blade" not in document.get("run", {}) and (len(scene.blades) == 1 or structure):
             run = dataclasses.replace(run, blade=0)  # the default, position 1, is not there
-        _build("run.blade", lambda: scene.blade_position(run.blade))
+        position = scene.response_position if structure else scene.blade_position
+        _build("run.blade", lambda: position(run.blade))
         return SceneFile(scene=scene, run=run, document=document)
     except _KeyError as error:
         raise SceneFileError(f"{source}: {error.key}: {error.message}") from None
@@ -270,9 +340,8 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
     for i, entry in enumerate(blades):
         key = f"blades[{i}]"
         entry = _as_table(entry, key)
-        _only(entry, {"name"} | _BLADE_KEYS, key)
         name = _name(entry, key)
-        blade = _blade({k: v for k, v in entry.items() if k != "name"}, key)
+        blade = _body({k: v for k, v in entry.items() if k != "name"}, key)
         _build(key, lambda: group.add_blade(name, blade))
     fixed = document.get("fixed", [])
     if not isinstance(fixed, list):
@@ -292,7 +361,7 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
         key = f"interfaces[{i}]"
         entry = _as_table(entry, key)
         _only(entry, {"left", "right"} | _INTERFACE_KEYS, key)
-        left, right = (_node(entry, end, f"{key}.{end}") for end in ("left", "right"))
+        left, right = (_end(entry, end, f"{key}.{end}") for end in ("left", "right"))
         interface = _interface({k: v for k, v in entry.items() if k not in ("left", "right")},
                                key, own)
         _build(key, lambda: group.connect(left, right, interface))
@@ -300,7 +369,7 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
         key = f"couplings[{i}]"
         entry = _as_table(entry, key)
         _only(entry, {"left", "right", "stiffness", "damping"}, key)
-        left, right = (_node(entry, end, f"{key}.{end}") for end in ("left", "right"))
+        left, right = (_end(entry, end, f"{key}.{end}") for end in ("left", "right"))
         coupling = _coupling({k: v for k, v in entry.items() if k not in ("left", "right")},
                              key)
         _build(key, lambda: group.connect(left, right, coupling))
@@ -416,7 +485,270 @@ def _frequency(value, key):
                          f"{{speeds_rpm, frequencies}} (a table), got keys {sorted(value)}")
 
 
-_INTERFACE_KEYS = {"gap", "angle", "normal", "friction"}
+# ---- substructures: nodes of many degrees of freedom ---------------------------------------
+
+#: How a node of many degrees of freedom is given: its key, and the keys each way takes.
+_STRUCTURE_COMMON = {"points", "load", "damping_ratios", "excitation_scale"}
+_MATRICES = ("mass", "stiffness", "damping", "stiffness_speed")
+_STRUCTURE_KEYS = {
+    "file": {"file", "names", "reduce"} | _STRUCTURE_COMMON,
+    "matrices": {*_MATRICES, "reduce"} | _STRUCTURE_COMMON,
+    "modal": {"modal"} | _STRUCTURE_COMMON,
+    "beam": {"beam", "damping_ratios", "excitation_scale", "reduce"},
+}
+#: The keywords of ``cantilever_beam`` that a ``beam`` table holds (the rest are the node's).
+_BEAM_KEYS = {name for name in inspect.signature(cantilever_beam).parameters} \
+    - {"damping_ratios", "excitation_scale"}
+_REDUCTIONS = {"craig_bampton": {"method", "boundary", "modes"},
+               "modal_truncation": {"method", "modes"}}
+
+#: What a substructure read from a file was given as (its table, the file's path made
+#: absolute), so that ``document`` writes it back so: by the substructure, which is frozen
+#: and compared by identity, for as long as it lives.
+_GIVEN_AS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def is_substructure(entry) -> bool:
+    """Whether a ``[[blades]]`` table of a document gives a ``Substructure`` (a node of
+    many degrees of freedom) rather than a ``Blade``."""
+    return isinstance(entry, dict) and (any(key in entry for key in (
+        "file", "modal", "beam", "points")) or isinstance(entry.get("mass"), list | dict))
+
+
+def _body(table: dict, key: str) -> Blade | Substructure:
+    """The ``Blade`` or ``Substructure`` a node's table (its name left out) gives."""
+    return _substructure(table, key) if is_substructure(table) else _blade(table, key)
+
+
+def _structure_kind(table: dict, key: str) -> str:
+    given = [name for name in ("file", "modal", "beam") if name in table]
+    if isinstance(table.get("mass"), list | dict):
+        given.append("mass")
+    if len(given) > 1:
+        raise _KeyError(key, "give a node one of file, modal, beam or its matrices inline "
+                             f"(mass = [[…], …]), not {' and '.join(given)}")
+    return "matrices" if given in ([], ["mass"]) else given[0]
+
+
+def _substructure(table: dict, key: str) -> Substructure:
+    kind = _structure_kind(table, key)
+    _only(table, _STRUCTURE_KEYS[kind], key, what=f"keys of a node given by {kind}")
+    options = {}
+    if "damping_ratios" in table:
+        options["damping_ratios"] = _one_or_list(table["damping_ratios"],
+                                                 f"{key}.damping_ratios")
+    if "excitation_scale" in table:
+        options["excitation_scale"] = _number(table, "excitation_scale",
+                                              f"{key}.excitation_scale")
+    if kind == "beam":
+        body = _beam(_table(table, "beam", f"{key}.beam"), f"{key}.beam", options)
+    else:
+        points = _points(table, key)
+        load = _load(table, key, points)
+        if kind == "modal":
+            return _modal(table, key, points, load, options)
+        matrices = _file_matrices(table, key) if kind == "file" else {
+            name: _matrix(table, name, f"{key}.{name}") for name in _MATRICES
+            if name in table or name in ("mass", "stiffness")}
+        body = _build(key, lambda: Substructure(**matrices, points=points, load=load,
+                                                **options))
+    if "reduce" in table:
+        body = _reduce(body, _as_table(table["reduce"], f"{key}.reduce"), f"{key}.reduce")
+    if kind != "matrices" or "reduce" in table:
+        _GIVEN_AS[body] = _deep_copy(table)
+    return body
+
+
+def _file_matrices(table: dict, key: str) -> dict:
+    """M, K (and C, K₁ where named) read from the node's ``file``."""
+    path = table["file"]
+    if not isinstance(path, str) or not path:
+        raise _KeyError(f"{key}.file", f"must be the path of a .npz or .mat file, got "
+                                       f"{_short(path)}")
+    names = _as_table(table.get("names", {}), f"{key}.names")
+    _only(names, set(_MATRICES), f"{key}.names", what="matrices")
+    for field, name in names.items():
+        if not isinstance(name, str):
+            raise _KeyError(f"{key}.names.{field}", f"must be the name of a matrix in the "
+                                                    f"file, got {_short(name)}")
+    try:
+        read = fe_files.read_matrices(path, **names)
+    except FileNotFoundError:
+        raise _KeyError(f"{key}.file", f"no such file: {path} (a relative path is read "
+                                       "from the scene file's folder)") from None
+    except (TypeError, ValueError) as error:
+        raise _KeyError(f"{key}.file", str(error)) from None
+    except OSError as error:
+        raise _KeyError(f"{key}.file", f"{path}: cannot be read: "
+                                       f"{error.strerror or error}") from None
+    return {name: getattr(read, name) for name in _MATRICES if getattr(read, name) is not None}
+
+
+def _matrix(table: dict, name: str, key: str):
+    """A matrix written inline: rows of numbers, or a sparse one as index triplets."""
+    if name not in table:
+        raise _KeyError(key, "is required: a matrix [[…], …] (or give the node file, modal or "
+                             "beam)")
+    value = table[name]
+    if not isinstance(value, dict):
+        return _numbers(value, key, "rows of numbers [[…], …]")
+    _only(value, {"shape", "rows", "columns", "values"}, key)
+    parts = {part: _numbers(_required(value, part, f"{key}.{part}"), f"{key}.{part}",
+                            "a list of numbers") for part in ("shape", "rows", "columns", "values")}
+    indices = [parts[part] for part in ("shape", "rows", "columns")]
+    if any(p.ndim != 1 or np.any(p != np.round(p)) or np.any(p < 0) for p in indices) \
+            or len(parts["shape"]) != 2 or not len(parts["rows"]) == len(parts["columns"]) \
+            == len(parts["values"]):
+        raise _KeyError(key, "a sparse matrix is {shape = [n, n], rows = […], columns = […], "
+                             "values = […]}: whole numbers from 0, one row, column and value "
+                             "per entry")
+    shape, rows, columns = (p.astype(np.int64) for p in indices)
+    return _build(key, lambda: scipy.sparse.coo_array(
+        (parts["values"], (rows, columns)), shape=tuple(shape)).tocsr())
+
+
+def _points(table: dict, key: str) -> dict[str, np.ndarray]:
+    points = _table(table, "points", f"{key}.points")
+    return {name: _numbers(value, f"{key}.points.{name}", "a d × n matrix [[…], …] or a "
+                                                          "vector [m]")
+            for name, value in points.items()}
+
+
+def _load(table: dict, key: str, points: dict):
+    """The ``load`` of a substructure: a point's name, (point, direction) or the vector b."""
+    if "load" not in table:
+        return None
+    value, where = table["load"], f"{key}.load"
+    if isinstance(value, list):
+        return _vector(value, where)
+    if isinstance(value, dict):
+        _only(value, {"point", "direction"}, where)
+        point = value.get("point")
+        direction = tuple(_vector(_required(value, "direction", f"{where}.direction"),
+                                  f"{where}.direction"))
+    elif isinstance(value, str):
+        point, direction = value, None
+    else:
+        raise _KeyError(where, "must be a point's name, {point = …, direction = […]} or the "
+                               f"load vector [b_1, …, b_n], got {_short(value)}")
+    if point not in points:
+        raise _KeyError(where, f"names the unknown point {point!r}; the points are "
+                               f"{sorted(points)}")
+    return point if direction is None else (point, direction)
+
+
+def _modal(table: dict, key: str, points: dict, load, options: dict) -> Substructure:
+    modal = _table(table, "modal", f"{key}.modal")
+    _only(modal, {"frequencies", "masses"}, f"{key}.modal")
+    frequencies = _required(modal, "frequencies", f"{key}.modal.frequencies")
+    if not isinstance(frequencies, list):
+        raise _KeyError(f"{key}.modal.frequencies", "must be a list, one frequency per mode "
+                                                    f"[Hz], got {_short(frequencies)}")
+    models = [_frequency(value, f"{key}.modal.frequencies[{k}]")
+              for k, value in enumerate(frequencies)]
+    masses = _required(modal, "masses", f"{key}.modal.masses")
+    masses = _one_or_list(masses, f"{key}.modal.masses")
+    if "damping_ratios" not in options:
+        raise _KeyError(f"{key}.damping_ratios", "is required with modal data (0: undamped)")
+    return _build(key, lambda: Substructure.modal(
+        models, options["damping_ratios"], masses, points, load=load,
+        excitation_scale=options.get("excitation_scale", 1.0)))
+
+
+def _beam(table: dict, key: str, options: dict) -> Substructure:
+    _only(table, _BEAM_KEYS, key, what="keywords of beam.cantilever_beam")
+    needed = sorted(name for name, parameter in
+                    inspect.signature(cantilever_beam).parameters.items()
+                    if parameter.default is inspect.Parameter.empty and name not in table)
+    if needed:
+        raise _KeyError(key, f"cantilever_beam needs {', '.join(needed)}")
+    arguments = {name: tuple(value) if isinstance(value, list) else value
+                 for name, value in table.items()}
+    return _build(key, lambda: cantilever_beam(**arguments, **options))
+
+
+def _reduce(body: Substructure, table: dict, key: str) -> Substructure:
+    """``body`` reduced as ``table`` says: Craig–Bampton or modal truncation."""
+    method = table.get("method")
+    if method not in _REDUCTIONS:
+        raise _KeyError(f"{key}.method", f"must be one of {', '.join(map(repr, _REDUCTIONS))}, "
+                                         f"got {_short(method)}")
+    _only(table, _REDUCTIONS[method], key, what=f"keys of {method}")
+    if body.damping is not None:
+        raise _KeyError(key, "a reduction takes modal damping (damping_ratios), not a "
+                             "damping matrix")
+    modes = _required(table, "modes", f"{key}.modes")
+    options = dict(damping_ratios=body.damping_ratios, points=dict(body.points),
+                   load=body.load, excitation_scale=body.excitation_scale,
+                   stiffness_speed=body.stiffness_speed)
+    if method == "modal_truncation":
+        return _build(key, lambda: modal_truncation(body.mass, body.stiffness, modes,
+                                                    **options))
+    boundary = _required(table, "boundary", f"{key}.boundary")
+    if not isinstance(boundary, list):
+        raise _KeyError(f"{key}.boundary", "must be a list of degree-of-freedom indices "
+                                           f"(from 0), got {_short(boundary)}")
+    return _build(key, lambda: craig_bampton(body.mass, body.stiffness, boundary, modes,
+                                             **options))
+
+
+def _one_or_list(value, key: str) -> float | tuple[float, ...]:
+    """One number (for every mode), or a list of numbers (one per mode)."""
+    if isinstance(value, list):
+        return tuple(float(v) for v in _vector(value, key))
+    return _number({"value": value}, "value", key)
+
+
+def _vector(value, key: str) -> np.ndarray:
+    array = _numbers(value, key, "a list of numbers")
+    if array.ndim != 1:
+        raise _KeyError(key, f"must be a list of numbers, got {_short(value)}")
+    return array
+
+
+def _numbers(value, key: str, expected: str) -> np.ndarray:
+    """``value`` (numbers, or nested lists of them, rectangular) as a float array."""
+    def numbers(item) -> bool:
+        if isinstance(item, list):
+            return all(numbers(v) for v in item)
+        return isinstance(item, int | float) and not isinstance(item, bool)
+    if not isinstance(value, list) or not numbers(value):
+        raise _KeyError(key, f"must be {expected}, got {_short(value)}")
+    try:
+        return np.array(value, dtype=float)
+    except ValueError:
+        raise _KeyError(key, f"must be {expected}, with rows of one length") from None
+
+
+def _required(table: dict, name: str, key: str):
+    if name not in table:
+        raise _KeyError(key, "is required")
+    return table[name]
+
+
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _absolute_files(document: dict, folder) -> dict:
+    """``document``, its nodes' ``file`` paths made absolute (relative ones are in
+    ``folder``); the document itself if it names no file."""
+    blades = document.get("blades")
+    if not isinstance(blades, list) or not any(
+            isinstance(entry, dict) and isinstance(entry.get("file"), str) and entry["file"]
+            for entry in blades):
+        return document
+    base = Path(folder) if folder is not None else Path()
+    copy = dict(document)
+    copy["blades"] = [{**entry, "file": os.path.abspath(base / entry["file"])}
+                      if isinstance(entry, dict) and isinstance(entry.get("file"), str)
+                      and entry["file"] else entry for entry in blades]
+    return copy
+
+
+_DIRECTIONS = ("normal_direction", "tangent_direction")
+_INTERFACE_KEYS = {"gap", "angle", "normal", "friction", *_DIRECTIONS}
 
 
 def _interface(table: dict, key: str, own: dict[str, type]) -> Interface:
@@ -427,9 +759,20 @@ def _interface(table: dict, key: str, own: dict[str, type]) -> Interface:
     if "friction" in table:
         friction = _law(_table(table, "friction", f"{key}.friction"), f"{key}.friction",
                         contact_laws.FrictionLaw, own)
-    return _build(key, lambda: Interface(gap=_number(table, "gap", f"{key}.gap"),
-                                         angle=_number(table, "angle", f"{key}.angle"),
-                                         normal=normal, friction=friction))
+    gap = _number(table, "gap", f"{key}.gap")
+    if not any(name in table for name in _DIRECTIONS):
+        angle = _number(table, "angle", f"{key}.angle")
+        return _build(key, lambda: Interface(gap=gap, angle=angle, normal=normal,
+                                             friction=friction))
+    directions = {}
+    for name in _DIRECTIONS:
+        if name not in table:
+            raise _KeyError(f"{key}.{name}", "is required with the other direction (or give "
+                                             "angle instead of both)")
+        directions[name] = tuple(_vector(table[name], f"{key}.{name}"))
+    angle = _number(table, "angle", f"{key}.angle") if "angle" in table else None
+    return _build(key, lambda: Interface(gap=gap, angle=angle, normal=normal,
+                                         friction=friction, **directions))
 
 
 def _law(table: dict, key: str, kind: type, own: dict[str, type]):
@@ -545,6 +888,8 @@ def _run(table) -> RunSettings:
         raise _KeyError(f"run.{stray[0]}", f"does not apply to method = {name!r}; it takes "
                                            f"{', '.join(sorted(keys))}")
     method = _build("run", lambda: method_class(**knobs))
+    if isinstance(table.get("blade"), list):  # a point's component: [node, point, k]
+        table["blade"] = tuple(table["blade"])
     return _build("run", lambda: RunSettings(method=method, **table))
 
 
@@ -599,6 +944,18 @@ def _node(entry: dict, name: str, key: str):
     return value
 
 
+def _end(entry: dict, name: str, key: str):
+    """An edge's end: a node's name, or ``[node, point]`` (a point of a substructure)."""
+    value = entry.get(name)
+    node, point = (value[0], value[1]) if isinstance(value, list) and len(value) == 2 \
+        else (value, "")
+    if isinstance(node, bool) or not isinstance(node, str | int) or not isinstance(point, str) \
+            or isinstance(value, list) and not point:
+        raise _KeyError(key, f"must be a node name (text or integer) or [node, point name], "
+                             f"got {_short(value)}")
+    return (node, point) if isinstance(value, list) else node
+
+
 def _build(key: str, make):
     """Call ``make``; turn the errors of the objects' own checks into the key's error."""
     try:
@@ -609,30 +966,35 @@ def _build(key: str, make):
 
 # ---- writing ------------------------------------------------------------------------------
 
-def document(scene: Scene, run: RunSettings | None = None) -> dict:
+def document(scene: Scene, run: RunSettings | None = None, *,
+             folder: str | Path | None = None) -> dict:
     """The document of ``scene`` (and ``run``), which ``read`` turns back into an equal scene.
 
-    It is plain data (TOML- and JSON-compatible): every blade and interface written out.
+    It is plain data (TOML- and JSON-compatible): every blade and interface written out. A
+    substructure read from a scene file's ``file``, ``beam`` or ``reduce`` is written as it
+    was given, its file by its absolute path, or relative to ``folder`` if given (where the
+    document will be saved); any other substructure with its matrices, or its modal data,
+    inline (a reduction's basis is not kept).
     """
     group = scene.group
     result: dict[str, Any] = {"speed_rpm": float(scene.speed_rpm),
                               "excitation": _excitation_document(scene.excitation)}
-    result["blades"] = [{"name": name, **_blade_document(group.blade(name))}
+    result["blades"] = [{"name": name, **_body_document(group.blade(name), folder)}
                         for name in group.blades]
     if group.fixed:
         result["fixed"] = list(group.fixed)
     if group.prescribed:
         result["prescribed"] = [{"name": name, "motion": _motion_document(motion)}
                                 for name, motion in group.prescribed]
-    result["interfaces"] = [{"left": left, "right": right, "gap": float(i.gap),
-                             "angle": float(i.angle), "normal": _law_document(i.normal),
-                             **({"friction": _law_document(i.friction)}
-                                if i.friction is not None else {})}
-                            for left, right, i in group.interfaces]
+    result["interfaces"] = [
+        {"left": _end_document(left, ends[0]), "right": _end_document(right, ends[1]),
+         **_interface_document(i)}
+        for (left, right, i), ends in zip(group.interfaces, group.edge_points("interface"))]
     if group.couplings:
-        result["couplings"] = [{"left": left, "right": right, "stiffness": float(c.stiffness),
-                                "damping": float(c.damping)}
-                               for left, right, c in group.couplings]
+        result["couplings"] = [
+            {"left": _end_document(left, ends[0]), "right": _end_document(right, ends[1]),
+             "stiffness": float(c.stiffness), "damping": float(c.damping)}
+            for (left, right, c), ends in zip(group.couplings, group.edge_points("coupling"))]
     if "sectors" in group.graph.graph:
         result["sectors"] = int(group.graph.graph["sectors"])
     if run is not None:
@@ -647,12 +1009,83 @@ def _blade_document(blade: Blade) -> dict:
     if blade.frequency is None:
         out["stiffness"] = float(blade.stiffness)
         return out
-    model = blade.frequency
+    out["frequency"] = _frequency_document(blade.frequency)
+    return out
+
+
+def _frequency_document(model):
     if isinstance(model, ConstantFrequency):
-        out["frequency"] = float(model.hz)
+        return float(model.hz)
+    return {k: list(v) if isinstance(v, tuple) else float(v)
+            for k, v in dataclasses.asdict(model).items()}
+
+
+def _body_document(body: Blade | Substructure, folder) -> dict:
+    if isinstance(body, Blade):
+        return _blade_document(body)
+    given = _GIVEN_AS.get(body)
+    if given is None:
+        return _substructure_document(body)
+    out = _deep_copy(given)
+    if "file" in out and folder is not None:
+        try:
+            out["file"] = os.path.relpath(out["file"], folder)
+        except ValueError:  # on another drive: it stays absolute
+            pass
+    return out
+
+
+def _substructure_document(body: Substructure) -> dict:
+    """A substructure built in Python, inline: its modal data, or its matrices."""
+    out: dict[str, Any] = {}
+    ratios = body.damping_ratios
+    if body.modal_frequencies is not None:
+        out["modal"] = {"frequencies": [_frequency_document(m) for m in body.modal_frequencies],
+                        "masses": [float(m) for m in _dense(body.mass).diagonal()]}
+        ratios = 0.0 if ratios is None else ratios
     else:
-        out["frequency"] = {k: list(v) if isinstance(v, tuple) else float(v)
-                            for k, v in dataclasses.asdict(model).items()}
+        out.update((name, _matrix_document(getattr(body, name))) for name in _MATRICES
+                   if getattr(body, name) is not None)
+    if ratios is not None:
+        out["damping_ratios"] = list(ratios) if isinstance(ratios, tuple) else float(ratios)
+    out["points"] = {name: matrix.tolist() for name, matrix in body.points.items()}
+    load = body.load
+    if isinstance(load, str):
+        out["load"] = load
+    elif isinstance(load, tuple):
+        out["load"] = {"point": load[0], "direction": np.ravel(load[1]).astype(float).tolist()}
+    elif load is not None:
+        out["load"] = np.asarray(load, dtype=float).tolist()
+    if body.excitation_scale != 1.0:
+        out["excitation_scale"] = float(body.excitation_scale)
+    return out
+
+
+def _matrix_document(matrix):
+    if not scipy.sparse.issparse(matrix):
+        return np.asarray(matrix, dtype=float).tolist()
+    entries = scipy.sparse.coo_array(matrix)
+    return {"shape": list(entries.shape), "rows": entries.row.tolist(),
+            "columns": entries.col.tolist(), "values": entries.data.astype(float).tolist()}
+
+
+def _dense(matrix) -> np.ndarray:
+    return matrix.toarray() if scipy.sparse.issparse(matrix) else np.asarray(matrix)
+
+
+def _end_document(node, point):
+    return node if point is None else [node, point]
+
+
+def _interface_document(interface: Interface) -> dict:
+    out: dict[str, Any] = {"gap": float(interface.gap)}
+    if interface.normal_direction is None:
+        out["angle"] = float(interface.angle)
+    else:
+        out.update((name, [float(c) for c in getattr(interface, name)]) for name in _DIRECTIONS)
+    out["normal"] = _law_document(interface.normal)
+    if interface.friction is not None:
+        out["friction"] = _law_document(interface.friction)
     return out
 
 
@@ -686,7 +1119,65 @@ def _run_document(run: RunSettings) -> dict:
     knobs = {k: v for k, v in dataclasses.asdict(run.method).items() if v is not None}
     return {"method": name, **knobs, "periods": run.periods,
             "transient": run.transient, "samples_per_period": run.samples_per_period,
-            "event_tolerance": run.event_tolerance, "blade": run.blade}
+            "event_tolerance": run.event_tolerance,
+            "blade": list(run.blade) if isinstance(run.blade, tuple) else run.blade}
+
+
+def save(path: str | Path, scene: Scene, run: RunSettings | None = None) -> Path:
+    """Write ``scene`` (and ``run``) as the scene file ``path`` (TOML), which ``load`` reads
+    back into an equal scene; the matrix files it names are written relative to its folder
+    (made if missing).
+    """
+    path = Path(path)
+    text = dumps(document(scene, run, folder=path.parent))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def dumps(document: dict) -> str:
+    """The TOML text of a scene document: its tables as ``[name]``, its lists of tables as
+    ``[[name]]``, whatever is inside them inline."""
+    def is_tables(value) -> bool:
+        return isinstance(value, dict) or (isinstance(value, list) and bool(value)
+                                           and all(isinstance(v, dict) for v in value))
+
+    lines = [f"{_toml_key(k)} = {_toml(v)}" for k, v in document.items() if not is_tables(v)]
+    for name, value in document.items():
+        if is_tables(value):
+            for table in [value] if isinstance(value, dict) else value:
+                lines += ["", f"[{_toml_key(name)}]" if isinstance(value, dict)
+                          else f"[[{_toml_key(name)}]]"]
+                lines += [f"{_toml_key(k)} = {_toml(v)}" for k, v in table.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _toml(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value) if math.isfinite(value) else \
+            ("nan" if math.isnan(value) else "inf" if value > 0 else "-inf")
+    if isinstance(value, str):
+        return _toml_string(value)
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_toml(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml(v)}" for k, v in value.items()) + "}"
+    raise TypeError(f"a scene document holds numbers, text, lists and tables, got "
+                    f"{type(value).__name__}")
+
+
+def _toml_key(key) -> str:
+    key = str(key)
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else _toml_string(key)
+
+
+def _toml_string(text: str) -> str:
+    """A TOML basic string: JSON's escapes, which TOML shares, and DEL escaped too."""
+    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
 
 
 def with_value(document: dict, path: str, value: float) -> dict:
