@@ -249,7 +249,7 @@ class SimulationArrays:
     document: dict           # the scene (and run settings), as ``scenefile.read`` takes it
     settings: SimulationSettings
     t: np.ndarray            # (n_t,) [s]
-    x: np.ndarray            # (n_t × n_blades) [m]
+    x: np.ndarray            # (n_t × n_blades) [m]; with substructures, by coordinate
     v: np.ndarray            # (n_t × n_blades) [m/s]
     normal_force: np.ndarray     # (n_t × n_interfaces) [N]
     friction_force: np.ndarray   # (n_t × n_interfaces) [N]
@@ -288,8 +288,9 @@ def load_arrays(path: str | Path) -> SimulationArrays:
     """Read a simulation file without rebuilding its scene.
 
     Every array is checked against the others and against the numbers of blades and
-    interfaces of the scene document; raises ``ResultsError`` naming the file and what is
-    wrong.
+    interfaces of the scene document (with substructures, whose coordinates the document
+    does not count, x and v against each other); raises ``ResultsError`` naming the file
+    and what is wrong.
     """
     path = Path(path)
     meta, arrays = _load_npz(path, kind="simulation")
@@ -300,8 +301,13 @@ def load_arrays(path: str | Path) -> SimulationArrays:
     if n < 1 or (n - 1) % meta["samples_per_period"]:
         raise ResultsError(f"{path}: {n} samples are not a whole number of periods of "
                            f"{meta['samples_per_period']} samples, plus one")
-    columns = {name: _shape(path, arrays, name, (n, count), f"{n} samples × {count} {what}")
-               for name, count, what in (("x", blades, "blades"), ("v", blades, "blades"),
+    if blades is None:  # substructures: as many coordinates as x has columns
+        x = _shape(path, arrays, "x", (n, None), f"{n} samples × coordinates")
+        blades, what = x.shape[1], "coordinates (as x)"
+    else:
+        what = "blades"
+    columns = {name: _shape(path, arrays, name, (n, count), f"{n} samples × {count} {kind}")
+               for name, count, kind in (("x", blades, what), ("v", blades, what),
                                          ("normal_force", interfaces, "interfaces"),
                                          ("friction_force", interfaces, "interfaces"),
                                          ("modes", interfaces, "interfaces"))}
@@ -318,14 +324,17 @@ def load_arrays(path: str | Path) -> SimulationArrays:
                             steps=meta["steps"], **columns)
 
 
-def _document_counts(path: Path, document: dict) -> tuple[int, int]:
-    """(blades, interfaces) listed in a saved scene document."""
+def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
+    """(blades, interfaces) listed in a saved scene document; blades is None where a node
+    is a substructure (the state is then by coordinate, which the scene counts)."""
     counts = []
     for key in ("blades", "interfaces"):
         entries = document.get(key)
         if not isinstance(entries, list):
             raise ResultsError(f"{path}: its scene document has no list of {key}")
         counts.append(len(entries))
+    if any(scenefile.is_substructure(entry) for entry in document["blades"]):
+        return None, counts[1]
     return counts[0], counts[1]
 
 
@@ -352,11 +361,13 @@ def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulatio
     """
     data = load_arrays(path)
     scene = _scene(data.path, data.document, laws).scene
-    if len(scene.blades) != data.x.shape[1] or len(scene.group.interfaces) != \
+    columns = scene.arrays.n_blades  # blades, or with substructures coordinates
+    if columns != data.x.shape[1] or len(scene.group.interfaces) != \
             data.normal_force.shape[1]:
-        raise ResultsError(f"{path}: its arrays are for {data.x.shape[1]} blades and "
+        what = "coordinates" if scene.arrays.is_structure else "blades"
+        raise ResultsError(f"{path}: its arrays are for {data.x.shape[1]} {what} and "
                            f"{data.normal_force.shape[1]} interfaces; its scene has "
-                           f"{len(scene.blades)} and {len(scene.group.interfaces)}")
+                           f"{columns} and {len(scene.group.interfaces)}")
     return Simulation(scene=scene, settings=data.settings, t=data.t, x=data.x, v=data.v,
                       normal_force=data.normal_force, friction_force=data.friction_force,
                       modes=data.modes, events=data.events, energy=data.energy,
@@ -477,8 +488,9 @@ def _read_point(path: Path) -> tuple[SweepPoint, str | None]:
     final_x = _shape(path, arrays, "final_x", (None,), "one value per blade")
     final_v = _shape(path, arrays, "final_v", final_x.shape, "one value per blade")
     peak = np.empty(0)  # none kept, or a file written before peaks were kept
-    if "peak" in arrays and arrays["peak"].size:
-        peak = _shape(path, arrays, "peak", final_x.shape, "one value per blade")
+    if "peak" in arrays and arrays["peak"].size:  # one per response: per blade, or with
+        # substructures per component of a point, which the file does not count
+        peak = _shape(path, arrays, "peak", (None,), "one value per response")
     try:
         classification = Classification(**meta["classification"])
     except (TypeError, ValueError) as error:
@@ -672,7 +684,9 @@ def load_sweep(folder: str | Path) -> Sweep:
     if missing:
         raise ResultsError(f"{folder}: {len(missing)} of {count} points are missing; run "
                            "the same sweep again to finish it")
-    return Sweep(parameter=manifest["parameter"], blade=manifest["blade"],
+    blade = manifest["blade"]  # a point's component was a tuple, and JSON made it a list
+    return Sweep(parameter=manifest["parameter"],
+                 blade=tuple(blade) if isinstance(blade, list) else blade,
                  points=tuple(points[i] for i in range(count)), settings=manifest["settings"])
 
 
@@ -755,7 +769,7 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
             raise ResultsError(f"{path}: {len(meta['scenes'])} scene documents for {total} "
                                "orbits")
         scenes = [_scene(path, document, laws).scene for document in meta["scenes"]]
-    n = len(scenes[0].blades)
+    n = scenes[0].arrays.n_blades  # blades, or with substructures coordinates
     initial = _shape(path, arrays, "initial", (total, 2 * n), f"{total} orbits × 2 n_blades")
     offsets = _shape(path, arrays, "event_offsets", (total + 1,), "orbit starts in the log")
     orbits = []
