@@ -35,12 +35,14 @@ from . import results, scenefile
 from .analysis import classify
 from .continuation import LARGEST_STEP, Branch, continuation
 from .engine.cache import cache_folder, cache_size, clear_cache
+from .group import BLADE_POINT
 from .linear import CONTACTS, linear_modes
 from .methods import TRANSIENT
 from .mistuning import mistuning_study
 from .progress import ProgressReporter, TerminalProgress
 from .simulate import simulate
-from .simulation import SimulationError
+from .simulation import SimulationError, steady_rows
+from .substructure import Substructure
 from .sweep import sweep
 
 #: Exit statuses.
@@ -342,7 +344,7 @@ def _run(args) -> int:
     forced = (f"f_e = {1.0 / scene.excitation_period:g} Hz"
               if any(scene.excitation.amplitudes) else
               f"no excitation (periods of {scene.excitation_period:g} s)")
-    print(f"scene    {args.scene}: {len(group.blades)} blades, {len(group.fixed)} fixed nodes"
+    print(f"scene    {args.scene}: {_nodes(scene)}, {len(group.fixed)} fixed nodes"
           f"{prescribed}, {len(group.interfaces)} interfaces; {scene.speed_rpm:g} rpm, "
           f"{forced}")
     print(f"method   {settings.method}, {periods} periods, event tolerance "
@@ -351,8 +353,11 @@ def _run(args) -> int:
                  if sim.compile_seconds >= COMPILE_WORTH_SAYING else "")
     print(f"took     {took - sim.compile_seconds:.2f} s ({sim.steps:,} steps){compiling}")
     print(f"motion   {kind}")
-    print(f"E_rho    {sim.energy_density(blade, skip=skip):.6e} m^2 ({blade!r} after "
-          f"{skip} periods)")
+    print(f"E_rho    {sim.energy_density(blade, skip=skip):.6e} m^2 ({_about(scene, blade)} "
+          f"after {skip} periods)")
+    if scene.arrays.is_structure:
+        print(f"peaks    max |r| [m] of each point after {skip} periods: " + ", ".join(
+            f"{node}.{point} {peak:.4g}" for node, point, peak in _point_peaks(sim, skip)))
     print(f"events   {sum(counts.values())}: "
           + ", ".join(f"{name} {count}" for name, count in counts.items()))
     print(f"energy   excitation {ledger.excitation_work:.6g} J = damping "
@@ -408,10 +413,44 @@ def _share(part: float, whole: float) -> str:
     return f"{abs(part) / abs(whole):.1e} of the excitation work" if whole else "no excitation"
 
 
+def _nodes(scene) -> str:
+    """The moving nodes of a scene in words: its blades, or how many of its nodes are
+    substructures and how many coordinates they have."""
+    group = scene.group
+    if not scene.arrays.is_structure:
+        return f"{len(group.blades)} blades"
+    structures = sum(isinstance(group.blade(name), Substructure) for name in group.blades)
+    return (f"{len(group.blades)} nodes ({structures} substructures, "
+            f"{scene.arrays.n_blades} coordinates)")
+
+
+def _about(scene, target) -> str:
+    """What a summary is about: a blade (its name as given), or with substructures the
+    component of a point it reads, ``node.point[k]``."""
+    if not scene.arrays.is_structure:
+        return repr(target)
+    node, point, component = scene.responses[scene.response_position(target)]
+    return f"{node}.{point}[{component}]"
+
+
+def _point_peaks(sim, skip: int) -> list[tuple]:
+    """(node, point, max |r| [m]) of every point of every moving node after ``skip``
+    periods (a ``Blade``'s one point is its x)."""
+    scene = sim.scene
+    x = sim.x[steady_rows(sim, skip, "peaks")]
+    found = []
+    for node in scene.blades:
+        body = scene.group.blade(node)
+        for point in body.points if isinstance(body, Substructure) else [BLADE_POINT]:
+            r = x @ scene.point_rows(node, point).T
+            found.append((node, point, float(np.linalg.norm(r, axis=1).max())))
+    return found
+
+
 def _save_response(sim, settings, path: Path) -> Path:
     from .figures import response_panel  # matplotlib only when a figure is drawn
     figure = response_panel(sim, settings.blade, skip=settings.transient,
-                            title=f"{path.stem}: {settings.blade}")
+                            title=f"{path.stem}: {_about(sim.scene, settings.blade)}")
     path.parent.mkdir(parents=True, exist_ok=True)
     figure.savefig(path, dpi=110)
     return path
@@ -425,13 +464,16 @@ def _sweep(args) -> int:
     for value in values:  # a bad path or value fails before any work
         scene_at(value)
     settings = loaded.run
+    blade = settings.blade
+    if loaded.scene.arrays.is_structure:  # kept by its name, (node, point, component)
+        blade = loaded.scene.responses[loaded.scene.response_position(blade)]
     transient = settings.transient if args.transient is None else args.transient
     folder = args.output or Path(f"{args.scene.stem}-sweep-{args.param}")
     _check_folder(folder, "--output")
     _check_file(folder / "bifurcation.png", "--output")
     start = time.perf_counter()
     try:
-        result = sweep(scene_at, values, parameter=args.param, blade=settings.blade,
+        result = sweep(scene_at, values, parameter=args.param, blade=blade,
                        transient=transient, record=args.record, method=settings.method,
                        workers=args.workers, store=results.open_sweep_store(folder),
                        progress=_sweep_progress(), retry_failed=args.retry_failed,
@@ -524,8 +566,10 @@ def _number(text: str, token: str, option: str) -> float:
 
 def _save_diagram(result, path: Path) -> Path:
     from .figures import bifurcation_diagram
-    bifurcation_diagram(result, title=f"{result.parameter}: blade {result.blade}"
-                        ).savefig(path, dpi=110)
+    target = result.blade
+    about = f"{target[0]}.{target[1]}[{target[2]}]" if isinstance(target, tuple) \
+        else f"blade {target}"  # a point's component, as ``_sweep`` names it
+    bifurcation_diagram(result, title=f"{result.parameter}: {about}").savefig(path, dpi=110)
     return path
 
 
@@ -558,8 +602,8 @@ def _continue(args) -> int:
     print(f"followed {args.param} from {args.start:g} to {branch.parameter[-1]:g}: "
           f"{len(branch)} orbits of period {branch.periods}, {int(branch.stable.sum())} "
           f"stable, in {took:.1f} s ({branch.ended})")
-    print(f"peak     max |x| of {blade} = {amplitude[top]:.4g} m at {args.param} = "
-          f"{branch.parameter[top]:.6g}")
+    print(f"peak     max |x| of {_about(branch.orbits[0].scene, blade)} = "
+          f"{amplitude[top]:.4g} m at {args.param} = {branch.parameter[top]:.6g}")
     for b in branch.bifurcations:
         critical = (f", multiplier {b.multiplier.real:+.6f}{b.multiplier.imag:+.6f}j"
                     if np.isfinite(b.multiplier) else "")
@@ -602,6 +646,13 @@ def _modes(args) -> int:
 def _mistuning(args) -> int:
     from .figures import mistuning_histogram
     loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
+    structures = [name for name in loaded.scene.blades
+                  if isinstance(loaded.scene.group.blade(name), Substructure)]
+    if structures:
+        raise UsageError(f"{args.scene}: mistuning perturbs the frequencies of one-mass "
+                         f"blades, and the nodes {', '.join(map(str, structures[:3]))}"
+                         f"{', …' if len(structures) > 3 else ''} are substructures, which "
+                         "it does not perturb")
     speeds = _values(args.speeds, "--speeds")
     _check_folder(args.output, "--output")
     path = args.output / f"{args.scene.stem}-mistuning.png"
@@ -636,7 +687,8 @@ def _branch_progress(name: str):
 def _save_branch_figure(branch, blade, path: Path) -> Path:
     from .figures import forced_response
     forced_response({f"period {branch.periods}": branch}, blade,
-                    title=f"{branch.name}: {blade}").savefig(path, dpi=110)
+                    title=f"{branch.name}: {_about(branch.orbits[0].scene, blade)}"
+                    ).savefig(path, dpi=110)
     return path
 
 
