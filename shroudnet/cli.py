@@ -329,7 +329,7 @@ def _run(args) -> int:
     stem = args.output / args.scene.stem
     _check_folder(args.output, "--output")
     for suffix in (".npz", ".png"):
-        _check_file(stem.with_suffix(suffix), "--output")
+        _check_file(_beside(stem, suffix), "--output")
     start = time.perf_counter()
     sim = simulate(scene, periods, method=settings.method,
                    samples_per_period=settings.samples_per_period,
@@ -364,9 +364,9 @@ def _run(args) -> int:
           f"{ledger.damping_loss:.6g} + friction {ledger.friction_loss:.6g} + contact "
           f"{ledger.contact_loss:.3g} + stored {ledger.stored_change:.3g} + residual "
           f"{ledger.residual:.2e} ({_share(ledger.residual, ledger.excitation_work)})")
-    saved = [results.save_simulation(stem.with_suffix(".npz"), sim, settings)]
+    saved = [results.save_simulation(_beside(stem, ".npz"), sim, settings)]
     if not args.no_figure:
-        saved.append(_save_response(sim, settings, stem.with_suffix(".png")))
+        saved.append(_save_response(sim, settings, _beside(stem, ".png")))
     print("saved    " + ", ".join(map(str, saved)))
     return 0
 
@@ -411,6 +411,12 @@ def _check_file(path: Path, option: str) -> None:
 
 def _share(part: float, whole: float) -> str:
     return f"{abs(part) / abs(whole):.1e} of the excitation work" if whole else "no excitation"
+
+
+def _beside(stem: Path, suffix: str) -> Path:
+    """``stem`` with ``suffix`` added: a stem may hold dots (``…-continue-interfaces.0.gap``),
+    which ``with_suffix`` would cut."""
+    return stem.with_name(stem.name + suffix)
 
 
 def _nodes(scene) -> str:
@@ -584,7 +590,7 @@ def _continue(args) -> int:
     _check_folder(args.output, "--output")
     stem = args.output / f"{args.scene.stem}-continue-{args.param}"
     for suffix in (".npz", ".png"):
-        _check_file(stem.with_suffix(suffix), "--output")
+        _check_file(_beside(stem, suffix), "--output")
     blade = loaded.run.blade
     start = time.perf_counter()
     try:
@@ -608,8 +614,8 @@ def _continue(args) -> int:
         critical = (f", multiplier {b.multiplier.real:+.6f}{b.multiplier.imag:+.6f}j"
                     if np.isfinite(b.multiplier) else "")
         print(f"{b.kind:17s}at {args.param} = {b.parameter:.8g}{critical}")
-    saved = results.save_branch(stem.with_suffix(".npz"), branch, scene_at)
-    figure = _save_branch_figure(branch, blade, stem.with_suffix(".png"))
+    saved = results.save_branch(_beside(stem, ".npz"), branch, scene_at)
+    figure = _save_branch_figure(branch, blade, _beside(stem, ".png"))
     print(f"saved    {saved}, {figure}")
     return 0
 
