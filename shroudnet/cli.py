@@ -652,13 +652,6 @@ def _modes(args) -> int:
 def _mistuning(args) -> int:
     from .figures import mistuning_histogram
     loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
-    structures = [name for name in loaded.scene.blades
-                  if isinstance(loaded.scene.group.blade(name), Substructure)]
-    if structures:
-        raise UsageError(f"{args.scene}: mistuning perturbs the frequencies of one-mass "
-                         f"blades, and the nodes {', '.join(map(str, structures[:3]))}"
-                         f"{', …' if len(structures) > 3 else ''} are substructures, which "
-                         "it does not perturb")
     speeds = _values(args.speeds, "--speeds")
     _check_folder(args.output, "--output")
     path = args.output / f"{args.scene.stem}-mistuning.png"
