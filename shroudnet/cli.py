@@ -626,6 +626,7 @@ def _modes(args) -> int:
     scene = loaded.scene
     _check_folder(args.output, "--output")
     path = args.output / f"{args.scene.stem}-modes.png"
+    args.output.mkdir(parents=True, exist_ok=True)
     both = {contacts: linear_modes(scene, contacts) for contacts in CONTACTS}
     if both["open"].sectors is None:
         for contacts, found in both.items():
@@ -656,6 +657,7 @@ def _mistuning(args) -> int:
     _check_folder(args.output, "--output")
     path = args.output / f"{args.scene.stem}-mistuning.png"
     _check_file(path, "--output")
+    args.output.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     study = mistuning_study(loaded.scene, spread=args.spread, samples=args.samples,
                             speeds_rpm=speeds, seed=args.seed, transient=args.transient,

@@ -300,7 +300,8 @@ def test_a_run_of_a_substructure_scene_saves_and_loads_back_without_loss(tmp_pat
         results.load(damaged)
 
 
-def test_the_command_line_runs_sweeps_and_continues_a_substructure_scene(tmp_path, capsys):
+def test_the_command_line_runs_sweeps_continues_and_mistunes_a_substructure_scene(tmp_path,
+                                                                                  capsys):
     scene = scene_file(tmp_path)
     out = tmp_path / "out"
     assert main(["run", str(scene), "-o", str(out)]) == 0
@@ -331,5 +332,7 @@ def test_the_command_line_runs_sweeps_and_continues_a_substructure_scene(tmp_pat
     assert len(branch) == 3 and branch.orbits[0].state.shape == (16,)
 
     assert main(["mistuning", str(scene), "--spread", "0.01", "--samples", "2", "--speeds",
-                 "5000"]) == 2
-    assert "nodes blade1, blade2, blade3 are substructures" in capsys.readouterr().err
+                 "5000", "--transient", "3", "--workers", "1", "-o",
+                 str(tmp_path / "new")]) == 0
+    assert "2 patterns of spread 0.01 at 1 speeds" in capsys.readouterr().out
+    assert (tmp_path / "new" / "scene-mistuning.png").stat().st_size > 10_000
