@@ -83,6 +83,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import scipy.linalg
 from scipy.integrate import solve_ivp
 
 from contact_laws.base import ZERO_PLUS_SPEED
@@ -349,6 +350,58 @@ def structure_from_scene(scene) -> StructureProblem:
         force_static=amplitudes[0], force_cos=amplitudes[1:] * np.sin(phases[1:]),
         force_sin=amplitudes[1:] * np.cos(phases[1:]), frequency=a.excitation_frequency,
         contacts=tuple(contacts))
+
+
+def structure_from_substructures(scene) -> StructureProblem:
+    """The ``StructureProblem`` of a ``Scene`` whose nodes are substructures (``Blade``s
+    not, nor prescribed-motion nodes), built from each substructure's own matrices and
+    points in its physical degrees of freedom, side by side in the order of the scene's
+    nodes (not from the coordinates the engine lowers the scene to): M, C, K block by
+    block; per interface between points a and b, n = n̂·(Φ_a − Φ_b) and
+    t = t̂·(Φ_a − Φ_b), Δ = the gap; node i's load s_i b_i, forced as
+    Q_i = q_0 + Σ_h q_h sin(h (lΩ t + φ_i))."""
+    group = scene.group
+    bodies = [group.blade(name) for name in scene.blades]
+    if group.prescribed or any(not hasattr(body, "matrices_at") for body in bodies):
+        raise ValueError("structure_from_substructures takes scenes of substructures only, "
+                         "with no prescribed-motion nodes")
+    blocks = [body.matrices_at(scene.speed_rpm) for body in bodies]
+    mass, damping, stiffness = (scipy.linalg.block_diag(*(block[k] for block in blocks))
+                                for k in range(3))
+    offsets = np.cumsum([0] + [body.n_dofs for body in bodies])
+    n = int(offsets[-1])
+
+    def point(node, name):
+        if node not in scene.blades:  # a fixed node
+            return 0.0
+        i = scene.blades.index(node)
+        rows = np.zeros((bodies[i].point(name).shape[0], n))
+        rows[:, offsets[i]:offsets[i + 1]] = bodies[i].point(name)
+        return rows
+
+    contacts = []
+    for (left, right, interface), (a, b) in zip(group.interfaces,
+                                                 group.edge_points("interface")):
+        relative = point(left, a) - point(right, b)
+        contacts.append(Contact(np.asarray(interface.normal_direction) @ relative,
+                                np.asarray(interface.tangent_direction) @ relative,
+                                interface.gap, interface.normal, interface.friction))
+    excitation = scene.excitation
+    phases = excitation.blade_phases(len(bodies))
+    loads = []
+    for i, body in enumerate(bodies):
+        load = np.zeros(n)
+        load[offsets[i]:offsets[i + 1]] = body.excitation_scale * body.load_vector
+        loads.append(load)
+    harmonics = len(excitation.amplitudes) - 1
+    force_cos, force_sin = np.zeros((harmonics, n)), np.zeros((harmonics, n))
+    for h in range(1, harmonics + 1):  # q_h sin(hθ + hφ) = q_h (sin hθ cos hφ + cos hθ sin hφ)
+        for phase, load in zip(phases, loads):
+            force_sin[h - 1] += excitation.amplitudes[h] * math.cos(h * phase) * load
+            force_cos[h - 1] += excitation.amplitudes[h] * math.sin(h * phase) * load
+    return StructureProblem(mass, damping, stiffness, excitation.amplitudes[0] * sum(loads),
+                            force_cos, force_sin, scene.arrays.excitation_frequency,
+                            tuple(contacts))
 
 
 def stored_energy(problem: StructureProblem, q, v) -> np.ndarray:

@@ -95,6 +95,13 @@ TORUS = ("tests/test_orbits.py::"
 ONE_DOF = "tests/test_structures.py::test_one_dof_substructures_reproduce_the_blades"
 MULTI_DOF_MONODROMY = ("tests/test_structures.py::test_monodromy_of_a_multi_dof_orbit_with_"
                        "impacts_stick_and_breakaway_agrees_with_differences")
+#: Where the friction drops at breakaway: the saltation there has a jump term, so the
+#: breakaway guard's gradient counts (with Coulomb friction it does not).
+MULTI_DOF_DROPPING = ("tests/test_structures.py::"
+                      "test_monodromy_where_friction_drops_at_breakaway_agrees_with_differences")
+#: Two unreduced beams against the independent reference: masses that differ from 1.
+BEAMS = ("tests/test_structures.py::"
+         "test_two_unreduced_beams_with_a_shroud_contact_match_an_independent_reference")
 
 
 @dataclass(frozen=True)
@@ -254,13 +261,13 @@ MUTATIONS = (
              "            weight = s.mass[i] if i < free else 1.0",
              "            weight = 1.0",
              "velocities are projected onto the constraints Euclidean-orthogonally, not "
-             "M-orthogonally: stick onset does not conserve momentum",
-             (ONE_DOF,)),
+             "M-orthogonally: stick onset does not conserve momentum (one-degree-of-"
+             "freedom coordinates have mass 1, where the two are one)", (BEAMS,)),
     Mutation("structure-breakaway-gradient-sign", "constraints",
              "        g.guard_normal[r] = s.static_mu[e] * normal_change - sign * change",
              "        g.guard_normal[r] = s.static_mu[e] * normal_change + sign * change",
              "the breakaway guard's gradient of a stuck substructure interface takes +|λ|",
-             (MULTI_DOF_MONODROMY,)),
+             (MULTI_DOF_DROPPING,)),
 )
 
 

@@ -12,14 +12,13 @@ import math
 
 import numpy as np
 import pytest
-import scipy.linalg
 
 import shroudnet as sn
 from contact_laws import Coulomb, LinearSpring
 from shroudnet import scenes
 from shroudnet import baseline_structures as bs
-from shroudnet.beam import cantilever_beam
 from shroudnet.substructure import Substructure
+from tests.laws import StaticKinetic
 from tests.test_tangent import (EXACT, differenced_monodromy, scaled_error, settled_state,
                                 state_scale)
 
@@ -114,7 +113,7 @@ def modal_blade():
                               load="load")
 
 
-def modal_pair(gap=-2e-6, mu=0.5, amplitude=20.0, face=0.6):
+def modal_pair(gap=-2e-6, friction=Coulomb(mu=0.5), amplitude=20.0, face=0.6):
     """Two modal blades whose shrouds meet on a face inclined at ``face`` [rad]: a
     preloaded contact that separates, closes, sticks, breaks away and slips every period,
     its normal and slip directions each a different mix of the three modes."""
@@ -122,7 +121,7 @@ def modal_pair(gap=-2e-6, mu=0.5, amplitude=20.0, face=0.6):
     group = sn.BladeGroup().add_blade("blade1", modal_blade()).add_blade("blade2",
                                                                           modal_blade())
     group.connect(("blade1", "shroud"), ("blade2", "shroud"), sn.Interface(
-        gap=gap, normal=LinearSpring(stiffness=2e5), friction=Coulomb(mu=mu),
+        gap=gap, normal=LinearSpring(stiffness=2e5), friction=friction,
         normal_direction=normal, tangent_direction=tangent))
     return sn.Scene(group=group, excitation=sn.Excitation(
         engine_order=2, amplitudes=(0.0, amplitude), phases=sn.AntiPhase()), speed_rpm=5000.0)
@@ -154,72 +153,8 @@ def test_energy_ledger_of_a_multi_dof_run_closes_and_converges_with_the_toleranc
     assert residuals[0] <= 2e-9 and residuals[1] <= 0.2 * residuals[0]
 
 
-def beam_blade():
-    """A clamped steel beam of two elements (16 degrees of freedom, unreduced) with a
-    shroud mass at its tip."""
-    return cantilever_beam(length=0.08, width=0.02, thickness=0.003, youngs_modulus=2.1e11,
-                           density=7800.0, elements=2, tip_mass=0.02, damping_ratios=0.01)
-
-
-def beam_pair():
-    """Two beam blades whose tip shrouds meet on an inclined face, preloaded, with a
-    linear contact spring and Coulomb friction, forced in anti-phase just above the
-    first flap resonance: the contact separates, closes, sticks and slips."""
-    blade = beam_blade()
-    face = 0.5
-    group = sn.BladeGroup().add_blade("blade1", blade).add_blade("blade2", blade)
-    group.connect(("blade1", "shroud"), ("blade2", "shroud"), sn.Interface(
-        gap=-2e-6, normal=LinearSpring(stiffness=1e5), friction=Coulomb(mu=0.4),
-        normal_direction=(math.cos(face), math.sin(face)),
-        tangent_direction=(-math.sin(face), math.cos(face))))
-    speed = 1.05 * blade.frequencies_at(0.0)[0] * 60.0 / 2.0
-    return sn.Scene(group=group, excitation=sn.Excitation(
-        engine_order=2, amplitudes=(0.0, 2.0), phases=sn.AntiPhase()), speed_rpm=speed)
-
-
-def physical_problem(scene):
-    """The scene as ``baseline_structures`` takes it, built here from the substructures'
-    own matrices and points in their physical degrees of freedom (not from the engine's
-    lowered coordinates)."""
-    group = scene.group
-    bodies = [group.blade(name) for name in scene.blades]
-    blocks = [body.matrices_at(scene.speed_rpm) for body in bodies]
-    mass, damping, stiffness = (scipy.linalg.block_diag(*(block[k] for block in blocks))
-                                for k in range(3))
-    offsets = np.cumsum([0] + [body.n_dofs for body in bodies])
-    n = offsets[-1]
-
-    def point(node, name):
-        i = scene.blades.index(node)
-        rows = np.zeros((bodies[i].point(name).shape[0], n))
-        rows[:, offsets[i]:offsets[i + 1]] = bodies[i].point(name)
-        return rows
-
-    contacts = []
-    for (left, right, interface), (a, b) in zip(group.interfaces,
-                                                 group.edge_points("interface")):
-        relative = point(left, a) - point(right, b)
-        contacts.append(bs.Contact(np.asarray(interface.normal_direction) @ relative,
-                                   np.asarray(interface.tangent_direction) @ relative,
-                                   interface.gap, interface.normal, interface.friction))
-    excitation = scene.excitation
-    phases = excitation.blade_phases(len(bodies))
-    load = [np.zeros(n) for _ in bodies]
-    for i, body in enumerate(bodies):
-        load[i][offsets[i]:offsets[i + 1]] = body.excitation_scale * body.load_vector
-    harmonics = len(excitation.amplitudes) - 1
-    force_cos, force_sin = np.zeros((harmonics, n)), np.zeros((harmonics, n))
-    for h in range(1, harmonics + 1):  # q_h sin(h (ω t + φ_i)), split into sin and cos
-        for i in range(len(bodies)):
-            force_sin[h - 1] += excitation.amplitudes[h] * math.cos(h * phases[i]) * load[i]
-            force_cos[h - 1] += excitation.amplitudes[h] * math.sin(h * phases[i]) * load[i]
-    return bs.StructureProblem(mass, damping, stiffness, excitation.amplitudes[0] * sum(load),
-                               force_cos, force_sin, scene.arrays.excitation_frequency,
-                               tuple(contacts))
-
-
 def test_two_unreduced_beams_with_a_shroud_contact_match_an_independent_reference():
-    scene = beam_pair()
+    scene = scenes.beam_pair()
     orbit = sn.periodic_orbit(scene, history=True)
     counts = orbit.history.events.counts
     assert all(counts[kind] > 0 for kind in ("closing", "separation", "sticking",
@@ -227,9 +162,25 @@ def test_two_unreduced_beams_with_a_shroud_contact_match_an_independent_referenc
     dofs = np.vstack([scene.dof_rows(name) for name in scene.blades])
     q0, v0 = dofs @ orbit.initial[0], dofs @ orbit.initial[1]
     history = orbit.history
-    reference = bs.run_structure(physical_problem(scene), q0, v0, history.t[-1],
+    reference = bs.run_structure(bs.structure_from_substructures(scene), q0, v0, history.t[-1],
                                  rtol=1e-12, atol=1e-16, t_eval=history.t)
     engine_q = history.x @ dofs.T
     amplitude = np.abs(engine_q).max()
     assert np.abs(reference.q - engine_q).max() <= 1e-8 * amplitude
     assert np.abs(reference.q[-1] - q0).max() <= 1e-8 * amplitude  # it is periodic there too
+
+
+@pytest.mark.slow  # a law of the tests' own: a kernel of its own (a minute to compile)
+def test_monodromy_where_friction_drops_at_breakaway_agrees_with_differences():
+    """With μ(0⁺) < μ_s the acceleration jumps at breakaway, so the saltation there has a
+    jump term and the breakaway guard's gradient (of the multiplier λ and of N) counts;
+    with Coulomb friction it does not."""
+    scene = modal_pair(friction=StaticKinetic(mu_static=0.5, mu_kinetic=0.35))
+    y = settled_state(scene, 30)
+    counts = sn.simulate(scene, 1, method=EXACT, samples_per_period=1,
+                         initial=np.split(y, 2)).events.counts
+    assert counts["breakaway"] > 0 and counts["sticking"] > 0, counts
+    scale = state_scale(y)
+    matrix = sn.monodromy(scene, 1, initial=np.split(y, 2), method=EXACT)
+    reference = differenced_monodromy(scene, 1, y, scale, 1e-13)
+    assert scaled_error(matrix, reference, scale) <= 1e-6
