@@ -19,6 +19,11 @@
    group and the 24-blade ring; the seconds a forced-response curve of about 300 orbits
    across the paper's l = 2 resonance takes (``continuation``), against transient sweeps
    up and down the same speeds.
+7. Substructures: periods per second and milliseconds per periodic orbit (with all its
+   multipliers) of a packet of six three-mode blades (``scenes.modal_packet``); two
+   unreduced beams with a shroud contact (``scenes.beam_pair``) against the plain
+   ``solve_ivp`` reference of ``baseline_structures`` at equal tolerances, both measured
+   against a converged run.
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
 the kernel); nothing here is asserted, because timings depend on the machine.
@@ -40,6 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import baseline_structures
 from .baseline import solve_ivp_baseline
 from .continuation import continuation
 from .group import BladeGroup
@@ -47,7 +53,7 @@ from .methods import TRANSIENT, Adaptive, FixedStep
 from .orbits import periodic_orbit
 from .progress import progress_callback
 from .scene import Scene
-from .scenes import three_blade_paper
+from .scenes import beam_pair, modal_packet, three_blade_paper
 from . import scenefile
 from .simulate import simulate
 from .simulation import SimulationError
@@ -256,6 +262,46 @@ def worker_counts(cores: int) -> list[int]:
     return counts + ([cores] if counts[-1] != cores else [])
 
 
+def packet_costs(periods: int, repeats: int) -> tuple[float, float, object]:
+    """(periods per second, seconds per periodic orbit from a settled guess, the orbit) of
+    ``scenes.modal_packet``."""
+    scene = modal_packet()
+    simulate(scene, 5)  # compile or load the kernel
+    seconds, _ = median_time(lambda: simulate(scene, periods, samples_per_period=20), repeats)
+    orbit = periodic_orbit(scene)
+    orbit_seconds, orbit = median_time(lambda: periodic_orbit(scene, guess=orbit.initial),
+                                       repeats)
+    return periods / seconds, orbit_seconds, orbit
+
+
+def beams_against_plain(periods: int, repeats: int) -> dict[str, tuple[float, float]]:
+    """(seconds, error) on ``scenes.beam_pair`` from rest, by run: shroudnet at rtol 1e-6,
+    and the plain ``baseline_structures`` run with RK45 and with DOP853 at rtol 1e-9 (atol
+    rtol times the displacement scale): about equal errors, each the largest deviation of
+    the physical degrees of freedom at t = k T_e from a run at rtol 1e-12, relative to
+    their largest value. The beams' stiff rotations bound the steps, not the tolerance."""
+    scene = beam_pair()
+    dofs = np.vstack([scene.dof_rows(name) for name in scene.blades])
+    reference = simulate(scene, periods, method=Adaptive(rtol=1e-12), samples_per_period=1,
+                         event_tolerance=1e-13).x @ dofs.T
+    scale = np.abs(reference).max()
+    run = functools.partial(simulate, scene, periods, method=Adaptive(rtol=1e-6),
+                            samples_per_period=1)
+    run()
+    seconds, ours = median_time(run, repeats)
+    rows = {"shroudnet, rtol 1e-6": (seconds, np.abs(ours.x @ dofs.T - reference).max()
+                                     / scale)}
+    problem = baseline_structures.structure_from_substructures(scene)
+    zero = np.zeros(problem.n_dof)
+    for method in ("RK45", "DOP853"):
+        start = time.perf_counter()
+        plain = baseline_structures.strobe_structure(problem, zero, zero, periods, rtol=1e-9,
+                                                     atol=1e-9 * scale, method=method)
+        rows[f"solve_ivp {method}, rtol 1e-9"] = (time.perf_counter() - start,
+                                                  np.abs(plain.q - reference).max() / scale)
+    return rows
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(prog="python -m shroudnet.bench",
                                      description=__doc__.split("\n\n")[0])
@@ -391,6 +437,19 @@ def main(argv=None) -> None:
     print(f"   transient sweeps up and down the same {len(values)} speeds ({args.transient} + "
           f"50 periods a point): {swept:.2f} s, {swept / seconds:.1f}x the continuation's "
           "time, for the stable orbits only")
+
+    print("\n7. Substructures, one core")
+    rate, orbit_seconds, orbit = packet_costs(20 if args.quick else 200, repeats)
+    print(f"   packet of 6 blades of 3 modes (18 coordinates, 5 interfaces): {rate:,.0f} "
+          f"periods/s; a periodic orbit with its {len(orbit.multipliers)} multipliers from a "
+          f"settled guess {orbit_seconds * 1e3:.0f} ms ({orbit.iterations} Newton steps)")
+    rows = beams_against_plain(2 if args.quick else 10, repeats)
+    ours = rows["shroudnet, rtol 1e-6"][0]
+    print("   two unreduced beams (2 × 8 degrees of freedom) with a tip shroud contact, "
+          "from rest, about equal errors:")
+    for label, (seconds, error) in rows.items():
+        print(f"     {label}: {seconds:.3f} s, error {error:.1e}"
+              + (f", {seconds / ours:,.0f}x shroudnet's time" if seconds != ours else ""))
     print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 
