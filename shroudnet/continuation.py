@@ -109,11 +109,14 @@ class Branch:
 
     @property
     def peak(self) -> np.ndarray:
-        """max |x| [m] over each orbit, by point and blade position."""
+        """max |x| [m] over each orbit, by point of the branch and response
+        (``Scene.responses``: blades by position, or every component of every point of
+        substructures)."""
         return np.array([orbit.peak for orbit in self.orbits])
 
     def amplitude(self, blade) -> np.ndarray:
-        """max |x| [m] of ``blade`` (a name or a position) over each orbit."""
+        """max |x| [m] of ``blade`` (a name or a position; with substructures a point
+        component, ``Scene.response_position``) over each orbit."""
         return np.array([orbit.amplitude(blade) for orbit in self.orbits])
 
     def energy_density(self, blade) -> np.ndarray:
@@ -121,7 +124,7 @@ class Branch:
         return np.array([orbit.energy_density(blade) for orbit in self.orbits])
 
     def worst_blade(self) -> np.ndarray:
-        """Per point, the position of the blade with the largest peak."""
+        """Per point, the position of the blade (the response) with the largest peak."""
         return np.argmax(self.peak, axis=1)
 
     def amplification(self, tuned: Branch | float) -> np.ndarray:

@@ -6,8 +6,8 @@ substructures (nodes of many degrees of freedom, interfaces between their points
 the two (the interfaces' kinematics, stick as clusters or as constraints, the tangent's
 accelerations and the guards' gradients) are written twice, and ``by_scene`` joins each
 pair under one name: numba picks the version by the type of the scene argument while it
-compiles, and merges the call, so a scene of blades compiles and runs its own version
-alone, exactly as before, and pays nothing for the other.
+compiles, and LLVM inlines the call through the join, so a scene of blades compiles and
+runs its own version alone, as before, and pays nothing for the other.
 """
 
 import inspect

@@ -19,7 +19,8 @@ from .dispatch import by_scene
 from .dynamics import cluster_accelerations, excitation_rate, prescribed_acceleration
 from .regroup import project_velocities
 from .structures import (structure_breakaway_normal, structure_contact_normal,
-                         structure_saltations, structure_slip_normal)
+                         structure_saltations, structure_slip_normal, stuck_position,
+                         unit_direction)
 from .tangent import linearised_acceleration, time_scale
 
 #: A switch is grazing when its saltation's correction (f⁺ − P f⁻) nᵀ / ġ would stretch
@@ -138,14 +139,9 @@ def blade_breakaway_normal(e, sign, t, s, modes, topology, g):
     over the stuck interfaces, so δf = P δb, differentiated along each unit direction.
     """
     n = len(s.mass)
-    k = 0
-    for index in range(len(topology.stuck_interfaces)):
-        if topology.stuck_interfaces[index] == e:
-            k = index
+    k = stuck_position(topology, e)
     for r in range(2 * n):
-        for q in range(2 * n):
-            g.direction[q] = 0.0
-        g.direction[r] = 1.0
+        unit_direction(g.direction, r)
         linearised_acceleration(g.direction, s, modes, topology, g)
         for i in range(n):
             g.imbalance[i] = g.resultant_change[i] - s.mass[i] * g.acceleration_change[i]

@@ -130,24 +130,44 @@ def structure_linearised_acceleration(direction, s, modes, topology, g):
         acceleration[i] /= s.mass[i]
 
 
+@njit_inlined
+def _row_as_gradient(rows, e, first, g):
+    """g.guard_normal ← row e of ``rows`` on the state's displacements (``first`` 0) or
+    velocities (``first`` n), 0 elsewhere."""
+    for r in range(len(g.guard_normal)):
+        g.guard_normal[r] = 0.0
+    for i in range(rows.shape[1]):
+        g.guard_normal[first + i] = rows[e, i]
+
+
 @njit_step
 def structure_contact_normal(e, s, g):
     """∂g/∂y of interface e's contact guard (±δ, δ = n_e·x − Δ_e) into g.guard_normal."""
-    n = len(s.mass)
-    for r in range(len(g.guard_normal)):
-        g.guard_normal[r] = 0.0
-    for i in range(n):
-        g.guard_normal[i] = s.normal_rows[e, i]
+    _row_as_gradient(s.normal_rows, e, 0, g)
 
 
 @njit_step
 def structure_slip_normal(e, s, g):
     """∂g/∂y of interface e's slip guard (± t_e·ẋ) into g.guard_normal."""
-    n = len(s.mass)
-    for r in range(len(g.guard_normal)):
-        g.guard_normal[r] = 0.0
-    for i in range(n):
-        g.guard_normal[n + i] = s.tangent_rows[e, i]
+    _row_as_gradient(s.tangent_rows, e, len(s.mass), g)
+
+
+@njit_inlined
+def stuck_position(topology, e):
+    """The position of stuck interface e among ``topology.stuck_interfaces``."""
+    k = 0
+    for index in range(len(topology.stuck_interfaces)):
+        if topology.stuck_interfaces[index] == e:
+            k = index
+    return k
+
+
+@njit_inlined
+def unit_direction(direction, r):
+    """``direction`` ← the r-th unit vector."""
+    for q in range(len(direction)):
+        direction[q] = 0.0
+    direction[r] = 1.0
 
 
 @njit_step
@@ -159,14 +179,9 @@ def structure_breakaway_normal(e, sign, t, s, modes, topology, g):
     W_e,f Q̇_f + W_e,p ȧ_p."""
     n = len(s.mass)
     free = n - len(s.motion_amplitude)
-    k = 0
-    for index in range(len(topology.stuck_interfaces)):
-        if topology.stuck_interfaces[index] == e:
-            k = index
+    k = stuck_position(topology, e)
     for r in range(2 * n):
-        for q in range(2 * n):
-            g.direction[q] = 0.0
-        g.direction[r] = 1.0
+        unit_direction(g.direction, r)
         structure_linearised_acceleration(g.direction, s, modes, topology, g)
         change = 0.0
         for i in range(free):
