@@ -317,15 +317,13 @@ def _stored(scene, t, x, v, modes):
     if a.is_structure:
         strain = 0.5 * x @ a.structure_stiffness @ x
         penetration = a.normal_rows @ x - a.normal_gap
-        contact = sum(_contact_energy(law, penetration[e])
-                      for e, law in enumerate(a.normal_laws) if modes[e] != Mode.OPEN)
-        return kinetic + strain, contact
-    strain = 0.5 * x @ edge_matrix(np.concatenate([a.stiffness, np.zeros(len(x_p))]),
-                                   a.coupling_left, a.coupling_right,
-                                   a.coupling_stiffness) @ x
-    penetration, rate, slip = (np.empty(a.n_interfaces) for _ in range(3))
-    interface_kinematics(x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle,
-                         penetration, rate, slip)
+    else:
+        strain = 0.5 * x @ edge_matrix(np.concatenate([a.stiffness, np.zeros(len(x_p))]),
+                                       a.coupling_left, a.coupling_right,
+                                       a.coupling_stiffness) @ x
+        penetration, rate, slip = (np.empty(a.n_interfaces) for _ in range(3))
+        interface_kinematics(x, v, a.left, a.right, a.gap, a.sin_angle, a.cos_angle,
+                             penetration, rate, slip)
     contact = sum(_contact_energy(law, penetration[e])
                   for e, law in enumerate(a.normal_laws) if modes[e] != Mode.OPEN)
     return kinetic + strain, contact
