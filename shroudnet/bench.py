@@ -281,7 +281,7 @@ def beams_against_plain(periods: int, repeats: int) -> dict[str, tuple[float, fl
     the physical degrees of freedom at t = k T_e from a run at rtol 1e-12, relative to
     their largest value. The beams' stiff rotations bound the steps, not the tolerance."""
     scene = beam_pair()
-    dofs = np.vstack([scene.dof_rows(name) for name in scene.blades])
+    dofs = scene.dof_matrix()
     reference = simulate(scene, periods, method=Adaptive(rtol=1e-12), samples_per_period=1,
                          event_tolerance=1e-13).x @ dofs.T
     scale = np.abs(reference).max()

@@ -302,6 +302,11 @@ class Scene:
         rows[:, a.layout.coordinates(node)] = a.layout.bases[a.layout.position(node)]
         return rows
 
+    def dof_matrix(self) -> np.ndarray:
+        """D: every node's own degrees of freedom, stacked in ``blades`` order, from the
+        state's displacements (q = D x; ``dof_rows`` of each node)."""
+        return np.vstack([self.dof_rows(name) for name in self.blades])
+
     @cached_property
     def arrays(self) -> SceneArrays:
         """The scene lowered to flat arrays (computed once): by blade, or with

@@ -246,20 +246,26 @@ def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e
 
 def beam_pair(*, elements: int = 2, gap: float = -2e-6, face: float = 0.5,
               contact_stiffness: float = 1e5, friction: FrictionLaw | None = Coulomb(mu=0.4),
-              q1: float = 2.0) -> Scene:
+              q1: float = 2.0, blade: Substructure | None = None,
+              speed_rpm: float | None = None) -> Scene:
     """Two clamped steel beams (80 × 20 × 3 mm, ``elements`` Euler–Bernoulli elements each,
     unreduced, a 20 g shroud mass at the tip) whose tip shrouds meet on a face inclined at
     ``face`` [rad], preloaded, forced in anti-phase at engine order 2 just above the first
-    flap resonance (5 % above it): the contact separates, closes, sticks and slips."""
-    blade = cantilever_beam(length=0.08, width=0.02, thickness=0.003, youngs_modulus=2.1e11,
-                            density=7800.0, elements=elements, tip_mass=0.02,
-                            damping_ratios=0.01)
+    flap resonance (5 % above it): the contact separates, closes, sticks and slips.
+
+    ``blade`` replaces the beam (a reduced model of it, say, with the points "shroud" and
+    "load"), and ``speed_rpm`` the speed 5 % above the blade's first flap resonance."""
+    if blade is None:
+        blade = cantilever_beam(length=0.08, width=0.02, thickness=0.003,
+                                youngs_modulus=2.1e11, density=7800.0, elements=elements,
+                                tip_mass=0.02, damping_ratios=0.01)
     normal = (math.cos(face), math.sin(face))
     group = BladeGroup().add_blade("blade1", blade).add_blade("blade2", blade)
     group.connect(("blade1", "shroud"), ("blade2", "shroud"), Interface(
         gap=gap, normal=LinearSpring(stiffness=contact_stiffness), friction=friction,
         normal_direction=normal, tangent_direction=(-normal[1], normal[0])))
-    speed = 1.05 * blade.frequencies_at(0.0)[0] * 60.0 / 2.0
-    return Scene(group=group, speed_rpm=speed,
+    if speed_rpm is None:
+        speed_rpm = 1.05 * blade.frequencies_at(0.0)[0] * 60.0 / 2.0
+    return Scene(group=group, speed_rpm=speed_rpm,
                  excitation=Excitation(engine_order=2, amplitudes=(0.0, q1),
                                        phases=AntiPhase()))

@@ -28,14 +28,12 @@ import pytest
 import scipy.linalg
 
 import shroudnet as sn
-from contact_laws import Coulomb, LinearSpring
-from shroudnet import cantilever_beam, craig_bampton, modal_truncation, periodic_orbit
+from shroudnet import craig_bampton, modal_truncation, periodic_orbit, scenes
 from shroudnet.orbits import ORBIT_TOLERANCE, event_sequence, state_weights
 from shroudnet.stability import TANGENT_METHOD
 
 ELEMENTS = 6
-FULL = cantilever_beam(length=0.08, width=0.02, thickness=0.003, youngs_modulus=2.1e11,
-                       density=7800.0, elements=ELEMENTS, tip_mass=0.02, damping_ratios=0.01)
+FULL = scenes.beam_pair(elements=ELEMENTS).group.blade("blade1")
 #: The full model's DOFs that the points read, beyond the rounding of the load point's
 #: shape functions (1e-16): the tip's v and w, as the load sits at the tip.
 BOUNDARY = np.flatnonzero((np.abs(np.vstack(list(FULL.points.values()))) > 1e-12).any(axis=0))
@@ -52,18 +50,7 @@ MT_MODES = (2, 4, 8)
 
 def pair(blade) -> sn.Scene:
     """``scenes.beam_pair`` built from ``blade``, at the full blade's ``SPEED_RPM``."""
-    group = sn.BladeGroup().add_blade("blade1", blade).add_blade("blade2", blade)
-    group.connect(("blade1", "shroud"), ("blade2", "shroud"), sn.Interface(
-        gap=-2e-6, normal=LinearSpring(stiffness=1e5), friction=Coulomb(mu=0.4),
-        normal_direction=tuple(NORMAL), tangent_direction=(-NORMAL[1], NORMAL[0])))
-    return sn.Scene(group=group, speed_rpm=SPEED_RPM,
-                    excitation=sn.Excitation(engine_order=2, amplitudes=(0.0, 2.0),
-                                             phases=sn.AntiPhase()))
-
-
-def dof_matrix(scene) -> np.ndarray:
-    """D: every blade's own DOFs, stacked, from the state's coordinates (q = D x)."""
-    return np.vstack([scene.dof_rows(name) for name in scene.blades])
+    return scenes.beam_pair(blade=blade, speed_rpm=SPEED_RPM)
 
 
 def state_maps(full_scene, reduced_scene, reduced):
@@ -73,7 +60,7 @@ def state_maps(full_scene, reduced_scene, reduced):
     basis = reduced.basis
     mass = FULL.mass.toarray()
     projection = np.linalg.solve(basis.T @ mass @ basis, basis.T @ mass)
-    full_dofs, reduced_dofs = dof_matrix(full_scene), dof_matrix(reduced_scene)
+    full_dofs, reduced_dofs = full_scene.dof_matrix(), reduced_scene.dof_matrix()
     expand = np.linalg.solve(full_dofs, scipy.linalg.block_diag(basis, basis) @ reduced_dofs)
     project = np.linalg.solve(reduced_dofs,
                               scipy.linalg.block_diag(projection, projection) @ full_dofs)

@@ -262,7 +262,7 @@ def stuck_equilibrium(scene):
     g = np.array(constraints)
     kkt = np.block([[stiffness, g.T], [g, np.zeros((len(g), len(g)))]])
     q = np.linalg.solve(kkt, np.concatenate([force, np.zeros(len(g))]))[:p.n]
-    to_dofs = np.vstack([scene.dof_rows(name) for name in scene.blades])
+    to_dofs = scene.dof_matrix()
     return np.linalg.solve(to_dofs, q)
 
 

@@ -159,7 +159,7 @@ def test_two_unreduced_beams_with_a_shroud_contact_match_an_independent_referenc
     counts = orbit.history.events.counts
     assert all(counts[kind] > 0 for kind in ("closing", "separation", "sticking",
                                              "breakaway")), counts
-    dofs = np.vstack([scene.dof_rows(name) for name in scene.blades])
+    dofs = scene.dof_matrix()
     q0, v0 = dofs @ orbit.initial[0], dofs @ orbit.initial[1]
     history = orbit.history
     reference = bs.run_structure(bs.structure_from_substructures(scene), q0, v0, history.t[-1],
