@@ -50,7 +50,10 @@ class NormalLaw:
        arithmetic on floats (``math`` functions, ``max``, ``min``, ``if``) so that numba can
        compile it into the integrator's loop;
     4. optionally ``opens = False`` as a class attribute for a contact that never opens,
-       whatever the penetration (a preloaded contact such as ``ConstantLoad``);
+       whatever the penetration (a preloaded contact such as ``ConstantLoad``), and
+       ``constant_slopes = True`` for a law whose gradient is the same at every closed
+       state (N affine in δ and δ̇, as ``LinearSpring``): the tangent flow of a phase
+       of such laws is then one matrix exponential;
     5. optionally a ``@staticmethod normal_force_gradient(penetration, rate, *parameters)``
        returning (∂N/∂δ [N/m], ∂N/∂δ̇ [N·s/m]), in the same plain arithmetic. Tangent
        dynamics (Jacobians, Floquet multipliers, Lyapunov exponents) need it; a law without
@@ -64,6 +67,7 @@ class NormalLaw:
     """
 
     opens: ClassVar[bool] = True
+    constant_slopes: ClassVar[bool] = False
 
     @staticmethod
     def normal_force(penetration: float, rate: float, *parameters: float) -> float:
@@ -116,13 +120,18 @@ class FrictionLaw:
        interface that has just broken away slips with μ(0⁺), the limit from above;
     4. optionally a ``@staticmethod coefficient_slope(slip_speed, *parameters)`` returning
        dμ/d|v| [s/m], in the same plain arithmetic, for tangent dynamics; a law without it
-       is differentiated by central differences of ``coefficient``.
+       is differentiated by central differences of ``coefficient``;
+    5. optionally ``constant_slopes = True`` as a class attribute where μ is the same at
+       every slip speed > 0 (``Coulomb``): the tangent flow of a phase is then one matrix
+       exponential.
 
     A law is evaluated with ``law(slip_speed)`` and differentiated with
     ``law.slope(slip_speed)``; ``law.static_coefficient`` is μ(0). A scene probes a law of
     one's own for point 3 (finite, 0 ≤ μ(v) ≤ ``static_coefficient``) at slip speeds from 0
     to 100 m/s when it is built; a sampled check, not a proof.
     """
+
+    constant_slopes: ClassVar[bool] = False
 
     @staticmethod
     def coefficient(slip_speed: float, *parameters: float) -> float:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 from ._checks import check_real
 from .base import FrictionLaw
@@ -23,6 +24,7 @@ class Coulomb(FrictionLaw):
         μ ≥ 0 [-].
     """
 
+    constant_slopes: ClassVar[bool] = True
     mu: float
 
     def __post_init__(self):

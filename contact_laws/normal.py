@@ -24,6 +24,7 @@ class LinearSpring(NormalLaw):
         Contact stiffness k_c > 0 [N/m].
     """
 
+    constant_slopes: ClassVar[bool] = True
     stiffness: float
 
     def __post_init__(self):
@@ -163,6 +164,7 @@ class ConstantLoad(NormalLaw):
     """
 
     opens: ClassVar[bool] = False
+    constant_slopes: ClassVar[bool] = True
     force: float
 
     def __post_init__(self):

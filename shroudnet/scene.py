@@ -72,6 +72,16 @@ class SceneArrays:
         return self.layout is not None
 
     @property
+    def linear_phases(self) -> bool:
+        """Whether the vector field is linear in the state between switches: substructures
+        whose every law has ``constant_slopes`` (the stiffness, damping, stick
+        constraints and excitation are so already), so that the tangent flow of a phase
+        is the matrix exponential of its Jacobian."""
+        return self.is_structure and all(
+            type(law).constant_slopes for law in self.normal_laws) and all(
+            law is None or type(law).constant_slopes for law in self.friction_laws)
+
+    @property
     def n_blades(self) -> int:
         return len(self.mass)
 

@@ -163,7 +163,8 @@ def integrate(scene: Scene, periods: int, *,
         h_max=getattr(method, "max_step", 1.0) * period, h_min=smallest_step(period),
         event_tolerance=event_tolerance * period, zeno_events=zeno.events,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
-        orthonormalise=orthonormalise)
+        orthonormalise=orthonormalise,
+        exponentials=not orthonormalise and scene.arrays.linear_phases)
     arrays = kernel_scene(scene)
     state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
                                                       flow=tangent is not None)

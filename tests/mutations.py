@@ -102,6 +102,8 @@ MULTI_DOF_DROPPING = ("tests/test_structures.py::"
 #: Two unreduced beams against the independent reference: masses that differ from 1.
 BEAMS = ("tests/test_structures.py::"
          "test_two_unreduced_beams_with_a_shroud_contact_match_an_independent_reference")
+#: The tangent carried by one exponential a phase, against scipy and against the steps.
+EXPONENTIAL = "tests/test_phase_exponential.py"
 
 
 @dataclass(frozen=True)
@@ -218,6 +220,16 @@ MUTATIONS = (
              "velocities are projected onto a stick cluster (P of the saltations, and the "
              "state's at stick onset) by their sum over its mass, not by its momentum",
              (STUCK_CLUSTER,)),
+    Mutation("phase-exponential-left-balanced", "tangent",
+             "            jacobian[r, c] *= (weight if c >= n else 1.0) / (weight if r >= n else "
+             "1.0)",
+             "            jacobian[r, c] *= 1.0",
+             "a phase's tangent e^{J Δt} is taken as D e^{J Δt} D⁻¹: the balancing of the "
+             "velocity rows is not undone", (EXPONENTIAL, MULTI_DOF_MONODROMY)),
+    Mutation("pade-odd-part-constant", "tangent",
+             "        v[i, i] += b[1]\n", "        v[i, i] += b[0]\n",
+             "the Padé approximant's odd part U takes b₀ for b₁: e^A is wrong at every scale",
+             (EXPONENTIAL,)),
     # ---- orbits: Newton's step (M − I) Δy = −(φ(y) − y) ----------------------------------
     Mutation("newton-without-monodromy", "orbits",
              "change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)",

@@ -11,6 +11,7 @@ import numpy as np
 
 from .codes import N_EVENT_KINDS, N_POWERS, N_WORK
 from .compiled import njit_inlined, njit_internal
+from .exponential import SLOTS
 from .tableau import DP_STAGES
 
 #: A scene as the compiled loop sees it: the ``SceneArrays`` fields that are numbers, plus
@@ -55,11 +56,14 @@ StructureScene = namedtuple("StructureScene", KernelScene._fields + (
 #: (rtol, atol on x [m] and on ẋ [m/s]) and step limits; the event tolerance; the Zeno
 #: guard (switches within a window [s]); how many events the log keeps; and whether the
 #: tangent's columns are orthonormalised after every step (``tangent.orthonormalise``,
-#: for Lyapunov exponents).
+#: for Lyapunov exponents), or, with ``exponentials``, carried through each phase between
+#: switches by one matrix exponential (``kernel.tangent.carry_phase``) rather than with
+#: every step.
 Controls = namedtuple("Controls", [
     "t0", "sample_step", "n_samples", "step", "steps_per_sample",
     "rtol", "atol_x", "atol_v", "h_max", "h_min",
     "event_tolerance", "zeno_events", "zeno_window", "event_capacity", "orthonormalise",
+    "exponentials",
 ])
 
 #: The integrator's state between steps: displacements x [m] and velocities ẋ [m/s] by
@@ -84,11 +88,13 @@ State = namedtuple("State", ["x", "v", "energy", "modes", "contact_before", "mot
 #: ``singular`` counts the switches whose saltation matrix was singular (a grazing
 #: switch, or several guards at once), the first at ``singular_time[0]`` on interface
 #: ``singular_interface[0]``. ``work`` and ``acceleration``: the forces at a stage.
+#: ``phase_work`` and ``pivots``: storage for the exponential of a phase's Jacobian
+#: (``exponential``; its first slot the Jacobian).
 Tangent = namedtuple("Tangent", [
     "matrix", "log_growth", "history", "normal_u", "normal_du", "force_u", "force_du",
     "stages", "candidate", "direction", "resultant_change", "acceleration_change", "rows",
     "imbalance", "q_rate", "guard_normal", "f_minus", "f_plus", "singular", "singular_time",
-    "singular_interface", "work", "acceleration",
+    "singular_interface", "work", "acceleration", "phase_work", "pivots",
 ])
 
 #: The tangent of a run that integrates none, in a kernel compiled without the tangent
@@ -218,7 +224,8 @@ def new_tangent(tangent0, n_interfaces, n_samples, work):
                    np.zeros(b), np.zeros(b), np.zeros(b), np.zeros(2 * b), np.zeros(2 * b),
                    np.zeros(2 * b),
                    np.zeros(1, dtype=np.int64), np.full(1, np.nan),
-                   np.full(1, -1, dtype=np.int64), work, np.zeros(b))
+                   np.full(1, -1, dtype=np.int64), work, np.zeros(b),
+                   np.zeros((SLOTS, 2 * b, 2 * b)), np.zeros(2 * b, dtype=np.int64))
 
 
 def new_state(x0, v0, tangent, n_interfaces):

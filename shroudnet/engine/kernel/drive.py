@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from .locate import locate, record_dense
     from .resolve import begin, switch
     from .step import trial_step
+    from .tangent import by_phase, carry_phase, stepwise
 
 
 @njit_step_merged
@@ -73,7 +74,7 @@ def advance(t, h, k, sample, steps, state, topology, s, w, controls, out):
                 t, sample = locate(t, h, t_end, theta, sample, state, topology, s, w,
                                    controls, out)
                 return t, h, k, sample, steps, FINISHED, True
-        if HAS_TANGENT and state.tangent.matrix.shape[1] > 0:
+        if HAS_TANGENT and stepwise(state, controls):
             commit_tangent(state.tangent, s, controls.orthonormalise)
         keep_guards(state, w)
         if ADAPTIVE:
@@ -117,13 +118,19 @@ def run(state, s, w, sw, events, controls, out):
     t, h = controls.t0, min(controls.step, controls.h_max)
     k, sample, steps = np.int64(0), np.int64(1), np.int64(0)
     stop_interface = -1
+    phase_start = controls.t0
     while status == FINISHED and sample < controls.n_samples:
         t, h, k, sample, steps, status, switched = advance(t, h, k, sample, steps, state,
                                                            topology, s, w, controls, out)
         if not switched or status != FINISHED:
             break
+        if HAS_TANGENT and by_phase(state, controls):
+            carry_phase(phase_start, t, state, topology, s)
+            phase_start = t
         status, stop_interface, topology = switch(t, state, topology, s, w, sw, events,
                                                   controls)
         if not ADAPTIVE and t == controls.t0 + (k + 1) * controls.step:
             k, sample = next_on_grid(k, t, state, w, controls, out, sample)
+    if HAS_TANGENT and by_phase(state, controls) and status == FINISHED:
+        carry_phase(phase_start, t, state, topology, s)
     return status, t, stop_interface, steps if ADAPTIVE else k, sample

@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from .forces import evaluate_guards_apart, sample_forces
     from .generated import ADAPTIVE, HAS_TANGENT
     from .step import motion_inside, step_apart
-    from .tangent import tangent_step
+    from .tangent import stepwise, tangent_step
 
 
 @njit_step_merged
@@ -69,7 +69,7 @@ def locate(t, h, t_end, theta, sample, state, topology, s, w, controls, out):
     if ADAPTIVE:
         sample = record_dense(sample, t, t_event, h, state, topology, s, w, controls, out)
     step_apart(t, t_event - t, state, topology, s, w, controls)
-    tangent = HAS_TANGENT and state.tangent.matrix.shape[1] > 0
+    tangent = HAS_TANGENT and stepwise(state, controls)
     if any_crossed(state, w):
         if HAS_TANGENT and tangent:
             tangent_step(t, t_event - t, state, topology, s, w, controls)

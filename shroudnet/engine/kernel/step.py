@@ -18,7 +18,7 @@ from shroudnet.engine.tableau import DP_A, DP_B, DP_C, DP_STAGES, stage_sum
 if TYPE_CHECKING:
     from .forces import derivative, evaluate_guards
     from .generated import ADAPTIVE, HAS_TANGENT
-    from .tangent import tangent_step
+    from .tangent import stepwise, tangent_step
 
 
 @njit_step_merged
@@ -121,7 +121,7 @@ def trial_step(t, h, state, topology, s, w, controls):
         rk4_guarded(t, h, state, topology, s, w)
         return 0.0
     error = dp5_step(t, h, state, topology, s, w, controls)
-    if HAS_TANGENT and state.tangent.matrix.shape[1] > 0 and accepted(error):
+    if HAS_TANGENT and stepwise(state, controls) and accepted(error):
         error = max(error, tangent_step(t, h, state, topology, s, w, controls))
     return error
 

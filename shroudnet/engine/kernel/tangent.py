@@ -16,13 +16,15 @@ from shroudnet.engine.compiled import (njit_inlined, njit_step, njit_step_callab
                                        njit_step_exact, njit_step_merged)
 from shroudnet.engine.detect import crossed, guard_crossed
 from shroudnet.engine.dynamics import static_friction
+from shroudnet.engine.exponential import exponential
 from shroudnet.engine.records import new_switching, new_tangent, new_work, plain, square_size
 from shroudnet.engine.regroup import regroup
 from shroudnet.engine.saltation import (breakaway_normal, contact_normal, reduce_to_clusters,
                                         same_surface, slip_normal)
 from shroudnet.engine.tableau import DP_A, DP_C, DP_STAGES, stage_sum
 from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
-                                      linearised_acceleration, stage_tangent, tangent_error)
+                                      linearised_acceleration, stage_tangent, tangent_error,
+                                      time_scale)
 
 if TYPE_CHECKING:
     from .forces import derivative, sliding_coefficient
@@ -111,9 +113,16 @@ def linearise_at(t, x, v, modes, s, tangent0):
 def fill_jacobian(t, x, v, modes, s, g, sw, jacobian):
     """``linearise_at``'s Jacobian into ``jacobian``, in storage allocated by the caller
     (g: ``records.Tangent``, sw: ``records.Switching``)."""
-    n = len(x)
     topology = regroup(s, modes, sw)
     linearise(t, x, v, modes, topology, s, g)
+    jacobian_into(s, modes, topology, g, jacobian)
+
+
+@njit_step
+def jacobian_into(s, modes, topology, g, jacobian):
+    """J = ∂(ẋ, ẍ)/∂(x, ẋ) into ``jacobian``, column by column, from the slopes in g
+    (``linearise``)."""
+    n = jacobian.shape[0] // 2
     for r in range(2 * n):
         for q in range(2 * n):
             g.direction[q] = 1.0 if q == r else 0.0
@@ -121,6 +130,58 @@ def fill_jacobian(t, x, v, modes, s, g, sw, jacobian):
         for i in range(n):
             jacobian[i, r] = g.direction[n + i]
             jacobian[n + i, r] = g.acceleration_change[i]
+
+
+@njit_inlined
+def by_phase(state, controls):
+    """Whether this run carries its tangent by phase (``carry_phase``) rather than with
+    every step: substructures whose vector field is linear between switches, in a run
+    that keeps no orthonormal basis (``records.Controls.exponentials``)."""
+    return HAS_STRUCTURES and controls.exponentials and state.tangent.matrix.shape[1] > 0
+
+
+@njit_inlined
+def stepwise(state, controls):
+    """Whether this run carries its tangent with every step (``tangent_step``)."""
+    return state.tangent.matrix.shape[1] > 0 and not (HAS_STRUCTURES
+                                                      and controls.exponentials)
+
+
+@njit_step
+def carry_phase(t_from, t_to, state, topology, s):
+    """Φ ← e^{J (t_to − t_from)} Φ: the tangent carried through a phase between switches
+    over which the vector field is linear in the state (``SceneArrays.linear_phases``), so
+    that J, here from the slopes at the state at t_to in the phase's modes, is the same
+    all through it. The exponential is taken of D J D⁻¹ (t_to − t_from) with
+    D = diag(I, τ I) (τ: ``time_scale``), whose displacement and velocity blocks are of
+    one size, and brought back by D⁻¹ · D."""
+    if t_to <= t_from:
+        return
+    g = state.tangent
+    linearise(t_to, state.x, state.v, state.modes, topology, s, g)
+    work = g.phase_work
+    jacobian = work[0]
+    jacobian_into(s, state.modes, topology, g, jacobian)
+    size = jacobian.shape[0]
+    n = size // 2
+    weight = time_scale(s)
+    span = t_to - t_from
+    for r in range(size):
+        for c in range(size):
+            jacobian[r, c] *= span * (weight if r >= n else 1.0) / (weight if c >= n else 1.0)
+    exponential(work, g.pivots)
+    for r in range(size):
+        for c in range(size):
+            jacobian[r, c] *= (weight if c >= n else 1.0) / (weight if r >= n else 1.0)
+    for r in range(size):
+        for column in range(g.matrix.shape[1]):
+            total = 0.0
+            for q in range(size):
+                total += jacobian[r, q] * g.matrix[q, column]
+            g.candidate[r, column] = total
+    for r in range(size):
+        for column in range(g.matrix.shape[1]):
+            g.matrix[r, column] = g.candidate[r, column]
 
 
 @njit_step
