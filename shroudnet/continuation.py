@@ -14,6 +14,13 @@ a period doubling, a complex pair through the unit circle a torus (Neimark–Sac
 bifurcation; each is located on the branch by the secant method on its test function. A
 change of the orbit's switch sequence is a nonsmooth bifurcation ("grazing" for contact
 closing or opening, "stick-slip" for stick phases), reported at the first orbit beyond it.
+
+At such a change the branch has a kink: ∂φ/∂y jumps, and the corrector's linear model,
+taken on one side, may not reach the branch on the other however short the step. Where
+the steps have shrunk to ``KINK_STEP`` the branch is crossed at a fixed parameter
+instead, by Newton on the orbit alone from the last point's orbit, a step of
+``KINK_JUMPS`` of |stop − start| on; the arclength steps go on from there, in the
+parameter's direction: the orbit's jump across the kink may point back along the branch.
 """
 
 from __future__ import annotations
@@ -42,6 +49,13 @@ KINDS = ("fold", "period-doubling", "torus", "grazing", "stick-slip")
 LARGEST_STEP = 1.0
 FIRST_STEP = 0.1
 SMALLEST_STEP = 1e-7
+#: The arclength step below which a failing step is taken for a kink of the branch, and
+#: the parameter steps (fractions of |stop − start|, shortest first) tried across it.
+KINK_STEP = 1e-3
+KINK_JUMPS = (1e-5, 1e-4, 1e-3)
+#: A corrector whose residual stops falling (by less than half an iteration) within
+#: this many times the tolerance has met the map's own integration noise: it has converged.
+NOISE_FLOOR = 10.0
 #: How far from a period doubling the doubled branch is first sought (scaled units).
 DOUBLED_OFFSET = 1e-3
 #: Corrector iterations before a step is halved; a step that converged in at most
@@ -304,6 +318,7 @@ class Solver:
         """
         u = predicted.copy()
         rate = None  # ∂φ/∂p at the prediction serves every iteration (a chord method)
+        last = math.inf
         for iteration in range(CORRECTOR_ITERATIONS):
             p = u[-1] * self.span if fixed is None else fixed
             y = self.state(u)
@@ -314,8 +329,11 @@ class Solver:
                                        f"scene_at says: {error}") from error
             residual = self.weights * (step.end - y)
             constraint = normal @ u - offset
-            if np.abs(residual).max() <= self.tolerance and abs(constraint) <= 1e-12:
+            size = np.abs(residual).max()
+            stalled = NOISE_FLOOR * self.tolerance >= size > last / 2.0
+            if (size <= self.tolerance or stalled) and abs(constraint) <= 1e-12:
                 return Point(u, p, periods, step, rate), iteration
+            last = size
             system = np.vstack([self.jacobian(step, rate), normal])
             change = least_squares(system, np.append(residual, constraint))
             if np.linalg.norm(change) > reach:
@@ -348,6 +366,7 @@ class Solver:
         bifurcations = []
         ended = f"reached max_points = {max_points}"
         sigma = step
+        crossing = True  # whether a kink may still be crossed from ``point``
         while len(points) < max_points:
             try:
                 new, iterations = self.advance(point, sigma)
@@ -356,11 +375,18 @@ class Solver:
                     raise ConvergenceError("the branch turns too sharply")
             except SimulationError as error:
                 sigma /= 2.0
-                if sigma < SMALLEST_STEP:
-                    ended = (f"no step converged at p = {point.parameter:.9g} (the last "
-                             f"try: {error})")
-                    break
-                continue
+                new = None
+                if sigma < KINK_STEP and crossing:
+                    crossing = False
+                    new = self.across(point)
+                if new is None:
+                    if sigma < SMALLEST_STEP:
+                        ended = (f"no step converged at p = {point.parameter:.9g} (the "
+                                 f"last try: {error})")
+                        break
+                    continue
+                iterations = CORRECTOR_ITERATIONS  # the step grows again from here
+                sigma = max(float(np.linalg.norm(new.u - point.u)), KINK_STEP)
             if not self.low <= new.parameter <= self.high:
                 target = self.high if new.parameter > self.high else self.low
                 if target != point.parameter:
@@ -376,6 +402,7 @@ class Solver:
                 break
             self.record(points, orbits, bifurcations, new)
             point = points[-1] = self.rescaled(new)
+            crossing = crossing or sigma >= KINK_STEP
             if progress is not None:
                 progress(len(points), point.parameter)
             if iterations <= EASY_ITERATIONS:
@@ -383,6 +410,31 @@ class Solver:
         return Branch(parameter=np.array([p.parameter for p in points]), orbits=tuple(orbits),
                       bifurcations=tuple(bifurcations), periods=points[0].periods, name=name,
                       ended=ended)
+
+    def across(self, point) -> Point | None:
+        """The branch a fixed parameter step beyond ``point``, by Newton on the orbit
+        alone from ``point``'s orbit, for each step of ``KINK_JUMPS`` in turn (the
+        parameter moving as ``point``'s tangent does, and on beyond it); None where none
+        converges."""
+        direction = math.copysign(1.0, point.tangent[-1])
+        for jump in KINK_JUMPS:
+            p = point.parameter + direction * jump * self.span
+            if not self.low <= p <= self.high:
+                return None
+            predicted = point.u.copy()
+            predicted[-1] = p / self.span
+            normal = np.zeros(len(predicted))
+            normal[-1] = 1.0
+            try:
+                new = self.correct(predicted, normal, predicted[-1], point.periods,
+                                   reach=math.inf, fixed=p)[0]
+            except SimulationError:
+                continue
+            # on in the parameter's direction: the secant, mostly the orbit's change
+            # across the kink, need not point along the branch beyond it
+            tangent = self.tangent(new, new.u - point.u)
+            return new.with_tangent(tangent if tangent[-1] * direction >= 0.0 else -tangent)
+        return None
 
     def rescaled(self, point):
         """``point`` in coordinates whose state scale has grown to its orbit's, once the

@@ -104,6 +104,8 @@ BEAMS = ("tests/test_structures.py::"
          "test_two_unreduced_beams_with_a_shroud_contact_match_an_independent_reference")
 #: The tangent carried by one exponential a phase, against scipy and against the steps.
 EXPONENTIAL = "tests/test_phase_exponential.py"
+#: Branches through kinks and up to a nonsmooth fold.
+KINKS = "tests/test_continuation_kinks.py"
 
 
 @dataclass(frozen=True)
@@ -242,6 +244,21 @@ MUTATIONS = (
              "Newton's step solves with Mᵀ − I: the multipliers are right, the step is not",
              (LINEAR_NEWTON, UNSTABLE_ORBIT)),
     # ---- continuation: the test functions of the smooth bifurcations ---------------------
+    Mutation("kinks-not-crossed", "continuation",
+             "                if sigma < KINK_STEP and crossing:",
+             "                if sigma < KINK_STEP and crossing and False:",
+             "where arclength steps stall at a kink, the branch ends there", (KINKS,)),
+    Mutation("noise-floor-ignored", "continuation",
+             "            stalled = NOISE_FLOOR * self.tolerance >= size > last / 2.0",
+             "            stalled = False",
+             "a corrector whose residual stalls at the map's integration noise, a few times "
+             "the tolerance, never converges: the branch stops there", (KINKS,)),
+    Mutation("kink-tangent-by-the-secant", "continuation",
+             "            return new.with_tangent(tangent if tangent[-1] * direction >= 0.0 "
+             "else -tangent)",
+             "            return new.with_tangent(tangent)",
+             "past a kink the branch's tangent follows the secant, which the orbit's jump "
+             "may point back along the branch", (KINKS,)),
     Mutation("fold-test-on-a-state-component", "continuation",
              "    if a.tangent[-1] * b.tangent[-1] < 0.0:",
              "    if a.tangent[0] * b.tangent[0] < 0.0:",
