@@ -20,7 +20,8 @@
    across the paper's l = 2 resonance takes (``continuation``), against transient sweeps
    up and down the same speeds.
 7. Substructures: periods per second and milliseconds per periodic orbit (with all its
-   multipliers) of a packet of six three-mode blades (``scenes.modal_packet``); two
+   multipliers) of a packet of six three-mode blades (``scenes.modal_packet``), and the
+   seconds a forced-response curve of 300 of its orbits takes; two
    unreduced beams with a shroud contact (``scenes.beam_pair``) against the plain
    ``solve_ivp`` reference of ``baseline_structures`` at equal tolerances, both measured
    against a converged run.
@@ -274,6 +275,21 @@ def packet_costs(periods: int, repeats: int) -> tuple[float, float, object]:
     return periods / seconds, orbit_seconds, orbit
 
 
+def packet_curve(points: int) -> tuple[float, object]:
+    """(seconds, the branch) of a forced-response curve of ``scenes.modal_packet`` up in
+    speed from 2600 rpm across its first flap resonance, of at most ``points`` orbits
+    (steps of at most 5 % of the range, as ``examples/fe_packet.py`` takes them), from
+    the orbit at 2600 rpm."""
+    def scene_at(speed_rpm):
+        return modal_packet(speed_rpm=speed_rpm)
+
+    start = periodic_orbit(scene_at(2600.0))
+    clock = time.perf_counter()
+    branch = continuation(scene_at, 2600.0, 3400.0, guess=start.initial, max_step=0.05,
+                          max_points=points)
+    return time.perf_counter() - clock, branch
+
+
 def beams_against_plain(periods: int, repeats: int) -> dict[str, tuple[float, float]]:
     """(seconds, error) on ``scenes.beam_pair`` from rest, by run: shroudnet at rtol 1e-6,
     and the plain ``baseline_structures`` run with RK45 and with DOP853 at rtol 1e-9 (atol
@@ -443,6 +459,10 @@ def main(argv=None) -> None:
     print(f"   packet of 6 blades of 3 modes (18 coordinates, 5 interfaces): {rate:,.0f} "
           f"periods/s; a periodic orbit with its {len(orbit.multipliers)} multipliers from a "
           f"settled guess {orbit_seconds * 1e3:.0f} ms ({orbit.iterations} Newton steps)")
+    seconds, branch = packet_curve(20 if args.quick else 300)
+    print(f"   its forced-response curve up from 2600 rpm: {len(branch)} orbits with their "
+          f"multipliers in {seconds:.1f} s ({branch.ended} at "
+          f"{branch.parameter[-1]:.1f} rpm)")
     rows = beams_against_plain(2 if args.quick else 10, repeats)
     ours = rows["shroudnet, rtol 1e-6"][0]
     print("   two unreduced beams (2 × 8 degrees of freedom) with a tip shroud contact, "

@@ -220,9 +220,9 @@ def modal_blade(*, damping_ratio: float = 0.003) -> Substructure:
 
 
 def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e-6,
-                 face: float = 0.6, contact_stiffness: float = 5e5,
+                 face: float = 0.6, contact_stiffness: float = 1e5,
                  friction: FrictionLaw | None = Coulomb(mu=0.3), q1: float = 1.0,
-                 engine_order: int = 4, damping_ratio: float = 0.003) -> Scene:
+                 engine_order: int = 4, damping_ratio: float = 0.02) -> Scene:
     """A packet of ``blades`` ``modal_blade``s whose shrouds meet on faces inclined at
     ``face`` [rad] to the flapwise direction, each interface a ``contact_stiffness`` [N/m]
     spring with ``gap`` [m] (negative: a preload) and ``friction``, forced by engine order

@@ -99,6 +99,26 @@ def check_campbell(example, result, arguments):
     assert second == [pytest.approx(6487.5, rel=1e-3)]
 
 
+def check_fe_packet(example, result, arguments):
+    """With the shrouds open the blades are apart, and engine order 4 meets the first flap
+    mode f = √(180² + 3 (Ω/60)²) Hz (Southwell, ``scenes.modal_blade``) where
+    16 (Ω/60)² = 180² + 3 (Ω/60)²: Ω = 60 · 180/√13 = 2995.37 rpm; stuck, the shrouds
+    only add stiffness and constraints, so no frequency falls (the k-th stuck one is
+    at least the k-th open one). Each branch starts at its end of the range and its
+    orbits converged."""
+    crossing = [(speed, frequency) for order, mode, speed, frequency
+                in result.open.crossings if order == 4 and mode == 0]
+    assert crossing[0][0] == pytest.approx(60.0 * 180.0 / math.sqrt(13.0), rel=1e-6)
+    assert crossing[0][1] == pytest.approx(4.0 * crossing[0][0] / 60.0, rel=1e-12)
+    stuck = result.stuck.frequencies    # fewer: each stuck interface is a constraint
+    assert np.all(stuck >= result.open.frequencies[:, :stuck.shape[1]] * (1.0 - 1e-12))
+    assert len(result.branches) == 2 * len(example.DESIGNS)
+    for label, branch in result.branches.items():
+        start = example.SPEEDS[0] if label.endswith("up") else example.SPEEDS[1]
+        assert branch.parameter[0] == start and len(branch) >= 2
+        assert all(orbit.residual <= 1e-9 for orbit in branch.orbits)
+
+
 def check_energy_density(example, result, arguments):
     """A finite, positive E_ρ ratio at every point of each of the three figures."""
     points = arguments["points"]
@@ -198,6 +218,9 @@ EXAMPLES = {
                         check_forced_response),
     "work_precision": ({"transient": 10, "record": 5, "chaotic_record": 10, "repeats": 1},
                        ["work_precision.png"], check_work_precision),
+    "fe_packet": ({"speeds": 5, "max_points": 3},
+                  ["fe_packet_campbell_open.png", "fe_packet_campbell_stuck.png",
+                   "fe_packet_response.png"], check_fe_packet),
     "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
                                 ["fig21_energy_density_gamma1.png",
                                  "fig22_energy_density_gap.png",
