@@ -295,7 +295,9 @@ def beams_against_plain(periods: int, repeats: int) -> dict[str, tuple[float, fl
     and the plain ``baseline_structures`` run with RK45 and with DOP853 at rtol 1e-9 (atol
     rtol times the displacement scale): about equal errors, each the largest deviation of
     the physical degrees of freedom at t = k T_e from a run at rtol 1e-12, relative to
-    their largest value. The beams' stiff rotations bound the steps, not the tolerance."""
+    their largest value. Each impact sets the beams' high modes ringing, which the steps
+    follow: at rtol 1e-6, 17,377 steps in 10 periods without the contact, 45,714 with it,
+    and 175,749 at rtol 1e-9."""
     scene = beam_pair()
     dofs = scene.dof_matrix()
     reference = simulate(scene, periods, method=Adaptive(rtol=1e-12), samples_per_period=1,
