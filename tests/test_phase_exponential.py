@@ -28,7 +28,7 @@ def expm(matrix):
     n = len(matrix)
     work = np.zeros((SLOTS, n, n))
     work[0] = matrix
-    exponential(work, np.zeros(n, dtype=np.int64))
+    exponential(work)
     return work[0]
 
 

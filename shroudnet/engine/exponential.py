@@ -63,7 +63,7 @@ def _combine(out, c6, a6, c4, a4, c2, a2, c0):
 
 
 @njit_inlined
-def _solve(lhs, rhs, pivots):
+def _solve(lhs, rhs):
     """rhs ← lhs⁻¹ rhs, by Gaussian elimination with partial pivoting (lhs is overwritten
     by its factors)."""
     n = lhs.shape[0]
@@ -72,7 +72,6 @@ def _solve(lhs, rhs, pivots):
         for i in range(k + 1, n):
             if abs(lhs[i, k]) > abs(lhs[pivot, k]):
                 pivot = i
-        pivots[k] = pivot
         if pivot != k:
             for j in range(n):
                 lhs[k, j], lhs[pivot, j] = lhs[pivot, j], lhs[k, j]
@@ -93,9 +92,9 @@ def _solve(lhs, rhs, pivots):
 
 
 @njit_step_callable
-def exponential(work, pivots):
-    """e^A of A = work[0], into work[0]; ``work`` is ``SLOTS`` n × n matrices of storage,
-    ``pivots`` n integers. Callable from Python (for its tests)."""
+def exponential(work):
+    """e^A of A = work[0], into work[0]; ``work`` is ``SLOTS`` n × n matrices of storage.
+    Callable from Python (for its tests)."""
     a, a2, a4, a6, u, v, t = work[0], work[1], work[2], work[3], work[4], work[5], work[6]
     n = a.shape[0]
     norm = _norm(a)
@@ -143,7 +142,7 @@ def exponential(work, pivots):
         for j in range(n):
             t[i, j] = v[i, j] - u[i, j]
             a[i, j] = v[i, j] + u[i, j]
-    _solve(t, a, pivots)                                # a ← (V − U)⁻¹ (V + U)
+    _solve(t, a)                                        # a ← (V − U)⁻¹ (V + U)
     for _ in range(squarings):
         _product(a, a, t)
         for i in range(n):

@@ -88,13 +88,13 @@ State = namedtuple("State", ["x", "v", "energy", "modes", "contact_before", "mot
 #: ``singular`` counts the switches whose saltation matrix was singular (a grazing
 #: switch, or several guards at once), the first at ``singular_time[0]`` on interface
 #: ``singular_interface[0]``. ``work`` and ``acceleration``: the forces at a stage.
-#: ``phase_work`` and ``pivots``: storage for the exponential of a phase's Jacobian
+#: ``phase_work``: storage for the exponential of a phase's Jacobian
 #: (``exponential``; its first slot the Jacobian).
 Tangent = namedtuple("Tangent", [
     "matrix", "log_growth", "history", "normal_u", "normal_du", "force_u", "force_du",
     "stages", "candidate", "direction", "resultant_change", "acceleration_change", "rows",
     "imbalance", "q_rate", "guard_normal", "f_minus", "f_plus", "singular", "singular_time",
-    "singular_interface", "work", "acceleration", "phase_work", "pivots",
+    "singular_interface", "work", "acceleration", "phase_work",
 ])
 
 #: The tangent of a run that integrates none, in a kernel compiled without the tangent
@@ -225,7 +225,7 @@ def new_tangent(tangent0, n_interfaces, n_samples, work):
                    np.zeros(2 * b),
                    np.zeros(1, dtype=np.int64), np.full(1, np.nan),
                    np.full(1, -1, dtype=np.int64), work, np.zeros(b),
-                   np.zeros((SLOTS, 2 * b, 2 * b)), np.zeros(2 * b, dtype=np.int64))
+                   np.zeros((SLOTS, 2 * b, 2 * b)))
 
 
 def new_state(x0, v0, tangent, n_interfaces):

@@ -143,8 +143,7 @@ def by_phase(state, controls):
 @njit_inlined
 def stepwise(state, controls):
     """Whether this run carries its tangent with every step (``tangent_step``)."""
-    return state.tangent.matrix.shape[1] > 0 and not (HAS_STRUCTURES
-                                                      and controls.exponentials)
+    return state.tangent.matrix.shape[1] > 0 and not by_phase(state, controls)
 
 
 @njit_step
@@ -169,7 +168,7 @@ def carry_phase(t_from, t_to, state, topology, s):
     for r in range(size):
         for c in range(size):
             jacobian[r, c] *= span * (weight if r >= n else 1.0) / (weight if c >= n else 1.0)
-    exponential(work, g.pivots)
+    exponential(work)
     for r in range(size):
         for c in range(size):
             jacobian[r, c] *= (weight if c >= n else 1.0) / (weight if r >= n else 1.0)
