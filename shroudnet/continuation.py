@@ -349,14 +349,15 @@ class Solver:
         return self.correct(predicted, point.tangent, point.tangent @ predicted,
                             point.periods, reach=abs(sigma))
 
-    def at_parameter(self, point, target, sigma):
-        """The point of the branch at p = ``target``, from a prediction ``sigma`` along."""
+    def at_parameter(self, point, target, sigma, reach=None):
+        """The point of the branch at p = ``target``, from a prediction ``sigma`` along,
+        its corrector's updates no longer than ``reach`` (default |sigma|)."""
         predicted = point.u + sigma * point.tangent
         predicted[-1] = target / self.span
         normal = np.zeros(len(predicted))
         normal[-1] = 1.0
         return self.correct(predicted, normal, target / self.span, point.periods,
-                            reach=abs(sigma), fixed=target)[0]
+                            reach=abs(sigma) if reach is None else reach, fixed=target)[0]
 
     # ---- the branch --------------------------------------------------------------------------
 
@@ -421,13 +422,8 @@ class Solver:
             p = point.parameter + direction * jump * self.span
             if not self.low <= p <= self.high:
                 return None
-            predicted = point.u.copy()
-            predicted[-1] = p / self.span
-            normal = np.zeros(len(predicted))
-            normal[-1] = 1.0
             try:
-                new = self.correct(predicted, normal, predicted[-1], point.periods,
-                                   reach=math.inf, fixed=p)[0]
+                new = self.at_parameter(point, p, 0.0, reach=math.inf)
             except SimulationError:
                 continue
             # on in the parameter's direction: the secant, mostly the orbit's change
