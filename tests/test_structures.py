@@ -149,8 +149,24 @@ def test_energy_ledger_of_a_multi_dof_run_closes_and_converges_with_the_toleranc
         ledger = sn.simulate(modal_pair(), 20, method=sn.Adaptive(rtol=rtol)).energy
         assert ledger.friction_loss > 0.1 * ledger.excitation_work  # friction matters here
         residuals.append(abs(ledger.residual) / ledger.excitation_work)
-    # measured: 1.3e-9 at rtol 1e-10, 1.3e-10 at 1e-11 (first order in rtol)
+    # measured: 1.3e-9 at rtol 1e-10, 1.3e-10 at 1e-11 (first order in rtol). This pair is
+    # lightly damped (ζ 0.003) and open 80 % of the time, its impacts setting the third
+    # modes ringing: Dormand–Prince's energy error on them is the residual's whole source
+    # (without the contact, 3.6e-11 of a 16 times larger work)
     assert residuals[0] <= 2e-9 and residuals[1] <= 0.2 * residuals[0]
+
+
+@pytest.mark.parametrize("scene, periods", [(scenes.modal_packet(), 20),
+                                            (scenes.beam_pair(), 6)],
+                         ids=["modal packet", "unreduced beams"])
+def test_energy_ledger_of_the_packet_and_the_beams_closes_to_1e9_at_rtol_1e10(scene, periods):
+    sim = sn.simulate(scene, periods, method=sn.Adaptive(rtol=1e-10))
+    ledger = sim.energy
+    assert all(sim.events.counts[kind] > 0 for kind in ("closing", "separation", "sticking",
+                                                        "breakaway"))
+    assert ledger.friction_loss > 0.3 * ledger.excitation_work
+    # measured: 1.5e-11 (packet), 2.5e-14 (beams)
+    assert abs(ledger.residual) <= 1e-9 * ledger.excitation_work
 
 
 def test_two_unreduced_beams_with_a_shroud_contact_match_an_independent_reference():
