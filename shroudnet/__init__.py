@@ -66,6 +66,8 @@ from .linear import GroupCampbell as GroupCampbell
 from .linear import LinearModes as LinearModes
 from .linear import group_campbell as group_campbell
 from .linear import linear_modes as linear_modes
+from .linear_response import FrequencyResponse as FrequencyResponse
+from .linear_response import frequency_response as frequency_response
 from .methods import Accuracy as Accuracy
 from .mistuning import MistuningStudy as MistuningStudy
 from .mistuning import mistuning_study as mistuning_study

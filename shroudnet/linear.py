@@ -169,18 +169,7 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
         if len(scene.blades) % sectors:
             raise ValueError(f"linear_modes: sectors = {sectors} does not divide the "
                              f"{len(scene.blades)} blades into equal sectors")
-    if a.is_structure:
-        basis, stiffness = _structure_limit(a, contacts)
-    else:
-        stiffness = a.stiffness_matrix()
-        stuck = np.zeros(a.n_interfaces, dtype=bool)
-        if contacts == "stuck":
-            stuck = a.can_stick.copy()
-            stiffness = stiffness + _sliding_contacts(a, ~stuck)
-        basis = _cluster_basis(a, stuck)
-    if basis.shape[1] == 0:
-        raise ValueError("linear_modes: with every interface stuck nothing moves: every "
-                         "blade is stuck to a fixed node")
+    basis, stiffness = interface_limit(a, contacts, "linear_modes")
     mass = basis.T @ np.diag(a.mass) @ basis
     eigenvalues, vectors = scipy.linalg.eigh(basis.T @ stiffness @ basis, mass)
     frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
@@ -191,6 +180,26 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
     return LinearModes(frequencies=frequencies, shapes=shapes, nodal_diameters=diameters,
                        contacts=contacts, sectors=sectors, speed_rpm=scene.speed_rpm,
                        scene=scene)
+
+
+def interface_limit(a, contacts: str, caller: str) -> tuple[np.ndarray, np.ndarray]:
+    """(T, K) of the scene arrays ``a`` with its interfaces in the limit ``contacts``
+    (module docstring): the state's displacements x = T z move as the stuck interfaces
+    allow, and K [N/m] is the stiffness with the springs of the interfaces closed at rest.
+    Raises a ValueError, naming ``caller``, where nothing can move."""
+    if a.is_structure:
+        basis, stiffness = _structure_limit(a, contacts)
+    else:
+        stiffness = a.stiffness_matrix()
+        stuck = np.zeros(a.n_interfaces, dtype=bool)
+        if contacts == "stuck":
+            stuck = a.can_stick.copy()
+            stiffness = stiffness + _sliding_contacts(a, ~stuck)
+        basis = _cluster_basis(a, stuck)
+    if basis.shape[1] == 0:
+        raise ValueError(f"{caller}: with every interface stuck nothing moves: every "
+                         "blade is stuck to a fixed node")
+    return basis, stiffness
 
 
 def _structure_limit(a, contacts) -> tuple[np.ndarray, np.ndarray]:

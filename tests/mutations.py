@@ -51,10 +51,11 @@ SOURCE_FOLDERS = ("shroudnet", "contact_laws")
 #: The parts of the code the mutations must reach, each by at least one: the contact laws,
 #: the scene's model, the compiled loop (forces, events, modes), the energy ledger, the
 #: tangent flow and its saltation matrices, periodic orbits (Newton on the stroboscopic
-#: map), continuation (its bifurcation test functions) and stick as constraints (the
-#: substructures' multipliers and projection).
+#: map), continuation (its bifurcation test functions), stick as constraints (the
+#: substructures' multipliers and projection) and the linear limits (the forced response
+#: with the interfaces open or stuck).
 LAYERS = ("laws", "model", "loop", "ledger", "tangent", "orbits", "continuation",
-          "constraints")
+          "constraints", "linear")
 
 #: Tests that check the physics, run against every mutation unless it names its own.
 PHYSICS_TESTS = (
@@ -106,6 +107,8 @@ BEAMS = ("tests/test_structures.py::"
 EXPONENTIAL = "tests/test_phase_exponential.py"
 #: Branches through kinks and up to a nonsmooth fold.
 KINKS = "tests/test_continuation_kinks.py"
+#: The linear forced response against closed forms and against runs.
+LINEAR_RESPONSE = "tests/test_linear_response.py"
 
 
 @dataclass(frozen=True)
@@ -297,6 +300,19 @@ MUTATIONS = (
              "        g.guard_normal[r] = s.static_mu[e] * normal_change + sign * change",
              "the breakaway guard's gradient of a stuck substructure interface takes +|λ|",
              (MULTI_DOF_DROPPING,)),
+    # ---- linear: the forced response in the open and stuck limits ------------------------
+    Mutation("response-damping-sign", "linear",
+             "dynamic = stiffness - omega * omega * mass + 1j * omega * damping",
+             "dynamic = stiffness - omega * omega * mass - 1j * omega * damping",
+             "the damping force leads the motion: every phase is mirrored", (LINEAR_RESPONSE,)),
+    Mutation("response-phase-conjugated", "linear",
+             "np.exp(1j * a.harmonic_phases[1, :n])", "np.exp(-1j * a.harmonic_phases[1, :n])",
+             "the blades are forced with their phases' opposites: a forward engine-order "
+             "wave travels backward", (LINEAR_RESPONSE,)),
+    Mutation("response-load-not-projected", "linear",
+             "load = basis.T @ forcing", "load = forcing[:basis.shape[1]]",
+             "the stuck limit takes the first coordinates' forces, not each constrained "
+             "motion's work", (LINEAR_RESPONSE,)),
 )
 
 

@@ -15,7 +15,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "shroudnet"
 #: The run layer: what integrates a scene and the records runs return.
 RUN = ("simulate", "simulation", "methods", "baseline", "classification")
 #: The studies and steady states, which run simulations and read them.
-STUDIES = ("analysis", "stability", "sweep", "precision", "mistuning", "linear", "orbits",
+STUDIES = ("analysis", "stability", "sweep", "precision", "mistuning", "linear",
+           "linear_response", "orbits",
            "continuation")
 
 

@@ -1,0 +1,145 @@
+"""The group's linear forced response in the two limits of its interfaces.
+
+Every friction-damping plot is drawn between two linear curves: the response with the
+interfaces open (they carry nothing) and with them stuck (``linear.interface_limit``, the
+limits ``linear_modes`` takes). Between them the nonlinear response moves as the contacts
+slip, close and open.
+
+The excitation's first harmonic drives the group: node coordinate i feels
+Q_i(t) = A_i sin(ω t + φ_i) (``SceneArrays.harmonic_amplitudes``, ``harmonic_phases``, row
+1), here at any angular frequency ω = 2π f instead of l Ω. With F_i = A_i e^{iφ_i}, the
+steady response x(t) = Im(X e^{iωt}) solves
+
+    Tᵀ (K − ω² M + iω C) T Z = Tᵀ F,   X = T Z,
+
+in the basis T of the limit (the identity when open). The stiffness is K(Ω) at the scene's
+speed; the constant load q_0 and the harmonics n ≥ 2 are not part of it (each harmonic n
+would add its own response at n ω). Prescribed-motion nodes are held where they are, as in
+``linear_modes``: a scene whose excitation includes a prescribed motion is refused.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Hashable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .linear import CONTACTS, interface_limit
+from .scene import Scene
+
+
+@dataclass(frozen=True, eq=False)
+class FrequencyResponse:
+    """The complex steady response of a scene's group to its excitation's first harmonic.
+
+    ``frequencies`` [Hz] are the excitation frequencies f; ``response[k]`` is X at
+    ``frequencies[k]`` by coordinate of the state (by blade without substructures) [m]:
+    coordinate i moves as Im(X_i e^{i 2π f t}), so |X_i| is its amplitude and arg X_i its
+    phase against the excitation's sine. Read it by node with ``dofs`` and by point with
+    ``displacement`` and ``amplitude``.
+    """
+
+    frequencies: np.ndarray
+    response: np.ndarray
+    contacts: str
+    scene: Scene
+
+    def dofs(self, node: Hashable) -> np.ndarray:
+        """``node``'s own degrees of freedom q_i (frequencies × n_i, complex) [m]."""
+        return self.response @ self.scene.dof_rows(node).T
+
+    def displacement(self, node: Hashable, point: str | None = None) -> np.ndarray:
+        """The complex displacement R of ``node``'s ``point`` (frequencies × d) [m]: the
+        point moves as r(t) = Im(R e^{i 2π f t}). A ``Blade``'s one point is its x; a
+        substructure with one point needs no name."""
+        return self.response @ self.scene.point_rows(node, point).T
+
+    def amplitude(self, node: Hashable, point: str | None = None) -> np.ndarray:
+        """The largest distance [m] ``node``'s ``point`` moves from rest over a cycle, at
+        each frequency: |R| for a point of one component; for more, the semi-major axis
+        of the ellipse r(t) traces, √(½(|a|² + |b|²) + √(¼(|a|² − |b|²)² + (a·b)²)) with
+        R = a + i b."""
+        return ellipse_semi_major_axis(self.displacement(node, point))
+
+    def peak(self, node: Hashable, point: str | None = None) -> tuple[float, float]:
+        """(frequency [Hz], amplitude [m]) of the largest ``amplitude`` among the
+        frequencies given (the grid's, not interpolated)."""
+        amplitude = self.amplitude(node, point)
+        k = int(np.argmax(amplitude))
+        return float(self.frequencies[k]), float(amplitude[k])
+
+
+def ellipse_semi_major_axis(phasors: np.ndarray) -> np.ndarray:
+    """max_θ |Re(R e^{iθ})| for each row R of ``phasors`` (rows × d, complex); each row is
+    scaled to its largest component first, so that squares neither overflow nor vanish."""
+    scale = np.abs(phasors).max(axis=-1, initial=0.0)
+    safe = np.where(scale > 0.0, scale, 1.0)
+    a, b = phasors.real / safe[..., None], phasors.imag / safe[..., None]
+    mean = 0.5 * ((a * a).sum(axis=-1) + (b * b).sum(axis=-1))
+    half_difference = 0.5 * ((a * a).sum(axis=-1) - (b * b).sum(axis=-1))
+    cross = (a * b).sum(axis=-1)
+    return scale * np.sqrt(mean + np.sqrt(half_difference ** 2 + cross ** 2))
+
+
+def frequency_response(scene: Scene, frequencies: Sequence[float],
+                       contacts: str = "open") -> FrequencyResponse:
+    """The linear steady response of ``scene``'s group to its excitation's first harmonic,
+    at each excitation frequency in ``frequencies`` [Hz], with the interfaces ``contacts``
+    ("open" or "stuck"; module docstring).
+
+    Examples
+    --------
+    >>> from shroudnet import frequency_response, scenes
+    >>> scene = scenes.three_blade_paper(gamma1=2.2)
+    >>> open_, stuck = (frequency_response(scene, [150.0, 200.0, 250.0], contacts)
+    ...                 for contacts in ("open", "stuck"))
+    >>> open_.amplitude("blade1").shape
+    (3,)
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"frequency_response needs a shroudnet.Scene, got {scene!r}")
+    if contacts not in CONTACTS:
+        raise ValueError(f"frequency_response: contacts must be one of {CONTACTS}, got "
+                         f"{contacts!r}")
+    frequencies = _checked_frequencies(frequencies)
+    a = scene.arrays
+    if a.n_prescribed:
+        raise ValueError("frequency_response: the scene has prescribed-motion nodes, whose "
+                         "motion is an excitation this linear response leaves out; "
+                         "simulate it instead")
+    basis, stiffness = interface_limit(a, contacts, "frequency_response")
+    n = a.n_blades
+    forcing = a.harmonic_amplitudes[1, :n] * np.exp(1j * a.harmonic_phases[1, :n]) \
+        if a.harmonic_amplitudes.shape[0] > 1 else np.zeros(n, dtype=complex)
+    mass = basis.T @ np.diag(a.mass) @ basis
+    damping = basis.T @ a.damping_matrix() @ basis
+    stiffness = basis.T @ stiffness @ basis
+    load = basis.T @ forcing
+    response = np.empty((len(frequencies), n), dtype=complex)
+    for k, f in enumerate(frequencies):
+        omega = 2.0 * math.pi * f
+        dynamic = stiffness - omega * omega * mass + 1j * omega * damping
+        try:
+            response[k] = basis @ np.linalg.solve(dynamic, load)
+        except np.linalg.LinAlgError:
+            raise ValueError(f"frequency_response: at {f} Hz the undamped group is at "
+                             "resonance (K − ω²M is singular and nothing damps it); give "
+                             "damping or leave this frequency out") from None
+    return FrequencyResponse(frequencies=frequencies, response=response, contacts=contacts,
+                             scene=scene)
+
+
+def _checked_frequencies(frequencies) -> np.ndarray:
+    try:
+        values = np.asarray(frequencies, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError("frequency_response: frequencies must be numbers [Hz], got "
+                         f"{frequencies!r}") from None
+    if values.ndim != 1 or len(values) == 0:
+        raise ValueError("frequency_response: frequencies must be a non-empty list of "
+                         f"frequencies [Hz], got shape {values.shape}")
+    if not np.all(np.isfinite(values)) or np.any(values <= 0.0):
+        raise ValueError("frequency_response: frequencies must be finite and > 0 [Hz]")
+    return values
