@@ -102,7 +102,11 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
             rf"shroudnet {N} ms \(error {N}\), solve_ivp {N} s \(error {N}\), {N} "
             rf"switches: {N}x$", out, 1):
         assert max(error, plain_error) < 1e-5 and switches > 0
-        assert ratio == pytest.approx(plain / (ours * 1e-3), rel=0.03)
+        # the printed times are rounded to 0.1 ms and 0.01 s: the ratio lies in what
+        # they allow, and the ratio itself is rounded to 1
+        low = (plain - 0.005) / ((ours + 0.05) * 1e-3)
+        high = (plain + 0.005) / ((ours - 0.05) * 1e-3)
+        assert low - 0.5 <= ratio <= high + 0.5
 
     # 4. sweeps
     scaling = figures(rf"worker\(s\), {N} values: +{N} s, {N} s per point, speed-up {N} "
