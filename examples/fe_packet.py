@@ -18,7 +18,9 @@ Saves in OUTPUT_FOLDER (default examples/output/):
 - fe_packet_response.png: the forced response over speed across the first flap
   resonance, for the gap and the preload, each followed up from 2600 rpm and down from
   3400 rpm: the largest flapwise displacement of blade 1's shroud and its E_ρ, stable
-  orbits solid, unstable ones dashed, bifurcations marked.
+  orbits solid, unstable ones dashed, bifurcations marked, between the linear responses
+  with the shrouds open and stuck (``frequency_response``; stuck, the preloaded shrouds
+  also push by their contact springs, so the two designs have stuck limits of their own).
 Prints, for each branch, its orbits and how long they took, how many are stable, where
 it ended, its smooth bifurcations, the response peak and the share of the dissipated
 energy that friction takes there.
@@ -31,7 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from shroudnet import Branch, GroupCampbell, continuation, group_campbell, simulate
+from shroudnet import (Branch, GroupCampbell, continuation, frequency_response,
+                       group_campbell, simulate)
 from shroudnet.scenes import modal_packet
 
 OUTPUT = Path(__file__).resolve().parent / "output"
@@ -51,12 +54,27 @@ def scene_at(gap):
 @dataclass(frozen=True)
 class Packet:
     """The Campbell diagrams (shrouds open and stuck), each design's branches up and down
-    in speed, and the seconds each took."""
+    in speed, the seconds each took, and the linear limits: by label, (speeds [rpm],
+    amplitude [m] of ``RESPONSE``)."""
 
     open: GroupCampbell
     stuck: GroupCampbell
     branches: dict[str, Branch]
     seconds: dict[str, float]
+    limits: dict[str, tuple[np.ndarray, np.ndarray]]
+
+
+def linear_limit(scene_at, speeds, contacts):
+    """|X| of ``RESPONSE`` [m] at each speed [rpm]: the linear response with the shrouds
+    ``contacts`` to the engine order at that speed (its frequency l Ω/60)."""
+    node, point, component = RESPONSE
+    amplitude = []
+    for speed in speeds:
+        scene = scene_at(speed)
+        frequency = scene.excitation.engine_order * speed / 60.0
+        response = frequency_response(scene, [frequency], contacts)
+        amplitude.append(abs(response.displacement(node, point)[0, component]))
+    return speeds, np.array(amplitude)
 
 
 def compute(speeds=41, max_points=600, max_step=0.05) -> Packet:
@@ -75,7 +93,11 @@ def compute(speeds=41, max_points=600, max_step=0.05) -> Packet:
                 scene_at(gap), start, stop, parameter="Ω [rpm]", max_step=max_step,
                 max_points=max_points)
             seconds[f"{label}, {way}"] = time.perf_counter() - clock
-    return Packet(*diagrams, branches, seconds)
+    fine = np.linspace(*SPEEDS, 321)
+    limits = {"linear, open": linear_limit(scene_at(DESIGNS["gap 2 µm"]), fine, "open")}
+    for label, gap in DESIGNS.items():
+        limits[f"linear, stuck ({label})"] = linear_limit(scene_at(gap), fine, "stuck")
+    return Packet(*diagrams, branches, seconds, limits)
 
 
 def friction_share(branch: Branch, point: int) -> float:
@@ -92,6 +114,9 @@ def report(packet: Packet):
                   if order == 4 and mode == 0]
         print(f"shrouds {contacts}: engine order 4 meets the lowest mode at "
               + (f"{speeds[0]:.1f} rpm" if speeds else "no speed of the diagram"))
+    for label, (speeds, amplitude) in packet.limits.items():
+        top = int(np.argmax(amplitude))
+        print(f"{label}: peak {amplitude[top] * 1e6:.2f} µm at {speeds[top]:.1f} rpm")
     for label, branch in packet.branches.items():
         peak = branch.amplitude(RESPONSE)
         top = int(np.argmax(peak))
@@ -120,7 +145,8 @@ def main(speeds=41, max_points=600, max_step=0.05, output=OUTPUT):
         group_campbell_diagram(diagram, modes=18, title=f"Campbell diagram of the packet, "
                                f"shrouds {contacts}").savefig(
             output / f"fe_packet_campbell_{contacts}.png", dpi=110)
-    forced_response(packet.branches, RESPONSE, xlabel="Ω [rpm]", scale=1e6, unit="µm",
+    forced_response(packet.branches, RESPONSE, limits=packet.limits, xlabel="Ω [rpm]",
+                    scale=1e6, unit="µm",
                     title="Blade 1's shroud, flapwise: period-1 orbits").savefig(
         output / "fe_packet_response.png", dpi=110)
     print(f"saved the figures in {output}")

@@ -185,13 +185,21 @@ BIFURCATION_MARKERS = {"fold": ("o", "C3"), "period-doubling": ("s", "C2"),
 
 
 def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
-                    sweeps: Mapping[str, Sweep] | None = None, xlabel: str = "",
-                    title: str = "", scale: float = 1e3, unit: str = "mm") -> Figure:
+                    sweeps: Mapping[str, Sweep] | None = None,
+                    limits: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None,
+                    xlabel: str = "", title: str = "", scale: float = 1e3,
+                    unit: str = "mm") -> Figure:
     """Forced-response curves: the peak |x| of ``blade`` and its E_ρ along each branch,
     stable orbits solid and unstable ones dashed, bifurcation points marked by kind; on
-    the E_ρ panel, the E_ρ of transient ``sweeps`` (e.g. up and down) as points."""
+    the E_ρ panel, the E_ρ of transient ``sweeps`` (e.g. up and down) as points. ``limits``
+    are labelled curves (parameter, amplitude [m]) drawn thin and grey on the peak panel:
+    the linear responses with the interfaces open and stuck (``frequency_response``),
+    between which friction moves the branches."""
     figure = Figure(figsize=(8, 7), layout="constrained")
     peak_axes, energy_axes = figure.subplots(2, 1, sharex=True)
+    for k, (label, (parameter, amplitude)) in enumerate((limits or {}).items()):
+        peak_axes.plot(parameter, np.asarray(amplitude) * scale, color="0.45", lw=0.9,
+                       ls=("-", ":", "-.", (0, (5, 2, 1, 2)))[k % 4], label=label)
     for k, (label, branch) in enumerate(branches.items()):
         color = f"C{k}"
         peak = branch.amplitude(blade) * scale
