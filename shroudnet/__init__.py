@@ -38,7 +38,9 @@ from .analysis import amplitude_spectrum as amplitude_spectrum
 from .analysis import campbell as campbell
 from .analysis import classify as classify
 from .analysis import classify_section as classify_section
+from .analysis import HysteresisLoop as HysteresisLoop
 from .analysis import friction_loss_per_cycle as friction_loss_per_cycle
+from .analysis import hysteresis_loop as hysteresis_loop
 from .analysis import spectrum as spectrum
 from .analysis import zero_one_test as zero_one_test
 from .beam import cantilever_beam as cantilever_beam

@@ -253,6 +253,39 @@ def friction_loss_per_cycle(sim: Simulation, skip: int) -> float:
 
 
 @dataclass(frozen=True)
+class HysteresisLoop:
+    """An interface's friction force against its tangential relative displacement.
+
+    ``slip`` [m] is u_t (``Simulation.slip_displacement``), ``force`` [N] the friction
+    force f, positive where it holds back a positive slip (while stuck, the static
+    friction), at the samples from ``skip`` periods on; ``cycles`` is how many periods
+    they span. Friction takes the power f u̇_t, so the loop's area ∮ f du_t is the energy
+    it dissipates.
+    """
+
+    slip: np.ndarray
+    force: np.ndarray
+    cycles: int
+
+    def area_per_cycle(self) -> float:
+        """∮ f du_t per period [J/cycle], by the trapezoidal rule over the samples: the
+        friction loss per cycle of a steady response, to the sampling's second order
+        (without the kinetic energy lost where a slipping interface sticks, which
+        ``friction_loss_per_cycle`` also counts)."""
+        du = np.diff(self.slip)
+        return float(np.sum(0.5 * (self.force[1:] + self.force[:-1]) * du) / self.cycles)
+
+
+def hysteresis_loop(sim: Simulation, interface: int, skip: int) -> HysteresisLoop:
+    """The hysteresis loop of interface ``interface`` (its position, 0-based) over the
+    periods of ``sim`` after ``skip`` (as ``steady_rows`` takes it)."""
+    rows = steady_rows(sim, skip, "hysteresis_loop")
+    slip = sim.slip_displacement(interface)[rows]
+    return HysteresisLoop(slip=slip, force=sim.friction_force[rows, interface],
+                          cycles=sim.periods - skip)
+
+
+@dataclass(frozen=True)
 class Campbell:
     """A Campbell diagram: f_d1 [Hz] against speed [rpm], and the engine-order lines.
 

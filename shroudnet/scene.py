@@ -71,6 +71,20 @@ class SceneArrays:
         """Whether the scene has substructures (its arrays are by coordinate)."""
         return self.layout is not None
 
+    def slip_rows(self) -> np.ndarray:
+        """T (interfaces × (coordinates + prescribed nodes)): each interface's tangential
+        relative displacement u_t = T_e [x, x_p] [m], whose rate is its slip velocity:
+        t_e·(r_a − r_b), or (x_i − x_j) cos α for blades (a fixed node has no column)."""
+        if self.is_structure:
+            return self.tangent_rows.copy()
+        rows = np.zeros((self.n_interfaces, self.n_blades + self.n_prescribed))
+        for e, (i, j) in enumerate(zip(self.left, self.right)):
+            if i >= 0:
+                rows[e, i] += self.cos_angle[e]
+            if j >= 0:
+                rows[e, j] -= self.cos_angle[e]
+        return rows
+
     @property
     def linear_phases(self) -> bool:
         """Whether the vector field is linear in the state between switches: substructures

@@ -130,6 +130,18 @@ class Simulation:
         substructure's units; expand a reduced one with ``Substructure.expand``."""
         return self.x @ self.scene.dof_rows(node).T
 
+    def slip_displacement(self, interface: int) -> np.ndarray:
+        """The tangential relative displacement u_t [m] of the interface at position
+        ``interface`` (0-based, as in ``friction_force``) at every sample: the integral of
+        its slip velocity, t·(r_a − r_b) (blades: (x_i − x_j) cos α). Against
+        ``friction_force[:, interface]`` it draws the interface's hysteresis loop, whose
+        area is the energy friction takes (``analysis.hysteresis_loop``)."""
+        a = self.scene.arrays
+        interface = check_int("Simulation.slip_displacement", "interface", interface, low=0,
+                              high=a.n_interfaces - 1)
+        x_p = a.prescribed_state(self.t)[0]
+        return np.concatenate([self.x, x_p], axis=1) @ a.slip_rows()[interface]
+
 
 def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:
     """The rows of ``sim`` from t = skip·T_e on: what is left after ``skip`` transient periods.

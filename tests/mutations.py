@@ -107,6 +107,8 @@ BEAMS = ("tests/test_structures.py::"
 EXPONENTIAL = "tests/test_phase_exponential.py"
 #: Branches through kinks and up to a nonsmooth fold.
 KINKS = "tests/test_continuation_kinks.py"
+#: Hysteresis loops against the ledger's friction loss.
+HYSTERESIS = "tests/test_hysteresis.py"
 #: The linear forced response against closed forms and against runs.
 LINEAR_RESPONSE = "tests/test_linear_response.py"
 
@@ -300,6 +302,11 @@ MUTATIONS = (
              "        g.guard_normal[r] = s.static_mu[e] * normal_change + sign * change",
              "the breakaway guard's gradient of a stuck substructure interface takes +|λ|",
              (MULTI_DOF_DROPPING,)),
+    Mutation("slip-rows-right-node-sign", "ledger",
+             "                rows[e, j] -= self.cos_angle[e]",
+             "                rows[e, j] += self.cos_angle[e]",
+             "a blade interface's slip displacement adds its right node's motion: the "
+             "hysteresis loop's area is not the friction loss", (HYSTERESIS,)),
     # ---- linear: the forced response in the open and stuck limits ------------------------
     Mutation("response-damping-sign", "linear",
              "dynamic = stiffness - omega * omega * mass + 1j * omega * damping",
