@@ -169,7 +169,8 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
         if len(scene.blades) % sectors:
             raise ValueError(f"linear_modes: sectors = {sectors} does not divide the "
                              f"{len(scene.blades)} blades into equal sectors")
-    basis, stiffness = interface_limit(a, contacts, "linear_modes")
+    limit = interface_limit(a, contacts, "linear_modes")
+    basis, stiffness = limit.basis, limit.stiffness
     mass = basis.T @ np.diag(a.mass) @ basis
     eigenvalues, vectors = scipy.linalg.eigh(basis.T @ stiffness @ basis, mass)
     frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
@@ -182,45 +183,64 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
                        scene=scene)
 
 
-def interface_limit(a, contacts: str, caller: str) -> tuple[np.ndarray, np.ndarray]:
-    """(T, K) of the scene arrays ``a`` with its interfaces in the limit ``contacts``
-    (module docstring): the state's displacements x = T z move as the stuck interfaces
-    allow, and K [N/m] is the stiffness with the springs of the interfaces closed at rest.
-    Raises a ValueError, naming ``caller``, where nothing can move."""
+@dataclass(frozen=True, eq=False)
+class Limit:
+    """The group linearised with its interfaces in one limit: the state's displacements
+    x = T z move as the stuck interfaces allow (``basis`` T), under the stiffness K [N/m]
+    and damping C [N·s/m] of the blades, couplings and interfaces closed at rest (each a
+    spring ∂N/∂δ and a dashpot ∂N/∂δ̇ along its normal, at its rest penetration)."""
+
+    basis: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+
+
+def interface_limit(a, contacts: str, caller: str) -> Limit:
+    """The ``Limit`` of the scene arrays ``a`` with its interfaces ``contacts`` (module
+    docstring). Open, the interfaces add nothing. Raises a ValueError, naming ``caller``,
+    where nothing can move."""
+    stiffness, damping = a.stiffness_matrix(), a.damping_matrix()
     if a.is_structure:
-        basis, stiffness = _structure_limit(a, contacts)
+        basis = np.eye(a.n_blades)
+        if contacts == "stuck":
+            basis, springs, dashpots = _structure_limit(a)
+            stiffness, damping = stiffness + springs, damping + dashpots
     else:
-        stiffness = a.stiffness_matrix()
         stuck = np.zeros(a.n_interfaces, dtype=bool)
         if contacts == "stuck":
             stuck = a.can_stick.copy()
-            stiffness = stiffness + _sliding_contacts(a, ~stuck)
+            springs, dashpots = _sliding_contacts(a, ~stuck)
+            stiffness, damping = stiffness + springs, damping + dashpots
         basis = _cluster_basis(a, stuck)
     if basis.shape[1] == 0:
         raise ValueError(f"{caller}: with every interface stuck nothing moves: every "
                          "blade is stuck to a fixed node")
-    return basis, stiffness
+    return Limit(basis=basis, stiffness=stiffness, damping=damping)
 
 
-def _structure_limit(a, contacts) -> tuple[np.ndarray, np.ndarray]:
-    """(T, K) of a scene with substructures in the limit ``contacts`` (module docstring):
-    x = T z spans the motions the stuck interfaces allow (T orthonormal), and K is K̃ plus
-    the normal springs of the interfaces closed at rest. A prescribed-motion coordinate is
-    held (its columns of the rows dropped)."""
+def _rest_gradient(a, e, penetration) -> tuple[float, float]:
+    """(∂N/∂δ [N/m], ∂N/∂δ̇ [N·s/m]) of interface e at rest at ``penetration`` [m] if it is
+    closed there (or its law never opens), else (0, 0)."""
+    if penetration > 0.0 or not a.opens[e]:
+        return a.normal_laws[e].gradient(max(penetration, 0.0), 0.0)
+    return 0.0, 0.0
+
+
+def _structure_limit(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(T, springs, dashpots) of a scene with substructures, its interfaces stuck (module
+    docstring): x = T z spans the motions the stuck interfaces allow (T orthonormal); each
+    interface closed at rest adds ∂N/∂δ n nᵀ and ∂N/∂δ̇ n nᵀ. A prescribed-motion
+    coordinate is held (its columns of the rows dropped)."""
     n = a.n_blades
-    stiffness = a.stiffness_matrix()
-    if contacts == "open":
-        return np.eye(n), stiffness
+    springs, dashpots = np.zeros((n, n)), np.zeros((n, n))
     for e in range(a.n_interfaces):
-        penetration = -a.normal_gap[e]
-        if penetration > 0.0 or not a.opens[e]:
-            gradient = a.normal_laws[e].gradient(max(penetration, 0.0), 0.0)[0]
-            normal = a.normal_rows[e, :n]
-            stiffness = stiffness + gradient * np.outer(normal, normal)
+        spring, dashpot = _rest_gradient(a, e, -a.normal_gap[e])
+        normal = a.normal_rows[e, :n]
+        springs += spring * np.outer(normal, normal)
+        dashpots += dashpot * np.outer(normal, normal)
     constraints = a.tangent_rows[a.can_stick, :n]
-    if not len(constraints):
-        return np.eye(n), stiffness
-    return scipy.linalg.null_space(constraints), stiffness
+    basis = scipy.linalg.null_space(constraints) if len(constraints) else np.eye(n)
+    return basis, springs, dashpots
 
 
 def _by_degree_of_freedom(scene: Scene, shapes: np.ndarray, sectors: int) -> np.ndarray:
@@ -238,16 +258,17 @@ def _by_degree_of_freedom(scene: Scene, shapes: np.ndarray, sectors: int) -> np.
     return np.vstack(rows)
 
 
-def _sliding_contacts(a, candidates) -> np.ndarray:
-    """The stiffness ∂N/∂δ sin²α [N/m] along x of each interface in ``candidates`` that is
-    closed at rest, on the rows and columns of its nodes."""
-    springs = np.zeros(a.n_interfaces)
+def _sliding_contacts(a, candidates) -> tuple[np.ndarray, np.ndarray]:
+    """The spring ∂N/∂δ sin²α [N/m] and dashpot ∂N/∂δ̇ sin²α [N·s/m] along x of each
+    interface in ``candidates`` that is closed at rest, on the rows and columns of its
+    nodes."""
+    springs, dashpots = np.zeros(a.n_interfaces), np.zeros(a.n_interfaces)
     for e in np.flatnonzero(candidates):
-        penetration = -a.gap[e] * a.sin_angle[e]
-        if penetration > 0.0 or not a.opens[e]:
-            gradient = a.normal_laws[e].gradient(max(penetration, 0.0), 0.0)[0]
-            springs[e] = gradient * a.sin_angle[e] ** 2
-    return edge_matrix(np.zeros(a.n_blades), a.left, a.right, springs)
+        spring, dashpot = _rest_gradient(a, e, -a.gap[e] * a.sin_angle[e])
+        springs[e], dashpots[e] = (value * a.sin_angle[e] ** 2 for value in (spring, dashpot))
+    own = np.zeros(a.n_blades)
+    return (edge_matrix(own, a.left, a.right, springs),
+            edge_matrix(own, a.left, a.right, dashpots))
 
 
 def _cluster_basis(a, stuck) -> np.ndarray:

@@ -12,10 +12,11 @@ steady response x(t) = Im(X e^{iωt}) solves
 
     Tᵀ (K − ω² M + iω C) T Z = Tᵀ F,   X = T Z,
 
-in the basis T of the limit (the identity when open). The stiffness is K(Ω) at the scene's
-speed; the constant load q_0 and the harmonics n ≥ 2 are not part of it (each harmonic n
-would add its own response at n ω). Prescribed-motion nodes are held where they are, as in
-``linear_modes``: a scene whose excitation includes a prescribed motion is refused.
+in the basis T of the limit (the identity when open; ``linear.Limit``). The stiffness is
+K(Ω) at the scene's speed, and stuck, K and C include the spring ∂N/∂δ and dashpot ∂N/∂δ̇
+of each interface closed at rest. The constant load q_0 and the harmonics n ≥ 2 are not
+part of it (each harmonic n would add its own response at n ω), and a scene with
+prescribed-motion nodes, whose motion is an excitation of its own, is refused.
 """
 
 from __future__ import annotations
@@ -28,6 +29,11 @@ import numpy as np
 
 from .linear import CONTACTS, interface_limit
 from .scene import Scene
+
+#: Where the smallest singular value of K − ω²M + iωC is below this share (√ε of double
+#: precision) of ‖K‖ or ω²‖M‖, the response is rounding: a resonance nothing damps (a
+#: damping ratio below 1e-8 or so, or a frequency within 1e-8 of an undamped mode's).
+RESONANCE = math.sqrt(np.finfo(float).eps)
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,31 +115,35 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
         raise ValueError("frequency_response: the scene has prescribed-motion nodes, whose "
                          "motion is an excitation this linear response leaves out; "
                          "simulate it instead")
-    basis, stiffness = interface_limit(a, contacts, "frequency_response")
     n = a.n_blades
-    forcing = a.harmonic_amplitudes[1, :n] * np.exp(1j * a.harmonic_phases[1, :n]) \
-        if a.harmonic_amplitudes.shape[0] > 1 else np.zeros(n, dtype=complex)
+    if a.harmonic_amplitudes.shape[0] < 2 or not np.any(a.harmonic_amplitudes[1, :n]):
+        raise ValueError("frequency_response: the excitation has no first harmonic "
+                         "(Excitation.amplitudes[1] is 0 or absent): nothing drives the "
+                         "response")
+    limit = interface_limit(a, contacts, "frequency_response")
+    basis = limit.basis
+    forcing = a.harmonic_amplitudes[1, :n] * np.exp(1j * a.harmonic_phases[1, :n])
     mass = basis.T @ np.diag(a.mass) @ basis
-    damping = basis.T @ a.damping_matrix() @ basis
-    stiffness = basis.T @ stiffness @ basis
+    damping = basis.T @ limit.damping @ basis
+    stiffness = basis.T @ limit.stiffness @ basis
     load = basis.T @ forcing
     response = np.empty((len(frequencies), n), dtype=complex)
     for k, f in enumerate(frequencies):
         omega = 2.0 * math.pi * f
         dynamic = stiffness - omega * omega * mass + 1j * omega * damping
-        try:
-            response[k] = basis @ np.linalg.solve(dynamic, load)
-        except np.linalg.LinAlgError:
-            raise ValueError(f"frequency_response: at {f} Hz the undamped group is at "
-                             "resonance (K − ω²M is singular and nothing damps it); give "
-                             "damping or leave this frequency out") from None
+        scale = max(np.linalg.norm(stiffness, 2), omega * omega * np.linalg.norm(mass, 2))
+        if np.linalg.svd(dynamic, compute_uv=False)[-1] <= RESONANCE * scale:
+            raise ValueError(f"frequency_response: at {f} Hz the group is at a resonance "
+                             "that nothing damps (K − ω²M + iωC is singular to within rounding); "
+                             "give damping or leave this frequency out")
+        response[k] = basis @ np.linalg.solve(dynamic, load)
     return FrequencyResponse(frequencies=frequencies, response=response, contacts=contacts,
                              scene=scene)
 
 
 def _checked_frequencies(frequencies) -> np.ndarray:
     try:
-        values = np.asarray(frequencies, dtype=float)
+        values = np.array(frequencies, dtype=float)  # a copy: the record keeps it
     except (TypeError, ValueError):
         raise ValueError("frequency_response: frequencies must be numbers [Hz], got "
                          f"{frequencies!r}") from None

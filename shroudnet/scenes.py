@@ -222,14 +222,17 @@ def modal_blade(*, damping_ratio: float = 0.003) -> Substructure:
 def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e-6,
                  face: float = 0.6, contact_stiffness: float = 1e5,
                  friction: FrictionLaw | None = Coulomb(mu=0.3), q1: float = 1.0,
-                 engine_order: int = 4, damping_ratio: float = 0.02) -> Scene:
+                 engine_order: int = 4, damping_ratio: float = 0.02,
+                 normal_law: NormalLaw | None = None) -> Scene:
     """A packet of ``blades`` ``modal_blade``s whose shrouds meet on faces inclined at
     ``face`` [rad] to the flapwise direction, each interface a ``contact_stiffness`` [N/m]
-    spring with ``gap`` [m] (negative: a preload) and ``friction``, forced by engine order
-    ``engine_order`` at ``q1`` [N] on the load points. The first flap mode meets engine
-    order 4 near 3000 rpm (199.7 Hz)."""
+    spring (or ``normal_law``) with ``gap`` [m] (negative: a preload) and ``friction``,
+    forced by engine order ``engine_order`` at ``q1`` [N] on the load points. The first
+    flap mode meets engine order 4 near 3000 rpm (199.7 Hz)."""
     normal = (math.cos(face), math.sin(face))
-    shroud = Interface(gap=gap, normal=LinearSpring(stiffness=contact_stiffness),
+    if normal_law is None:
+        normal_law = LinearSpring(stiffness=contact_stiffness)
+    shroud = Interface(gap=gap, normal=normal_law,
                        friction=friction, normal_direction=normal,
                        tangent_direction=(-normal[1], normal[0]))
     blade = modal_blade(damping_ratio=damping_ratio)

@@ -316,6 +316,11 @@ MUTATIONS = (
              "np.exp(1j * a.harmonic_phases[1, :n])", "np.exp(-1j * a.harmonic_phases[1, :n])",
              "the blades are forced with their phases' opposites: a forward engine-order "
              "wave travels backward", (LINEAR_RESPONSE,)),
+    Mutation("stuck-contact-dashpot-dropped", "linear",
+             "        dashpots += dashpot * np.outer(normal, normal)",
+             "        dashpots += 0.0 * np.outer(normal, normal)",
+             "the stuck limit leaves out the contacts' dashpots, which act along the normal "
+             "that stick leaves free", (LINEAR_RESPONSE,)),
     Mutation("response-load-not-projected", "linear",
              "load = basis.T @ forcing", "load = forcing[:basis.shape[1]]",
              "the stuck limit takes the first coordinates' forces, not each constrained "

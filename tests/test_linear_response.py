@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import shroudnet as sn
-from contact_laws import Coulomb, LinearSpring
+from contact_laws import Coulomb, KelvinVoigt, LinearSpring
 from shroudnet import scenes
 from shroudnet.linear_response import ellipse_semi_major_axis
 
@@ -80,34 +80,63 @@ def test_a_modal_blade_responds_by_modal_superposition():
 
 
 def steady_amplitude(scene, point, periods=300, keep=20):
-    """max over the last ``keep`` periods of |r(t) − r̄| of ``point`` = (node, name), r̄
-    its mean there (a preload's static deflection), from a run of ``simulate``: the time
-    integration of the same motion."""
+    """(max over the last ``keep`` periods of |r(t) − r̄| of ``point`` = (node, name), r̄
+    its mean there (a preload's static deflection), the run's event counts), from a run
+    of ``simulate``: the time integration of the same motion."""
     sim = sn.simulate(scene, periods, samples_per_period=400,
                       method=sn.Adaptive(rtol=1e-10))
     displacement = sim.displacement(*point)[-keep * 400:]
     displacement = displacement.reshape(len(displacement), -1)
     swing = displacement - displacement.mean(axis=0)
-    return np.sqrt((swing ** 2).sum(axis=1)).max()
+    return np.sqrt((swing ** 2).sum(axis=1)).max(), sim.events.counts
 
 
 def test_the_open_limit_is_what_a_run_with_the_interfaces_apart_settles_to():
     scene = scenes.modal_packet(gap=1e-2, speed_rpm=2900.0)
     f = scene.excitation.engine_order * scene.speed_rpm / 60.0
     linear = sn.frequency_response(scene, [f], "open").amplitude("blade3", "shroud")[0]
-    assert steady_amplitude(scene, ("blade3", "shroud")) == pytest.approx(linear, rel=1e-4)
+    amplitude, counts = steady_amplitude(scene, ("blade3", "shroud"))
+    assert counts["closing"] == 0
+    assert amplitude == pytest.approx(linear, rel=1e-4)
 
 
-def test_the_stuck_limit_is_what_a_run_whose_interfaces_never_slip_settles_to():
+@pytest.mark.parametrize("normal_law", [LinearSpring(stiffness=1e5),
+                                        KelvinVoigt(stiffness=1e5, damping=20.0)],
+                         ids=["spring", "spring and dashpot"])
+def test_the_stuck_limit_is_what_a_run_whose_interfaces_never_slip_settles_to(normal_law):
     """A deep preload and μ = 100: the packet's interfaces stick from rest and stay stuck,
-    each contact spring at its preload; the run is the constrained linear motion."""
-    scene = scenes.modal_packet(gap=-2e-4, friction=Coulomb(mu=100.0), speed_rpm=3300.0)
+    each contact at its preload, its dashpot acting along the normal, which stick leaves
+    free; the run is the constrained linear motion."""
+    scene = scenes.modal_packet(gap=-2e-4, friction=Coulomb(mu=100.0), speed_rpm=3300.0,
+                                normal_law=normal_law)
     f = scene.excitation.engine_order * scene.speed_rpm / 60.0
-    sim_amplitude = steady_amplitude(scene, ("blade3", "shroud"))
-    counts = sn.simulate(scene, 5).events.counts
+    amplitude, counts = steady_amplitude(scene, ("blade3", "shroud"))
     assert counts["breakaway"] == 0 and counts["separation"] == 0
     linear = sn.frequency_response(scene, [f], "stuck").amplitude("blade3", "shroud")[0]
-    assert sim_amplitude == pytest.approx(linear, rel=1e-4)
+    assert amplitude == pytest.approx(linear, rel=1e-4)
+
+
+def test_a_preloaded_interface_that_cannot_stick_is_its_spring_and_dashpot():
+    """Two blades and a frictionless interface preloaded at α: stuck, it slides freely and
+    pushes by k_n sin²α and c_n sin²α between the blades; the 2 × 2 system solved by hand."""
+    alpha, k_n, c_n = 0.7, 4e4, 3.0
+    blade = sn.Blade(mass=0.08, damping=2.0, stiffness=1.2e5)
+    group = sn.BladeGroup().add_blade("a", blade).add_blade("b", blade)
+    group.connect("a", "b", sn.Interface(gap=-1e-5, angle=alpha, friction=None,
+                                          normal=KelvinVoigt(stiffness=k_n, damping=c_n)))
+    scene = sn.Scene(group=group, speed_rpm=3000.0, excitation=sn.Excitation(
+        engine_order=2, amplitudes=(0.0, 5.0), phases=sn.AntiPhase()))
+    frequencies = np.linspace(150.0, 350.0, 21)
+    response = sn.frequency_response(scene, frequencies, "stuck").response
+    s2 = math.sin(alpha) ** 2
+    for k, f in enumerate(frequencies):
+        omega = 2.0 * math.pi * f
+        own = 1.2e5 - 0.08 * omega ** 2 + 2.0j * omega
+        edge = (k_n + 1j * omega * c_n) * s2
+        a, b = own + edge, -edge                    # [[a, b], [b, a]] X = (5, −5)
+        determinant = a * a - b * b
+        expected = ((a * 5.0 + b * 5.0) / determinant, (-a * 5.0 - b * 5.0) / determinant)
+        assert response[k] == pytest.approx(expected, rel=1e-12)
 
 
 def test_every_resonance_peak_lies_at_a_natural_frequency_of_its_limit():
@@ -153,13 +182,24 @@ def test_bad_input_is_refused_with_the_field_named(arguments, message):
         sn.frequency_response(*arguments)
 
 
-def test_an_undamped_group_at_resonance_is_refused():
-    blade = sn.Blade(mass=1.0, damping=0.0, stiffness=(2.0 * math.pi * 100.0) ** 2)
+def test_an_undamped_group_at_its_natural_frequency_is_refused():
+    blade = sn.Blade(mass=0.37, damping=0.0, stiffness=1.234e6)
     group = sn.BladeGroup().add_blade("a", blade).add_blade("b", blade)
     group.connect("a", "b", sn.Interface(gap=1e-3, angle=math.pi / 3,
                                           normal=LinearSpring(stiffness=1e5),
                                           friction=Coulomb(mu=0.3)))
     scene = sn.Scene(group=group, speed_rpm=3000.0, excitation=sn.Excitation(
         engine_order=2, amplitudes=(0.0, 1.0), phases=sn.AntiPhase()))
-    with pytest.raises(ValueError, match="resonance"):
+    for contacts in ("open", "stuck"):
+        natural = sn.linear_modes(scene, contacts).frequencies[0]
+        with pytest.raises(ValueError, match="resonance"):
+            sn.frequency_response(scene, [natural], contacts)
+
+
+@pytest.mark.parametrize("amplitudes", [(3.0,), (3.0, 0.0, 2.0)])
+def test_an_excitation_without_a_first_harmonic_is_refused(amplitudes):
+    scene = scenes.three_blade_paper(gamma1=2.2)
+    scene = sn.Scene(group=scene.group, speed_rpm=scene.speed_rpm, excitation=sn.Excitation(
+        engine_order=2, amplitudes=amplitudes, phases=sn.AntiPhase()))
+    with pytest.raises(ValueError, match=r"amplitudes\[1\]"):
         sn.frequency_response(scene, [100.0])
