@@ -20,7 +20,11 @@ Saves in OUTPUT_FOLDER (default examples/output/):
   3400 rpm: the largest flapwise displacement of blade 1's shroud and its E_ρ, stable
   orbits solid, unstable ones dashed, bifurcations marked, between the linear responses
   with the shrouds open and stuck (``frequency_response``; stuck, the preloaded shrouds
-  also push by their contact springs, so the two designs have stuck limits of their own).
+  also push by their contact springs, so the two designs have stuck limits of their own);
+- fe_packet_hysteresis.png: the friction force of the shroud interface between blades 1
+  and 2 against its tangential relative displacement over one period of the preloaded
+  design's orbit, at three speeds: below, at and above its peak. Stick is rigid, so
+  each loop's stuck stretches are vertical.
 Prints, for each branch, its orbits and how long they took, how many are stable, where
 it ended, its smooth bifurcations, the response peak and the share of the dissipated
 energy that friction takes there.
@@ -33,8 +37,8 @@ from pathlib import Path
 
 import numpy as np
 
-from shroudnet import (Branch, GroupCampbell, continuation, frequency_response,
-                       group_campbell, simulate)
+from shroudnet import (Branch, GroupCampbell, HysteresisLoop, continuation,
+                       frequency_response, group_campbell, hysteresis_loop, simulate)
 from shroudnet.scenes import modal_packet
 
 OUTPUT = Path(__file__).resolve().parent / "output"
@@ -43,6 +47,10 @@ DESIGNS = {"gap 2 µm": 2e-6, "preload 2 µm": -2e-6}
 SPEEDS = (2600.0, 3400.0)
 #: The response plotted: the flapwise component (0) of blade 1's shroud point.
 RESPONSE = ("blade1", "shroud", 0)
+#: The hysteresis loops: of this design's branch, at these speeds [rpm] ("peak": where
+#: the branch peaks), of its first interface (blade 1 to blade 2).
+LOOP_BRANCH = "preload 2 µm, up"
+LOOP_SPEEDS = {"below the peak": 2800.0, "at the peak": "peak", "above the peak": 3300.0}
 
 
 def scene_at(gap):
@@ -55,13 +63,14 @@ def scene_at(gap):
 class Packet:
     """The Campbell diagrams (shrouds open and stuck), each design's branches up and down
     in speed, the seconds each took, and the linear limits: by label, (speeds [rpm],
-    amplitude [m] of ``RESPONSE``)."""
+    amplitude [m] of ``RESPONSE``), and the hysteresis loops by speed."""
 
     open: GroupCampbell
     stuck: GroupCampbell
     branches: dict[str, Branch]
     seconds: dict[str, float]
     limits: dict[str, tuple[np.ndarray, np.ndarray]]
+    loops: dict[str, HysteresisLoop]
 
 
 def linear_limit(scene_at, speeds, contacts):
@@ -97,7 +106,20 @@ def compute(speeds=41, max_points=600, max_step=0.05) -> Packet:
     limits = {"linear, open": linear_limit(scene_at(DESIGNS["gap 2 µm"]), fine, "open")}
     for label, gap in DESIGNS.items():
         limits[f"linear, stuck ({label})"] = linear_limit(scene_at(gap), fine, "stuck")
-    return Packet(*diagrams, branches, seconds, limits)
+    return Packet(*diagrams, branches, seconds, limits, loops(branches[LOOP_BRANCH]))
+
+
+def loops(branch: Branch, samples=2000) -> dict[str, HysteresisLoop]:
+    """The hysteresis loop of the first interface over one period of the branch's orbit
+    nearest each of ``LOOP_SPEEDS``, labelled with its name and speed."""
+    top = int(np.argmax(branch.amplitude(RESPONSE)))
+    found = {}
+    for name, speed in LOOP_SPEEDS.items():
+        k = top if speed == "peak" else int(np.argmin(np.abs(branch.parameter - speed)))
+        orbit = branch.orbits[k]
+        sim = simulate(orbit.scene, 1, initial=orbit.initial, samples_per_period=samples)
+        found[f"{name}, {branch.parameter[k]:.0f} rpm"] = hysteresis_loop(sim, 0, 0)
+    return found
 
 
 def friction_share(branch: Branch, point: int) -> float:
@@ -117,6 +139,9 @@ def report(packet: Packet):
     for label, (speeds, amplitude) in packet.limits.items():
         top = int(np.argmax(amplitude))
         print(f"{label}: peak {amplitude[top] * 1e6:.2f} µm at {speeds[top]:.1f} rpm")
+    for label, loop in packet.loops.items():
+        print(f"hysteresis loop {label}: friction takes {loop.area_per_cycle() * 1e6:.3f} "
+              "µJ a cycle at the first interface")
     for label, branch in packet.branches.items():
         peak = branch.amplitude(RESPONSE)
         top = int(np.argmax(peak))
@@ -136,7 +161,7 @@ def report(packet: Packet):
 
 def main(speeds=41, max_points=600, max_step=0.05, output=OUTPUT):
     """Compute, print and save the figures in ``output``; returns the ``Packet``."""
-    from shroudnet.figures import forced_response, group_campbell_diagram
+    from shroudnet.figures import forced_response, group_campbell_diagram, hysteresis_loops
     packet = compute(speeds, max_points, max_step)
     report(packet)
     output = Path(output)
@@ -149,6 +174,9 @@ def main(speeds=41, max_points=600, max_step=0.05, output=OUTPUT):
                     scale=1e6, unit="µm",
                     title="Blade 1's shroud, flapwise: period-1 orbits").savefig(
         output / "fe_packet_response.png", dpi=110)
+    hysteresis_loops(packet.loops, title=f"Shroud interface blade 1–blade 2, "
+                     f"{LOOP_BRANCH.rsplit(',', 1)[0]}: one period").savefig(
+        output / "fe_packet_hysteresis.png", dpi=110)
     print(f"saved the figures in {output}")
     return packet
 

@@ -19,8 +19,9 @@ gap, penetration
 normal force, friction force
     N = N(δ, δ̇) ≥ 0 while the contact is closed; f = μ(|v|) N sgn(v) while slipping, any
     |f| ≤ μ_s N while stuck.
-slip velocity
-    v = (ẋ_i − ẋ_j) cos α.
+slip velocity, slip displacement
+    v = (ẋ_i − ẋ_j) cos α, and u_t = (x_i − x_j) cos α, whose rate it is (between points of
+    substructures, t·(ṙ_a − ṙ_b) and t·(r_a − r_b)).
 stick cluster
     Blades joined by stuck interfaces, moving as one body.
 engine order, excitation period

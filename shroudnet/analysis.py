@@ -252,20 +252,21 @@ def friction_loss_per_cycle(sim: Simulation, skip: int) -> float:
                  / (sim.periods - skip))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class HysteresisLoop:
-    """An interface's friction force against its tangential relative displacement.
+    """An interface's friction force against its slip displacement.
 
     ``slip`` [m] is u_t (``Simulation.slip_displacement``), ``force`` [N] the friction
     force f, positive where it holds back a positive slip (while stuck, the static
     friction), at the samples from ``skip`` periods on; ``cycles`` is how many periods
-    they span. Friction takes the power f u̇_t, so the loop's area ∮ f du_t is the energy
-    it dissipates.
+    they span, ``interface`` the interface's position. Friction takes the power f u̇_t, so
+    the loop's area ∮ f du_t is the energy it dissipates.
     """
 
     slip: np.ndarray
     force: np.ndarray
     cycles: int
+    interface: int
 
     def area_per_cycle(self) -> float:
         """∮ f du_t per period [J/cycle], by the trapezoidal rule over the samples: the
@@ -279,10 +280,14 @@ class HysteresisLoop:
 def hysteresis_loop(sim: Simulation, interface: int, skip: int) -> HysteresisLoop:
     """The hysteresis loop of interface ``interface`` (its position, 0-based) over the
     periods of ``sim`` after ``skip`` (as ``steady_rows`` takes it)."""
+    if sim.scene.arrays.n_interfaces == 0:
+        raise ValueError("hysteresis_loop: the scene has no interfaces")
+    interface = check_int("hysteresis_loop", "interface", interface, low=0,
+                          high=sim.scene.arrays.n_interfaces - 1)
     rows = steady_rows(sim, skip, "hysteresis_loop")
     slip = sim.slip_displacement(interface)[rows]
     return HysteresisLoop(slip=slip, force=sim.friction_force[rows, interface],
-                          cycles=sim.periods - skip)
+                          cycles=sim.periods - skip, interface=interface)
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
-from .analysis import Campbell, classify, spectrum
+from .analysis import Campbell, HysteresisLoop, classify, spectrum
 from .continuation import Branch
 from .engine.codes import Mode
 from .linear import GroupCampbell, LinearModes, excited_diameter
@@ -194,7 +194,8 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
     the E_ρ panel, the E_ρ of transient ``sweeps`` (e.g. up and down) as points. ``limits``
     are labelled curves (parameter, amplitude [m]) drawn thin and grey on the peak panel:
     the linear responses with the interfaces open and stuck (``frequency_response``),
-    between which friction moves the branches."""
+    between which friction moves the branches. Their amplitude is about the static
+    position, while a branch's peak |x| includes a preload's static deflection."""
     figure = Figure(figsize=(8, 7), layout="constrained")
     peak_axes, energy_axes = figure.subplots(2, 1, sharex=True)
     for k, (label, (parameter, amplitude)) in enumerate((limits or {}).items()):
@@ -305,16 +306,16 @@ def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
     rows = slice(skip * sim.samples_per_period, None)
     t = sim.t[rows]
     if sim.scene.arrays.is_structure:  # the displacement along the interface's tangent
-        tangent = sim.scene.arrays.tangent_rows[interface, :sim.x.shape[1]]
         blade = f"t·r, interface {interface}"
-        x, v = sim.x[rows] @ tangent, sim.v[rows] @ tangent
+        x = sim.slip_displacement(interface)[rows]
+        v = sim.slip_velocity(interface)[rows]
     else:
         i = sim.scene.blade_position(blade)
         x, v = sim.x[rows, i], sim.v[rows, i]
     stuck = sim.modes[rows, interface] == Mode.STICK
     normal, friction = sim.normal_force[rows, interface], sim.friction_force[rows, interface]
     a = sim.scene.arrays
-    u_rate = _slip_velocity(sim, interface)[rows]
+    u_rate = sim.slip_velocity(interface)[rows]
     figure = Figure(figsize=(11, 7.5), layout="constrained")
     axes = figure.subplot_mosaic([["history", "history"], ["phase", "law"]])
     shown = slice(None, shown_periods * sim.samples_per_period + 1)
@@ -348,16 +349,25 @@ def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
     return figure
 
 
-def _slip_velocity(sim: Simulation, interface: int) -> np.ndarray:
-    """v = u̇ cos α of an interface at every sample, prescribed nodes moving as they do."""
-    a = sim.scene.arrays
-    _, v_p = a.prescribed_state(sim.t)
-    velocities = np.concatenate([sim.v, v_p], axis=1)
-    if a.is_structure:
-        return velocities @ a.tangent_rows[interface]
-    rate = np.zeros(len(sim.t))
-    if a.left[interface] >= 0:
-        rate += velocities[:, a.left[interface]]
-    if a.right[interface] >= 0:
-        rate -= velocities[:, a.right[interface]]
-    return rate * a.cos_angle[interface]
+def hysteresis_loops(loops: Mapping[str, HysteresisLoop], *, title: str = "",
+                     scale: float = 1e6, unit: str = "µm") -> Figure:
+    """Friction force against tangential relative displacement, one labelled loop each
+    (``analysis.hysteresis_loop``), with its dissipated energy per cycle in the legend."""
+    figure = Figure(figsize=(7, 5), layout="constrained")
+    axes = figure.subplots()
+    for label, loop in loops.items():
+        axes.plot(loop.slip * scale, loop.force, lw=1.0,
+                  label=f"{label}: {_energy(loop.area_per_cycle())}/cycle")
+    axes.axhline(0.0, color="0.6", lw=0.5)
+    axes.set(xlabel=f"tangential relative displacement u_t [{unit}]",
+             ylabel="friction force f [N]", title=title)
+    axes.legend(fontsize="small")
+    return figure
+
+
+def _energy(joules: float) -> str:
+    """``joules`` in J, mJ or µJ, whichever gives 1 to 1000 of it (µJ below)."""
+    for factor, unit in ((1.0, "J"), (1e3, "mJ"), (1e6, "µJ")):
+        if abs(joules) * factor >= 1.0:
+            return f"{joules * factor:.3g} {unit}"
+    return f"{joules * 1e6:.3g} µJ"

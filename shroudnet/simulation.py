@@ -136,11 +136,25 @@ class Simulation:
         its slip velocity, t·(r_a − r_b) (blades: (x_i − x_j) cos α). Against
         ``friction_force[:, interface]`` it draws the interface's hysteresis loop, whose
         area is the energy friction takes (``analysis.hysteresis_loop``)."""
+        row = self._slip_row(interface, "Simulation.slip_displacement")
+        return np.concatenate([self.x, self.scene.arrays.prescribed_state(self.t)[0]],
+                              axis=1) @ row
+
+    def slip_velocity(self, interface: int) -> np.ndarray:
+        """The slip velocity u̇_t [m/s] of the interface at position ``interface`` at every
+        sample: t·(ṙ_a − ṙ_b) (blades: (ẋ_i − ẋ_j) cos α), prescribed nodes moving as
+        they do."""
+        row = self._slip_row(interface, "Simulation.slip_velocity")
+        return np.concatenate([self.v, self.scene.arrays.prescribed_state(self.t)[1]],
+                              axis=1) @ row
+
+    def _slip_row(self, interface, caller: str) -> np.ndarray:
         a = self.scene.arrays
-        interface = check_int("Simulation.slip_displacement", "interface", interface, low=0,
+        if a.n_interfaces == 0:
+            raise ValueError(f"{caller}: the scene has no interfaces")
+        interface = check_int(caller, "interface", interface, low=0,
                               high=a.n_interfaces - 1)
-        x_p = a.prescribed_state(self.t)[0]
-        return np.concatenate([self.x, x_p], axis=1) @ a.slip_rows()[interface]
+        return a.slip_rows()[interface]
 
 
 def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:

@@ -123,6 +123,9 @@ def check_fe_packet(example, result, arguments):
     assert abs(speeds[np.argmax(open_)] - crossing[0][0]) <= 2.0 * (speeds[1] - speeds[0])
     for label in example.DESIGNS:
         assert np.all(result.limits[f"linear, stuck ({label})"][1] < open_.max())
+    # a loop at each speed, each dissipating: friction's work per cycle is positive
+    assert len(result.loops) == len(example.LOOP_SPEEDS)
+    assert all(loop.area_per_cycle() > 0.0 for loop in result.loops.values())
 
 
 def check_energy_density(example, result, arguments):
@@ -226,7 +229,7 @@ EXAMPLES = {
                        ["work_precision.png"], check_work_precision),
     "fe_packet": ({"speeds": 5, "max_points": 3},
                   ["fe_packet_campbell_open.png", "fe_packet_campbell_stuck.png",
-                   "fe_packet_response.png"], check_fe_packet),
+                   "fe_packet_response.png", "fe_packet_hysteresis.png"], check_fe_packet),
     "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
                                 ["fig21_energy_density_gamma1.png",
                                  "fig22_energy_density_gap.png",

@@ -18,14 +18,6 @@ SCENES = {
 }
 
 
-def ledger_friction_per_cycle(sim, skip):
-    """Sliding friction work per period from the ledger's cumulative work columns, plus
-    the kinetic energy lost as slipping interfaces lock (none here: ≤ 1e-10 J)."""
-    start = skip * sim.samples_per_period
-    return float((sim.work[-1, 2] + sim.work[-1, 4] - sim.work[start, 2]
-                  - sim.work[start, 4]) / (sim.periods - skip))
-
-
 @pytest.mark.parametrize("scene", SCENES.values(), ids=SCENES.keys())
 def test_the_loops_area_is_the_friction_loss_and_converges_with_the_sampling(scene):
     errors = []
@@ -34,7 +26,7 @@ def test_the_loops_area_is_the_friction_loss_and_converges_with_the_sampling(sce
                           method=sn.Adaptive(rtol=1e-10))
         area = sum(sn.hysteresis_loop(sim, e, 2).area_per_cycle()
                    for e in range(scene.arrays.n_interfaces))
-        reference = ledger_friction_per_cycle(sim, 2)
+        reference = sn.friction_loss_per_cycle(sim, 2)  # integrated with the steps
         assert reference > 0.0
         errors.append(abs(area / reference - 1.0))
     # measured: 1.5e-4 → 6.6e-6 (paper), 8.4e-5 → 4.7e-6 (packet), 3.9e-7 → 2.9e-8 (belt):
@@ -49,9 +41,10 @@ def test_the_slip_displacement_moves_at_the_slip_velocity_of_blades():
     for e, (i, j) in enumerate(((0, 1), (1, 2))):
         slip = sim.slip_displacement(e)
         assert slip == pytest.approx((sim.x[:, i] - sim.x[:, j]) * cos_alpha, abs=1e-18)
+        velocity = (sim.v[:, i] - sim.v[:, j]) * cos_alpha
+        assert sim.slip_velocity(e) == pytest.approx(velocity, abs=1e-15)
         rate = np.gradient(slip, sim.t)[1:-1]
-        velocity = ((sim.v[:, i] - sim.v[:, j]) * cos_alpha)[1:-1]
-        assert np.abs(rate - velocity).max() <= 1e-3 * np.abs(velocity).max()
+        assert np.abs(rate - velocity[1:-1]).max() <= 1e-3 * np.abs(velocity).max()
 
 
 def test_the_slip_displacement_of_substructures_is_along_the_tangent_between_points():
@@ -72,10 +65,15 @@ def test_a_belt_counts_its_prescribed_motion():
     belt = scene.group.prescribed[0][1]
     assert sim.slip_displacement(0) == pytest.approx(
         sim.x[:, 0] - belt.displacement_at(sim.t), rel=1e-12, abs=1e-15)
+    assert sim.slip_velocity(0) == pytest.approx(sim.v[:, 0] - belt.velocity_at(sim.t),
+                                                 rel=1e-12, abs=1e-15)
 
 
 @pytest.mark.parametrize("interface", [-1, 2, 1.5, "first"])
 def test_an_interface_that_is_not_there_is_refused_by_name(interface):
     sim = sn.simulate(SCENES["paper group, sticking"], 1, samples_per_period=10)
-    with pytest.raises((TypeError, ValueError), match="interface"):
-        sim.slip_displacement(interface)
+    for method in (sim.slip_displacement, sim.slip_velocity):
+        with pytest.raises((TypeError, ValueError), match="interface"):
+            method(interface)
+    with pytest.raises((TypeError, ValueError), match="hysteresis_loop.interface"):
+        sn.hysteresis_loop(sim, interface, 0)
