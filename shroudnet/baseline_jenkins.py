@@ -359,7 +359,10 @@ def _samples(owner: str, t_eval, t_end: float) -> np.ndarray:
 def _controls(owner: str, t_end, rtol, max_switches) -> tuple[float, float]:
     t_end = _number(owner, "t_end", t_end, positive=True, unit="s")
     rtol = _number(owner, "rtol", rtol, positive=True, unit="-")
-    if not isinstance(max_switches, int | np.integer) or max_switches < 0:
+    if not isinstance(max_switches, int | np.integer) or isinstance(max_switches, bool):
+        raise TypeError(f"{owner}.max_switches must be an integer >= 0, got "
+                        f"{max_switches!r}")
+    if max_switches < 0:
         raise ValueError(f"{owner}.max_switches must be an integer >= 0, got "
                          f"{max_switches!r}")
     return t_end, rtol
@@ -490,7 +493,7 @@ def slide_path(path: Callable, normal_load, stiffness: float, mu: float, t_end: 
     """
     owner = "slide_path"
     if not callable(path):
-        raise ValueError(f"{owner}.path must be callable as path(t) -> (r_t, ṙ_t)")
+        raise TypeError(f"{owner}.path must be callable as path(t) -> (r_t, ṙ_t)")
     k_t = _number(owner, "stiffness", stiffness, positive=True, unit="N/m")
     mu = _number(owner, "mu", mu, positive=True, unit="-")
     t_end, rtol = _controls(owner, t_end, rtol, max_switches)
@@ -806,8 +809,8 @@ def run_oscillator(oscillator: JenkinsOscillator, x0, v0, t_end: float, *, w0=No
     """
     owner = "run_oscillator"
     if not isinstance(oscillator, JenkinsOscillator):
-        raise ValueError(f"{owner}.oscillator must be a JenkinsOscillator, got "
-                         f"{oscillator!r}")
+        raise TypeError(f"{owner}.oscillator must be a JenkinsOscillator, got "
+                        f"{oscillator!r}")
     system = _Oscillator(oscillator)
     n, d = system.n, system.d
     x = _finite_array(owner, "x0", x0, (n,), "m")

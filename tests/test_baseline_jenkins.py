@@ -265,10 +265,13 @@ def test_slide_path_names_the_bad_field():
         return np.array([t]), np.array([1.0])
     for arguments, field in [((line, 0.0, K_T, MU, 1.0), "normal_load"),
                              ((line, N, K_T, 0.0, 1.0), "mu"),
-                             ((line, N, K_T, MU, -1.0), "t_end"),
-                             ((None, N, K_T, MU, 1.0), "path")]:
+                             ((line, N, K_T, MU, -1.0), "t_end")]:
         with pytest.raises(ValueError, match=rf"slide_path\.{field} "):
             slide_path(*arguments)
+    with pytest.raises(TypeError, match=r"slide_path\.path "):
+        slide_path(None, N, K_T, MU, 1.0)
+    with pytest.raises(TypeError, match=r"slide_path\.max_switches "):
+        slide_path(line, N, K_T, MU, 1.0, max_switches=1.5)
     with pytest.raises(ValueError, match=r"slide_path\.t_eval "):
         slide_path(line, N, K_T, MU, 1.0, t_eval=[0.5, 0.2])
     with pytest.raises(ValueError, match=r"slide_path\.w0 "):
@@ -304,3 +307,5 @@ def test_run_oscillator_names_the_bad_field():
                                       ((pressed, np.zeros(2), 1.0), dict(rtol=0.0), "rtol")]:
         with pytest.raises(ValueError, match=rf"run_oscillator\.{field} "):
             run_oscillator(system, *arguments, **options)
+    with pytest.raises(TypeError, match=r"run_oscillator\.oscillator "):
+        run_oscillator("system", pressed, np.zeros(2), 1.0)
