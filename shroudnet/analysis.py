@@ -280,10 +280,7 @@ class HysteresisLoop:
 def hysteresis_loop(sim: Simulation, interface: int, skip: int) -> HysteresisLoop:
     """The hysteresis loop of interface ``interface`` (its position, 0-based) over the
     periods of ``sim`` after ``skip`` (as ``steady_rows`` takes it)."""
-    if sim.scene.arrays.n_interfaces == 0:
-        raise ValueError("hysteresis_loop: the scene has no interfaces")
-    interface = check_int("hysteresis_loop", "interface", interface, low=0,
-                          high=sim.scene.arrays.n_interfaces - 1)
+    interface = sim.checked_interface(interface, "hysteresis_loop")
     rows = steady_rows(sim, skip, "hysteresis_loop")
     slip = sim.slip_displacement(interface)[rows]
     return HysteresisLoop(slip=slip, force=sim.friction_force[rows, interface],

@@ -148,13 +148,16 @@ class Simulation:
         return np.concatenate([self.v, self.scene.arrays.prescribed_state(self.t)[1]],
                               axis=1) @ row
 
-    def _slip_row(self, interface, caller: str) -> np.ndarray:
-        a = self.scene.arrays
-        if a.n_interfaces == 0:
+    def checked_interface(self, interface, caller: str) -> int:
+        """``interface`` as a position among the scene's interfaces, or an error naming
+        ``caller`` where there is no such interface."""
+        count = self.scene.arrays.n_interfaces
+        if count == 0:
             raise ValueError(f"{caller}: the scene has no interfaces")
-        interface = check_int(caller, "interface", interface, low=0,
-                              high=a.n_interfaces - 1)
-        return a.slip_rows()[interface]
+        return check_int(caller, "interface", interface, low=0, high=count - 1)
+
+    def _slip_row(self, interface, caller: str) -> np.ndarray:
+        return self.scene.arrays.slip_rows()[self.checked_interface(interface, caller)]
 
 
 def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:
