@@ -10,7 +10,9 @@ interfaces in the two limits the friction moves between:
   nodes move as one body, and a node stuck to a fixed node does not move. An interface
   that cannot stick but is closed at rest (penetration −Δ sin α > 0, or a law that never
   opens) slides freely and pushes by its normal law only: a spring of its contact
-  stiffness ∂N/∂δ sin²α along x, the law's gradient at the rest penetration.
+  stiffness ∂N/∂δ sin²α along x, the law's gradient at the rest penetration. An elastic
+  contact (``Interface.tangential_stiffness`` k_t) is not a constraint: stuck, it is the
+  spring k_t cos²α along x beside its normal spring; rigid stick is only where k_t is None.
 
 The modes solve K φ = ω² M φ (``scipy.linalg.eigh``), mass-normalised (φᵀ M φ = 1). A
 prescribed-motion node is held where it is, as a fixed node: these are the modes about
@@ -36,7 +38,8 @@ limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, 
   ∂N/∂δ n_e n_eᵀ. The constraints G x = 0 (one row t_e per stuck interface) are eliminated
   by an orthonormal basis T of the null space of G (redundant rows, as round an all-stuck
   ring, are dropped by its rank), and Tᵀ K T z = ω² Tᵀ M T z is solved. For one-mass
-  blades (t_e ∥ n_e) this is the stick clusters above.
+  blades (t_e ∥ n_e) this is the stick clusters above. An elastic contact adds, in place
+  of its constraint, the spring k_t (t₁t₁ᵀ + t₂t₂ᵀ) over its tangent directions.
 
 ``shapes`` stay by coordinate (mass-normalised: the kinetic energy is the physical one);
 ``LinearModes.node_shapes`` and ``point_shapes`` read them in a node's own degrees of
@@ -208,8 +211,11 @@ def interface_limit(a, contacts: str, caller: str) -> Limit:
     else:
         stuck = np.zeros(a.n_interfaces, dtype=bool)
         if contacts == "stuck":
-            stuck = a.can_stick.copy()
+            elastic = np.isfinite(a.tangential_stiffness)
+            stuck = a.can_stick & ~elastic
             springs, dashpots = _sliding_contacts(a, ~stuck)
+            tangential = np.where(elastic, a.tangential_stiffness, 0.0) * a.cos_angle ** 2
+            springs = springs + edge_matrix(np.zeros(a.n_blades), a.left, a.right, tangential)
             stiffness, damping = stiffness + springs, damping + dashpots
         basis = _cluster_basis(a, stuck)
     if basis.shape[1] == 0:
@@ -229,16 +235,21 @@ def _rest_gradient(a, e, penetration) -> tuple[float, float]:
 def _structure_limit(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(T, springs, dashpots) of a scene with substructures, its interfaces stuck (module
     docstring): x = T z spans the motions the stuck interfaces allow (T orthonormal); each
-    interface closed at rest adds ∂N/∂δ n nᵀ and ∂N/∂δ̇ n nᵀ. A prescribed-motion
-    coordinate is held (its columns of the rows dropped)."""
+    interface closed at rest adds ∂N/∂δ n nᵀ and ∂N/∂δ̇ n nᵀ, and each elastic contact
+    k_t (t₁t₁ᵀ + t₂t₂ᵀ) in place of its constraint. A prescribed-motion coordinate is held
+    (its columns of the rows dropped)."""
     n = a.n_blades
     springs, dashpots = np.zeros((n, n)), np.zeros((n, n))
+    elastic = np.isfinite(a.tangential_stiffness)
     for e in range(a.n_interfaces):
         spring, dashpot = _rest_gradient(a, e, -a.normal_gap[e])
         normal = a.normal_rows[e, :n]
         springs += spring * np.outer(normal, normal)
         dashpots += dashpot * np.outer(normal, normal)
-    constraints = a.tangent_rows[a.can_stick, :n]
+        if elastic[e]:
+            for rows in (a.tangent_rows, a.second_tangent_rows):
+                springs += a.tangential_stiffness[e] * np.outer(rows[e, :n], rows[e, :n])
+    constraints = a.tangent_rows[a.can_stick & ~elastic, :n]
     basis = scipy.linalg.null_space(constraints) if len(constraints) else np.eye(n)
     return basis, springs, dashpots
 

@@ -46,6 +46,7 @@ class SceneArrays:
     can_stick: np.ndarray      # exact friction with a component along x
     static_mu: np.ndarray      # μ_s = μ(0), 0 without friction
     regularisation: np.ndarray  # v_ε [m/s] of a regularised law, else 0
+    tangential_stiffness: np.ndarray  # k_t [N/m] of an elastic contact; inf where rigid
     amplitudes: np.ndarray     # (q0, q1, …, qn) [N]
     phases: np.ndarray         # φ_i [rad], the phases of the fundamental
     excitation_frequency: float  # l Ω [rad/s]
@@ -60,7 +61,8 @@ class SceneArrays:
     # A scene with substructures (``structural``): its "blades" are coordinates, and these
     # hold what per-blade arrays cannot (None for a scene of blades):
     normal_rows: np.ndarray | None = None   # n_e over all coordinates (prescribed last)
-    tangent_rows: np.ndarray | None = None  # t_e
+    tangent_rows: np.ndarray | None = None  # t_e (t₁ of a face with two directions)
+    second_tangent_rows: np.ndarray | None = None  # t₂ of a face's plane, else zeros
     normal_gap: np.ndarray | None = None    # δ_e = n_e·x − normal_gap_e [m]
     structure_stiffness: np.ndarray | None = None  # K̃, couplings included, all coordinates
     structure_damping: np.ndarray | None = None    # C̃

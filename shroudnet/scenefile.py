@@ -91,6 +91,9 @@ or with its matrices inline::
     normal_direction = [0.8, 0.6]
     tangent_direction = [-0.6, 0.8]
     normal = {law = "LinearSpring", stiffness = 2e5}
+                                      # points of d = 3 may slide in the face's plane:
+                                      # tangent_directions = [[…], […]] (t₁, t₂) with
+                                      # tangential_stiffness = 5e5 (elastic stick, k_t N/m)
 
 A node's matrices may also be written inline: ``mass = [[…], …]``, ``stiffness``, and
 optionally ``damping``, ``stiffness_speed`` (rows of numbers, or ``{shape = [n, n],
@@ -748,7 +751,8 @@ def _absolute_files(document: dict, folder) -> dict:
 
 
 _DIRECTIONS = ("normal_direction", "tangent_direction")
-_INTERFACE_KEYS = {"gap", "angle", "normal", "friction", *_DIRECTIONS}
+_INTERFACE_KEYS = {"gap", "angle", "normal", "friction", "tangent_directions",
+                   "tangential_stiffness", *_DIRECTIONS}
 
 
 def _interface(table: dict, key: str, own: dict[str, type]) -> Interface:
@@ -760,19 +764,37 @@ def _interface(table: dict, key: str, own: dict[str, type]) -> Interface:
         friction = _law(_table(table, "friction", f"{key}.friction"), f"{key}.friction",
                         contact_laws.FrictionLaw, own)
     gap = _number(table, "gap", f"{key}.gap")
-    if not any(name in table for name in _DIRECTIONS):
+    elastic = {}
+    if "tangential_stiffness" in table:
+        elastic["tangential_stiffness"] = _number(table, "tangential_stiffness",
+                                                  f"{key}.tangential_stiffness")
+    if not any(name in table for name in (*_DIRECTIONS, "tangent_directions")):
         angle = _number(table, "angle", f"{key}.angle")
         return _build(key, lambda: Interface(gap=gap, angle=angle, normal=normal,
-                                             friction=friction))
+                                             friction=friction, **elastic))
     directions = {}
-    for name in _DIRECTIONS:
-        if name not in table:
-            raise _KeyError(f"{key}.{name}", "is required with the other direction (or give "
-                                             "angle instead of both)")
-        directions[name] = tuple(_vector(table[name], f"{key}.{name}"))
+    if "normal_direction" not in table:
+        raise _KeyError(f"{key}.normal_direction", "is required with the tangent "
+                                                   "direction(s) (or give angle instead)")
+    directions["normal_direction"] = tuple(_vector(table["normal_direction"],
+                                                   f"{key}.normal_direction"))
+    if "tangent_directions" in table:
+        planes = table["tangent_directions"]
+        if not isinstance(planes, list) or not planes:
+            raise _KeyError(f"{key}.tangent_directions", "must be a list of one or two "
+                                                         f"directions, got {planes!r}")
+        directions["tangent_directions"] = tuple(
+            tuple(_vector(t, f"{key}.tangent_directions[{k}]")) for k, t in enumerate(planes))
+    if "tangent_direction" in table or "tangent_directions" not in table:
+        if "tangent_direction" not in table:
+            raise _KeyError(f"{key}.tangent_direction", "is required with the other "
+                                                        "direction (or give angle instead "
+                                                        "of both)")
+        directions["tangent_direction"] = tuple(_vector(table["tangent_direction"],
+                                                        f"{key}.tangent_direction"))
     angle = _number(table, "angle", f"{key}.angle") if "angle" in table else None
     return _build(key, lambda: Interface(gap=gap, angle=angle, normal=normal,
-                                         friction=friction, **directions))
+                                         friction=friction, **directions, **elastic))
 
 
 def _law(table: dict, key: str, kind: type, own: dict[str, type]):
@@ -1082,7 +1104,14 @@ def _interface_document(interface: Interface) -> dict:
     if interface.normal_direction is None:
         out["angle"] = float(interface.angle)
     else:
-        out.update((name, [float(c) for c in getattr(interface, name)]) for name in _DIRECTIONS)
+        out["normal_direction"] = [float(c) for c in interface.normal_direction]
+        if interface.tangent_direction is not None:
+            out["tangent_direction"] = [float(c) for c in interface.tangent_direction]
+        else:
+            out["tangent_directions"] = [[float(c) for c in t]
+                                         for t in interface.tangent_directions]
+    if interface.tangential_stiffness is not None:
+        out["tangential_stiffness"] = float(interface.tangential_stiffness)
     out["normal"] = _law_document(interface.normal)
     if interface.friction is not None:
         out["friction"] = _law_document(interface.friction)

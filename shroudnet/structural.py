@@ -82,10 +82,13 @@ class Layout:
 def law_arrays(interfaces) -> dict:
     """The ``SceneArrays`` fields of the interfaces' laws: ``normal_laws``,
     ``friction_laws``, ``opens``, ``static_mu`` (μ_s, 0 without friction) and
-    ``regularisation`` (v_ε of a regularised law, else 0), and ``exact``: whether each has
-    an exact friction law, which may stick."""
+    ``regularisation`` (v_ε of a regularised law, else 0), ``tangential_stiffness`` (k_t
+    of an elastic contact, inf where stick is rigid), and ``exact``: whether each has an
+    exact friction law, which may stick."""
     frictions = tuple(i.friction for i in interfaces)
     return dict(
+        tangential_stiffness=np.array([math.inf if i.tangential_stiffness is None
+                                       else i.tangential_stiffness for i in interfaces]),
         normal_laws=tuple(i.normal for i in interfaces), friction_laws=frictions,
         opens=np.array([i.normal.opens for i in interfaces], dtype=bool),
         static_mu=np.array([0.0 if f is None else f.static_coefficient for f in frictions]),
@@ -183,6 +186,7 @@ def lower(scene) -> dict:
     interfaces = group.interfaces
     m = len(interfaces)
     normal_rows, tangent_rows = np.zeros((m, n)), np.zeros((m, n))
+    second_tangent_rows = np.zeros((m, n))
     normal_gap, sin_angle, cos_angle = np.zeros(m), np.ones(m), np.ones(m)
     for e, ((left, right, interface), points) in enumerate(
             zip(interfaces, group.edge_points("interface"))):
@@ -196,7 +200,10 @@ def lower(scene) -> dict:
             normal_gap[e] = interface.gap * sin_angle[e]
         else:
             normal_rows[e] = np.asarray(interface.normal_direction) @ d
-            tangent_rows[e] = np.asarray(interface.tangent_direction) @ d
+            tangents = interface.tangent_directions
+            tangent_rows[e] = np.asarray(tangents[0]) @ d
+            if len(tangents) == 2:
+                second_tangent_rows[e] = np.asarray(tangents[1]) @ d
             normal_gap[e] = interface.gap
 
     bodies = [group.blade(name) for name in names]
@@ -225,6 +232,7 @@ def lower(scene) -> dict:
         coupling_left=none, coupling_right=none,
         coupling_stiffness=np.zeros(0), coupling_damping=np.zeros(0),
         motions=tuple(motion for _, motion in prescribed),
-        normal_rows=normal_rows, tangent_rows=tangent_rows, normal_gap=normal_gap,
+        normal_rows=normal_rows, tangent_rows=tangent_rows,
+        second_tangent_rows=second_tangent_rows, normal_gap=normal_gap,
         structure_stiffness=stiffness, structure_damping=damping, layout=layout,
     )

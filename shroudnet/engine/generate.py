@@ -270,8 +270,15 @@ def _cached(driver) -> bool:
 
 def kernel_scene(scene: Scene) -> KernelScene | StructureScene:
     """The scene's arrays with each law given as (index of its class, parameter row), and
-    its prescribed-motion nodes after the blades (``KernelScene``)."""
+    its prescribed-motion nodes after the blades (``KernelScene``). Refuses a scene with
+    elastic contacts, which the loop does not take."""
     a = scene.arrays
+    elastic = np.flatnonzero(np.isfinite(a.tangential_stiffness))
+    if len(elastic):
+        left, right, _ = scene.group.interfaces[elastic[0]]
+        raise ValueError(f"interface ({left!r}, {right!r}): the time-domain loop takes rigid "
+                         "stick only; an elastic contact (Interface.tangential_stiffness) "
+                         "has its linear limits in linear_modes and frequency_response")
     normal_classes, friction_classes = _law_classes(a)
     normal_kind = np.array([normal_classes.index(type(law)) for law in a.normal_laws],
                            dtype=np.int64)
