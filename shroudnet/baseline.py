@@ -220,6 +220,10 @@ def solve_ivp_baseline(scene: Scene, periods: int, *, rtol: float = 1e-8,
     ``Adaptive``; ``method`` is any of solve_ivp's explicit methods ("RK45" is the same
     Dormand–Prince 5(4) pair as ``Adaptive``).
     """
+    if any(interface.tangential_stiffness is not None
+           for _, _, interface in scene.group.interfaces):
+        raise ValueError("solve_ivp_baseline takes rigid stick only, not an elastic contact "
+                         "(Interface.tangential_stiffness)")
     model = _Model(scene)
     a = scene.arrays
     n = a.n_blades

@@ -327,6 +327,10 @@ def structure_from_scene(scene) -> StructureProblem:
     motion nodes): M = diag(m), C and K with the couplings, the excitation
     Q_i = s_i [q_0 + Σ_n q_n sin(n (lΩ t + φ_i))] written as cosines and sines of n lΩ t,
     and one ``shroud_contact`` per interface."""
+    if any(interface.tangential_stiffness is not None
+           for _, _, interface in scene.group.interfaces):
+        raise ValueError("structure_from_scene takes rigid stick only, not an elastic "
+                         "contact (Interface.tangential_stiffness)")
     a = scene.arrays
     n = a.n_blades
     if a.n_prescribed:
@@ -362,6 +366,10 @@ def structure_from_substructures(scene) -> StructureProblem:
     Q_i = q_0 + Σ_h q_h sin(h (lΩ t + φ_i))."""
     group = scene.group
     bodies = [group.blade(name) for name in scene.blades]
+    if any(interface.tangential_stiffness is not None or interface.tangent_direction is None
+           and interface.normal_direction is not None for _, _, interface in group.interfaces):
+        raise ValueError("structure_from_substructures takes rigid contacts of one tangent "
+                         "direction only, not elastic ones (Interface.tangential_stiffness)")
     if group.prescribed or any(not hasattr(body, "matrices_at") for body in bodies):
         raise ValueError("structure_from_substructures takes scenes of substructures only, "
                          "with no prescribed-motion nodes")

@@ -111,6 +111,8 @@ KINKS = "tests/test_continuation_kinks.py"
 HYSTERESIS = "tests/test_hysteresis.py"
 #: The linear forced response against closed forms and against runs.
 LINEAR_RESPONSE = "tests/test_linear_response.py"
+#: Elastic contacts: their geometry and their stuck limit against closed forms.
+ELASTIC = "tests/test_elastic_contacts.py"
 
 
 @dataclass(frozen=True)
@@ -325,6 +327,21 @@ MUTATIONS = (
              "load = basis.T @ forcing", "load = forcing[:basis.shape[1]]",
              "the stuck limit takes the first coordinates' forces, not each constrained "
              "motion's work", (LINEAR_RESPONSE,)),
+    Mutation("elastic-stick-second-tangent-dropped", "linear",
+             "            for rows in (a.tangent_rows, a.second_tangent_rows):",
+             "            for rows in (a.tangent_rows,):",
+             "a stuck elastic contact holds along t₁ only: the face's plane slides free "
+             "along t₂", (ELASTIC,)),
+    Mutation("elastic-stick-of-blades-cos-once", "linear",
+             "tangential = np.where(elastic, a.tangential_stiffness, 0.0) * a.cos_angle ** 2",
+             "tangential = np.where(elastic, a.tangential_stiffness, 0.0) * a.cos_angle",
+             "a blade pair's elastic contact pushes along x by k_t cos α: the tangential "
+             "spring is projected once, not twice", (ELASTIC,)),
+    Mutation("elastic-contact-stuck-rigidly", "linear",
+             "    constraints = a.tangent_rows[a.can_stick & ~elastic, :n]",
+             "    constraints = a.tangent_rows[a.can_stick, :n]",
+             "an elastic contact is a constraint as well as its springs: stuck frequencies "
+             "ignore k_t", (ELASTIC,)),
 )
 
 

@@ -199,3 +199,19 @@ def test_elastic_stick_of_blades_is_a_spring_k_t_cos2_alpha_that_tends_to_rigid_
     assert all(g > 0.0 for g in gaps)
     rates = np.array(gaps[:-1]) / np.array(gaps[1:])
     assert rates == pytest.approx(10.0, rel=0.05)
+
+
+def test_the_baselines_refuse_an_elastic_contact_too():
+    from shroudnet.baseline import solve_ivp_baseline
+    from shroudnet.baseline_structures import structure_from_scene, structure_from_substructures
+    scene = point_mass_on_ground(elastic(1e5), amplitude=1.0)
+    with pytest.raises(ValueError, match="not elastic ones"):
+        structure_from_substructures(scene)
+    group = sn.BladeGroup().add_blade("a", sn.Blade(mass=0.1, damping=0.0, stiffness=1e5))
+    group.add_fixed("g").connect("a", "g", sn.Interface(
+        gap=0.0, angle=0.3, normal=LinearSpring(stiffness=1e6), friction=Coulomb(mu=0.3),
+        tangential_stiffness=1e5))
+    blades = sn.Scene(group=group, excitation=SILENT, speed_rpm=SPEED)
+    for refuse in (lambda: solve_ivp_baseline(blades, 1), lambda: structure_from_scene(blades)):
+        with pytest.raises(ValueError, match="rigid stick only"):
+            refuse()
