@@ -121,9 +121,10 @@ class Blade:
         f_d1 [Hz] (a float is a constant frequency) or a model of f_d1(Ω):
         ``ConstantFrequency``, ``Southwell`` or ``FrequencyTable``; then k = m (2π f_d1)².
     excitation_scale : float
-        s ≥ 0 [-], the factor on the excitation force Q(t) this node receives: 1 for a
-        blade of the row, 0 for a node the flow does not load (a damper or a platform
-        modelled as a node), another value for a blade of different aerodynamic load.
+        s [-], the signed factor on the excitation force Q(t) this node receives: 1 for
+        a blade of the row, 0 for a node the flow does not load (a damper or a platform
+        modelled as a node), another value for a blade of different aerodynamic load or a
+        mode's participation factor, whose sign is the direction it is pushed in.
     """
 
     mass: float
@@ -135,7 +136,7 @@ class Blade:
     def __post_init__(self):
         check_real("Blade", "mass", self.mass, low=0.0, low_open=True, unit="kg")
         check_real("Blade", "damping", self.damping, low=0.0, unit="N·s/m")
-        check_real("Blade", "excitation_scale", self.excitation_scale, low=0.0)
+        check_real("Blade", "excitation_scale", self.excitation_scale)
         if (self.stiffness is None) == (self.frequency is None):
             raise ValueError("Blade needs exactly one of stiffness= [N/m] and frequency= "
                              "[Hz or a frequency model]")

@@ -18,7 +18,7 @@ A scene file holds one document (SI units; speeds in rev/min)::
                                       # or {speeds_rpm = […], frequencies = […]}; or
                                       # stiffness = … [N/m] instead of a frequency
                                       # (0: a node held by couplings or interfaces)
-    excitation_scale = 1.0            # s_i ≥ 0, its share of Q(t); optional (0: unforced)
+    excitation_scale = 1.0            # s_i, its signed share of Q(t); optional (0: unforced)
 
     fixed = ["disc"]                  # fixed nodes (x ≡ 0), optional
 
@@ -68,7 +68,7 @@ or with its matrices inline::
                                       # {point = "shroud", direction = [0.0, 1.0]}, or b
                                       # (n numbers); optional (see Substructure.load)
     damping_ratios = 0.002            # modal damping ζ: one, or one per mode; optional
-    excitation_scale = 1.0            # s, signed for a substructure; optional
+    excitation_scale = 1.0            # s, signed; optional
     reduce = {method = "craig_bampton", boundary = [0, 1], modes = 8}   # optional; or
                                       # {method = "modal_truncation", modes = 8}
 
@@ -468,7 +468,7 @@ def _blade(table: dict, key: str) -> Blade:
                  "damping": _number(table, "damping", f"{key}.damping")}
     if "excitation_scale" in table:
         arguments["excitation_scale"] = _number(table, "excitation_scale",
-                                                f"{key}.excitation_scale", low=0.0)
+                                                f"{key}.excitation_scale")
     if "stiffness" in table:
         arguments["stiffness"] = _number(table, "stiffness", f"{key}.stiffness")
     else:

@@ -57,12 +57,14 @@ def test_an_unforced_node_and_an_engine_order_wave_read_and_write_back():
     travelling wave with ND = l mod N, here 2 mod 3 = 2."""
     document = scenefile.document(three_blade_paper())
     document["blades"][0]["excitation_scale"] = 0.0
+    document["blades"][2]["excitation_scale"] = -0.24
     document["excitation"]["phases"] = "engine-order"
     scene = scenefile.read(document).scene
-    np.testing.assert_array_equal(scene.arrays.excitation_scale, [0.0, 1.0, 1.0])
+    np.testing.assert_array_equal(scene.arrays.excitation_scale, [0.0, 1.0, -0.24])
     np.testing.assert_allclose(scene.arrays.phases, [0.0, 4 * math.pi / 3, 8 * math.pi / 3])
     again = scenefile.document(scene)
     assert again["blades"][0]["excitation_scale"] == 0.0
+    assert again["blades"][2]["excitation_scale"] == -0.24
     assert "excitation_scale" not in again["blades"][1]
     assert again["excitation"]["phases"] == {"travelling_wave": 2}
 
