@@ -67,24 +67,47 @@ class TravellingWave:
 
 @dataclass(frozen=True)
 class EngineOrderWave:
-    """The travelling wave that engine order l excites on a tuned disc: ND = l mod N.
+    """The pattern engine order l makes on the blades of a disc of N blades.
 
     A blade at angular position 2π i/N meets a stationary pattern of l lobes with the phase
-    φ_i = 2π l i / N, which is ``TravellingWave(l mod N)``. A ``Scene`` replaces this
-    pattern by that travelling wave, since only then are l and N both known.
+    φ_i = 2π l i / N. On a tuned disc whose N blades are the group's, this is
+    ``TravellingWave(l mod N)`` (ND = l mod N). A packet of n < N blades that sits on a disc
+    of N (``blades_on_disc``) takes the same phases for its n blades: a packet of 6 on a
+    disc of 36 at l = 4 has 2π·4/36 = 40° between neighbours, not the 240° of a disc of 6.
+    Without ``blades_on_disc`` the group is taken for the whole disc (N = its number of
+    blades, or of sectors); a ``Scene`` whose group is an open packet then says so once, as
+    a warning. A ``Scene`` replaces this pattern by the phases it stands for, since only
+    then are l and the group both known.
     """
+
+    blades_on_disc: int | None = None
+
+    def __post_init__(self):
+        if self.blades_on_disc is not None:
+            object.__setattr__(self, "blades_on_disc", check_int(
+                "EngineOrderWave", "blades_on_disc", self.blades_on_disc, low=1))
 
     @staticmethod
     def nodal_diameter(n_blades: int, engine_order: int) -> int:
         """ND = l mod N."""
         return engine_order % n_blades
 
-    def wave(self, n_blades: int, engine_order: int) -> TravellingWave:
-        """The ``TravellingWave`` this pattern stands for on ``n_blades`` blades."""
-        return TravellingWave(self.nodal_diameter(n_blades, engine_order))
+    def wave(self, n_blades: int, engine_order: int) -> TravellingWave | ExplicitPhases:
+        """The pattern this stands for on ``n_blades`` blades (or sectors) in a row: the
+        ``TravellingWave`` of ND = l mod N where they are the whole disc, else the
+        ``ExplicitPhases`` 2π l i / N (reduced to [0, 2π))."""
+        disc = n_blades if self.blades_on_disc is None else self.blades_on_disc
+        if disc == n_blades:
+            return TravellingWave(self.nodal_diameter(n_blades, engine_order))
+        if n_blades > disc:
+            raise ValueError(f"EngineOrderWave.blades_on_disc = {disc} is fewer than the "
+                             f"group's {n_blades} blades (or sectors): a packet must fit on "
+                             "its disc")
+        steps = (engine_order * np.arange(n_blades)) % disc
+        return ExplicitPhases(tuple(2.0 * math.pi * steps / disc))
 
     def phases(self, n_blades: int, engine_order: int) -> np.ndarray:
-        """φ_i = 2π (l mod N) i / N [rad] for the blades by position."""
+        """φ_i = 2π l i / N [rad] for the blades by position (reduced by whole turns)."""
         return self.wave(n_blades, engine_order).phases(n_blades)
 
 

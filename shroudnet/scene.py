@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Hashable
 from dataclasses import dataclass
 from functools import cached_property
@@ -205,6 +206,11 @@ class Scene:
         n_blades = len(frozen.blades)
         if isinstance(self.excitation.phases, EngineOrderWave):
             sectors = frozen.graph.graph.get("sectors", n_blades)
+            if self.excitation.phases.blades_on_disc is None and _open_packet(frozen):
+                warnings.warn(
+                    f"EngineOrderWave() takes this packet's {n_blades} blades for a whole "
+                    f"disc of {n_blades} (ND = l mod {n_blades}); a packet on a disc of N "
+                    "blades needs EngineOrderWave(blades_on_disc=N)", stacklevel=3)
             wave = self.excitation.phases.wave(sectors, self.excitation.engine_order)
             if sectors != n_blades:  # every node of a sector meets the pattern together
                 wave = ExplicitPhases(tuple(np.repeat(wave.phases(sectors),
@@ -378,6 +384,15 @@ class Scene:
             coupling_damping=np.array([c.damping for *_, c in couplings], dtype=float),
             motions=tuple(motion for _, motion in prescribed),
         )
+
+
+def _open_packet(group: BladeGroup) -> bool:
+    """Whether the group is blades in a row that no edge closes into a ring: two or more
+    blades whose edges among themselves form no cycle, and no ``sectors`` of its own."""
+    blades = group.blades
+    if len(blades) < 2 or "sectors" in group.graph.graph:
+        return False
+    return nx.is_forest(nx.Graph(group.graph.subgraph(blades)))
 
 
 def check_held(group: BladeGroup, speed_rpm: float) -> None:

@@ -9,6 +9,8 @@ A scene file holds one document (SI units; speeds in rev/min)::
     amplitudes = [0.0, 50.0]          # q0, q1, … [N]
     phases = "anti-phase"             # or "engine-order" (ND = l mod N), or
                                       # {travelling_wave = 3}, or [φ1, φ2, …] [rad]
+    # blades_on_disc = 36             # with "engine-order": the group is a packet on a
+                                      # disc of 36 blades (φ_i = 2π l i / 36)
 
     [[blades]]                        # one table per blade, in order
     name = "blade1"
@@ -862,15 +864,19 @@ def _law_names(kind: type) -> str:
 
 
 def _excitation(table: dict) -> Excitation:
-    _only(table, {"engine_order", "amplitudes", "phases"}, "excitation")
+    _only(table, {"engine_order", "amplitudes", "phases", "blades_on_disc"}, "excitation")
     for name in ("engine_order", "amplitudes"):
         if name not in table:
             raise _KeyError(f"excitation.{name}", "is required")
     phases = table.get("phases", "anti-phase")
+    if "blades_on_disc" in table and phases != "engine-order":
+        raise _KeyError("excitation.blades_on_disc", 'goes with phases = "engine-order" '
+                                                     f"only, got phases = {phases!r}")
     if phases == "anti-phase":
         pattern = AntiPhase()
     elif phases == "engine-order":
-        pattern = EngineOrderWave()
+        pattern = _build("excitation.blades_on_disc",
+                         lambda: EngineOrderWave(table.get("blades_on_disc")))
     elif isinstance(phases, dict) and set(phases) == {"travelling_wave"}:
         pattern = _build("excitation.phases",
                          lambda: TravellingWave(phases["travelling_wave"]))

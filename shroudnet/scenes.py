@@ -223,12 +223,14 @@ def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e
                  face: float = 0.6, contact_stiffness: float = 1e5,
                  friction: FrictionLaw | None = Coulomb(mu=0.3), q1: float = 1.0,
                  engine_order: int = 4, damping_ratio: float = 0.02,
-                 normal_law: NormalLaw | None = None) -> Scene:
+                 normal_law: NormalLaw | None = None,
+                 blades_on_disc: int | None = None) -> Scene:
     """A packet of ``blades`` ``modal_blade``s whose shrouds meet on faces inclined at
     ``face`` [rad] to the flapwise direction, each interface a ``contact_stiffness`` [N/m]
     spring (or ``normal_law``) with ``gap`` [m] (negative: a preload) and ``friction``,
-    forced by engine order ``engine_order`` at ``q1`` [N] on the load points. The first
-    flap mode meets engine order 4 near 3000 rpm (199.7 Hz)."""
+    forced by engine order ``engine_order`` at ``q1`` [N] on the load points, on a disc of
+    ``blades_on_disc`` blades (by default the packet's own count, as if it were the whole
+    disc). The first flap mode meets engine order 4 near 3000 rpm (199.7 Hz)."""
     normal = (math.cos(face), math.sin(face))
     if normal_law is None:
         normal_law = LinearSpring(stiffness=contact_stiffness)
@@ -244,7 +246,7 @@ def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e
         group.connect((left, "shroud"), (right, "shroud"), shroud)
     return Scene(group=group, speed_rpm=speed_rpm,
                  excitation=Excitation(engine_order=engine_order, amplitudes=(0.0, q1),
-                                       phases=EngineOrderWave()))
+                                       phases=EngineOrderWave(blades_on_disc or blades)))
 
 
 def beam_pair(*, elements: int = 2, gap: float = -2e-6, face: float = 0.5,

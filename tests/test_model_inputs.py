@@ -180,6 +180,68 @@ def test_engine_order_wave_has_engine_order_mod_n_nodal_diameters(engine_order, 
     np.testing.assert_allclose(np.exp(1j * scene.arrays.phases), expected, atol=1e-12)
 
 
+def packet_scene(phases, n_blades=6, engine_order=4):
+    return Scene(group=BladeGroup.chain(n_blades, BLADE, SHROUD), speed_rpm=3000.0,
+                 excitation=Excitation(engine_order=engine_order, amplitudes=(0.0, 1.0),
+                                       phases=phases))
+
+
+def test_a_packet_on_a_disc_meets_the_disc_s_phase_steps():
+    """6 blades of a 36-blade disc at l = 4: 2π·4/36 = 40° between neighbours (not the
+    240° of a disc of 6); l = 40 ≡ 4 on 36 blades gives the same phases."""
+    for order in (4, 40):
+        scene = packet_scene(EngineOrderWave(blades_on_disc=36), engine_order=order)
+        steps = np.angle(np.exp(1j * np.diff(scene.arrays.phases)), deg=True)
+        np.testing.assert_allclose(steps, 40.0, atol=1e-12)
+    whole = packet_scene(EngineOrderWave(blades_on_disc=6))
+    np.testing.assert_allclose(np.exp(1j * whole.arrays.phases),
+                               np.exp(1j * TravellingWave(4).phases(6)), atol=1e-12)
+
+
+def test_an_open_packet_taken_for_a_whole_disc_is_said_once():
+    import warnings
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("default")
+        for _ in range(3):
+            packet_scene(EngineOrderWave())
+    said = [w for w in caught if "blades_on_disc" in str(w.message)]
+    assert len(said) == 1
+    assert "takes this packet's 6 blades for a whole disc of 6" in str(said[0].message)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        packet_scene(EngineOrderWave(blades_on_disc=36))
+        Scene(group=BladeGroup.ring(6, BLADE, SHROUD), speed_rpm=3000.0,
+              excitation=Excitation(engine_order=4, amplitudes=(0.0, 1.0),
+                                    phases=EngineOrderWave()))
+
+
+@pytest.mark.parametrize("disc, error, message", [
+    (0, ValueError, r"EngineOrderWave.blades_on_disc must be"),
+    (2.5, TypeError, r"EngineOrderWave.blades_on_disc must be"),
+    (5, ValueError, r"blades_on_disc = 5 is fewer than the group's 6 blades"),
+])
+def test_blades_on_disc_is_checked(disc, error, message):
+    with pytest.raises(error, match=message):
+        packet_scene(EngineOrderWave(blades_on_disc=disc))
+
+
+def test_scene_files_place_a_packet_on_its_disc():
+    from shroudnet import scenefile
+    document = scenefile.document(packet_scene(EngineOrderWave(blades_on_disc=36)))
+    document["excitation"]["phases"] = "engine-order"
+    document["excitation"]["blades_on_disc"] = 36
+    scene = scenefile.read(document).scene
+    steps = np.angle(np.exp(1j * np.diff(scene.arrays.phases)), deg=True)
+    np.testing.assert_allclose(steps, 40.0, atol=1e-12)
+    document["excitation"]["phases"] = "anti-phase"
+    with pytest.raises(ValueError, match='blades_on_disc: goes with phases = "engine-order"'):
+        scenefile.read(document)
+    document["excitation"]["phases"] = "engine-order"
+    document["excitation"]["blades_on_disc"] = -1
+    with pytest.raises(ValueError, match="blades_on_disc must be"):
+        scenefile.read(document)
+
+
 def test_shipped_ring_scene_is_engine_order_forcing():
     scene = load(ROOT / "examples" / "scenes" / "ring_24_travelling_wave.toml").scene
     n = len(scene.blades)
