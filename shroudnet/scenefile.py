@@ -1158,11 +1158,19 @@ def _run_document(run: RunSettings) -> dict:
             "blade": list(run.blade) if isinstance(run.blade, tuple) else run.blade}
 
 
-def save(path: str | Path, scene: Scene, run: RunSettings | None = None) -> Path:
+def save(path: str | Path | Scene, scene: Scene | str | Path,
+         run: RunSettings | None = None) -> Path:
     """Write ``scene`` (and ``run``) as the scene file ``path`` (TOML), which ``load`` reads
     back into an equal scene; the matrix files it names are written relative to its folder
-    (made if missing).
+    (made if missing). The scene and the path may come in either order:
+    ``save(scene, "group.toml")`` is ``save("group.toml", scene)``.
     """
+    if isinstance(path, Scene):
+        path, scene = scene, path
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scenefile.save needs a shroudnet.Scene, got {scene!r}")
+    if not isinstance(path, str | os.PathLike):
+        raise TypeError(f"scenefile.save needs a path (str or pathlib.Path), got {path!r}")
     path = Path(path)
     text = dumps(document(scene, run, folder=path.parent))
     path.parent.mkdir(parents=True, exist_ok=True)
