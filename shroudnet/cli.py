@@ -133,6 +133,7 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--output", "-o", type=Path, default=Path("."),
                      help="folder for SCENE.npz and SCENE.png (default: here)")
     run.add_argument("--no-figure", action="store_true", help="write the results only")
+    _blade_option(run)
     _laws_option(run)
     run.set_defaults(command=_run, name="run")
 
@@ -166,6 +167,7 @@ def _parser() -> argparse.ArgumentParser:
     sweep_.add_argument("--retry-failed", action="store_true",
                         help="on resuming, run again the points whose simulation failed "
                         "(by default they are kept: the same code fails the same way)")
+    _blade_option(sweep_)
     _laws_option(sweep_)
     _negative_numbers_are_values(sweep_)
     sweep_.set_defaults(command=_sweep, name="sweep")
@@ -196,6 +198,7 @@ def _parser() -> argparse.ArgumentParser:
                         help="the most orbits (default 1000)")
     follow.add_argument("--output", "-o", type=Path, default=Path("."),
                         help="folder for SCENE-continue-PATH.npz and .png (default: here)")
+    _blade_option(follow)
     _laws_option(follow)
     _negative_numbers_are_values(follow)
     follow.set_defaults(command=_continue, name="continue")
@@ -251,6 +254,7 @@ def _parser() -> argparse.ArgumentParser:
                       help="a .npz file of 'run' or 'continue', or a folder of 'sweep'")
     plot.add_argument("--output", "-o", type=Path,
                       help="figure to write (default: beside RESULTS, .png)")
+    _blade_option(plot)
     _laws_option(plot)
     plot.set_defaults(command=_plot, name="plot")
 
@@ -324,7 +328,7 @@ def _run(args) -> int:
     if periods <= settings.transient:
         raise UsageError(f"--periods must exceed the transient of {settings.transient} "
                          f"periods, got {periods}")
-    settings = replace(settings, periods=periods)
+    settings = _reference(loaded.scene, replace(settings, periods=periods), args)
     scene = loaded.scene
     stem = args.output / args.scene.stem
     _check_folder(args.output, "--output")
@@ -431,12 +435,38 @@ def _nodes(scene) -> str:
 
 
 def _about(scene, target) -> str:
-    """What a summary is about: a blade (its name as given), or with substructures the
-    component of a point it reads, ``node.point[k]``."""
+    """What a summary or a figure is about, by name: a blade's name (a position given
+    for it is named), or with substructures the component of a point it reads,
+    ``node.point[k]``."""
+    position = scene.response_position(target)
     if not scene.arrays.is_structure:
-        return repr(target)
-    node, point, component = scene.responses[scene.response_position(target)]
+        return str(scene.blades[position])
+    node, point, component = scene.responses[position]
     return f"{node}.{point}[{component}]"
+
+
+def _blade_option(command) -> None:
+    command.add_argument("--blade", metavar="NAME", type=_blade_name,
+                         help="the blade to report and draw, by name (with substructures "
+                         "NODE, or a point's component NODE.POINT[K]); default: [run] "
+                         "blade")
+
+
+def _blade_name(text: str):
+    """A ``--blade`` value: a name, or ``node.point[k]`` as (node, point, k)."""
+    match = re.fullmatch(r"(.+)\.([^.\[\]]+)\[(\d+)\]", text)
+    return (match[1], match[2], int(match[3])) if match else text
+
+
+def _reference(scene, settings, args):
+    """The run settings with the blade to report: ``--blade`` if given, else the [run]
+    blade, checked against the scene (a UsageError naming --blade if unknown)."""
+    blade = settings.blade if getattr(args, "blade", None) is None else args.blade
+    try:
+        scene.response_position(blade)
+    except ValueError as error:
+        raise UsageError(f"--blade: {error}") from None
+    return replace(settings, blade=blade)
 
 
 def _point_peaks(sim, skip: int) -> list[tuple]:
@@ -469,10 +499,10 @@ def _sweep(args) -> int:
     scene_at = scenefile.SceneAt(loaded.document, args.param, laws=laws)
     for value in values:  # a bad path or value fails before any work
         scene_at(value)
-    settings = loaded.run
-    blade = settings.blade
-    if loaded.scene.arrays.is_structure:  # kept by its name, (node, point, component)
-        blade = loaded.scene.responses[loaded.scene.response_position(blade)]
+    settings = _reference(loaded.scene, loaded.run, args)
+    position = loaded.scene.response_position(settings.blade)
+    blade = loaded.scene.responses[position] if loaded.scene.arrays.is_structure \
+        else loaded.scene.blades[position]  # kept by its name, (node, point, component)
     transient = settings.transient if args.transient is None else args.transient
     folder = args.output or Path(f"{args.scene.stem}-sweep-{args.param}")
     _check_folder(folder, "--output")
@@ -591,7 +621,7 @@ def _continue(args) -> int:
     stem = args.output / f"{args.scene.stem}-continue-{args.param}"
     for suffix in (".npz", ".png"):
         _check_file(_beside(stem, suffix), "--output")
-    blade = loaded.run.blade
+    blade = _reference(loaded.scene, loaded.run, args).blade
     start = time.perf_counter()
     try:
         branch = continuation(scene_at, args.start, args.stop, periods=args.periods,
@@ -699,18 +729,23 @@ def _plot(args) -> int:
     if isinstance(saved, Branch):
         path = args.output or args.results.with_suffix(".png")
         _check_file(path, "--output")
-        blade = results.load_run_settings(args.results, laws=laws).blade
+        settings = results.load_run_settings(args.results, laws=laws)
+        blade = _reference(saved.orbits[0].scene, settings, args).blade
         _save_branch_figure(saved, blade, path)
         print(f"saved    {path}")
         return 0
     if args.results.is_dir():
+        if args.blade is not None:
+            raise UsageError(f"--blade: a sweep records one blade ({saved.blade!r}); sweep "
+                             "again with --blade to see another")
         path = args.output or args.results / "bifurcation.png"
         _check_file(path, "--output")
         _save_diagram(saved, path)
     else:
         path = args.output or args.results.with_suffix(".png")
         _check_file(path, "--output")
-        _save_response(saved, results.load_run_settings(args.results, laws=laws), path)
+        _save_response(saved, _reference(
+            saved.scene, results.load_run_settings(args.results, laws=laws), args), path)
     print(f"saved    {path}")
     return 0
 

@@ -15,6 +15,7 @@ import pytest
 from shroudnet import (BladeGroup, Coupling, HarmonicMotion, MotionTable, Scene,
                        continuation, results, scenefile, simulate, sweep)
 from shroudnet.cli import main
+from shroudnet import scenes as sn_scenes
 from shroudnet.scenes import block_on_belt, three_blade_paper
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -263,6 +264,7 @@ def test_command_line_continue_saves_a_branch_that_loads_back_equal_and_redraws(
                  "--to", "6300", "-o", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "followed speed_rpm from 6000 to 6300" in out and "torus" in out
+    assert "max |x| of blade2 =" in out  # the [run] blade, by name
     saved = tmp_path / "paper_three_blade-continue-speed_rpm.npz"
     figure = saved.with_suffix(".png")
     assert figure.stat().st_size > 10_000
@@ -286,6 +288,24 @@ def test_command_line_continue_saves_a_branch_that_loads_back_equal_and_redraws(
     figure.unlink()
     assert main(["plot", str(saved)]) == 0
     assert figure.stat().st_size > 10_000
+
+
+def test_the_command_line_names_its_blade_and_takes_another_by_name(tmp_path, capsys):
+    from shroudnet.cli import _about
+    scene = small_paper_scene(tmp_path, periods=22, transient=20)
+    assert main(["run", str(scene), "-o", str(tmp_path), "--no-figure", "--blade",
+                 "blade3"]) == 0
+    out = capsys.readouterr().out
+    assert "E_rho" in out and "(blade3 " in out.split("E_rho")[1].splitlines()[0]
+    assert main(["run", str(scene), "-o", str(tmp_path / "x"), "--blade", "blade9"]) == 2
+    assert "--blade: " in capsys.readouterr().err
+    paper = three_blade_paper()
+    assert [_about(paper, target) for target in (1, "blade1")] == ["blade2", "blade1"]
+    packet = sn_scenes.modal_packet()
+    assert _about(packet, ("blade2", "shroud", 1)) == "blade2.shroud[1]"
+    from shroudnet.cli import _blade_name
+    assert _blade_name("blade2.shroud[1]") == ("blade2", "shroud", 1)
+    assert _blade_name("tip_blade") == "tip_blade"
 
 
 def test_a_branch_of_a_scene_made_in_python_saves_its_scenes_one_by_one(tmp_path):
