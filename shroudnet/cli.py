@@ -635,11 +635,13 @@ def _continue(args) -> int:
     took = time.perf_counter() - start
     amplitude = branch.amplitude(blade)
     top = int(np.argmax(amplitude))
+    about = _about(branch.orbits[0].scene, blade)
+    peak = branch.peak[top, branch.orbits[0].scene.response_position(blade)]
     print(f"followed {args.param} from {args.start:g} to {branch.parameter[-1]:g}: "
           f"{len(branch)} orbits of period {branch.periods}, {int(branch.stable.sum())} "
           f"stable, in {took:.1f} s ({branch.ended})")
-    print(f"peak     max |x| of {_about(branch.orbits[0].scene, blade)} = "
-          f"{amplitude[top]:.4g} m at {args.param} = {branch.parameter[top]:.6g}")
+    print(f"peak     amplitude (half peak-to-peak) of {about} = {amplitude[top]:.4g} m "
+          f"at {args.param} = {branch.parameter[top]:.6g} (max |x| {peak:.4g} m)")
     for b in branch.bifurcations:
         critical = (f", multiplier {b.multiplier.real:+.6f}{b.multiplier.imag:+.6f}j"
                     if np.isfinite(b.multiplier) else "")

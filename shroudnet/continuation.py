@@ -129,8 +129,9 @@ class Branch:
         return np.array([orbit.peak for orbit in self.orbits])
 
     def amplitude(self, blade) -> np.ndarray:
-        """max |x| [m] of ``blade`` (a name or a position; with substructures a point
-        component, ``Scene.response_position``) over each orbit."""
+        """The amplitude [m] of ``blade`` (a name or a position; with substructures a point
+        component, ``Scene.response_position``) over each orbit: half its peak-to-peak
+        (``PeriodicOrbit.amplitude``; ``peak`` holds max |x|)."""
         return np.array([orbit.amplitude(blade) for orbit in self.orbits])
 
     def energy_density(self, blade) -> np.ndarray:

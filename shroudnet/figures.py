@@ -189,13 +189,13 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
                     limits: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None,
                     xlabel: str = "", title: str = "", scale: float = 1e3,
                     unit: str = "mm") -> Figure:
-    """Forced-response curves: the peak |x| of ``blade`` and its E_ρ along each branch,
-    stable orbits solid and unstable ones dashed, bifurcation points marked by kind; on
-    the E_ρ panel, the E_ρ of transient ``sweeps`` (e.g. up and down) as points. ``limits``
-    are labelled curves (parameter, amplitude [m]) drawn thin and grey on the peak panel:
-    the linear responses with the interfaces open and stuck (``frequency_response``),
-    between which friction moves the branches. Their amplitude is about the static
-    position, while a branch's peak |x| includes a preload's static deflection."""
+    """Forced-response curves: the amplitude of ``blade`` (half its peak-to-peak,
+    ``PeriodicOrbit.amplitude``) and its E_ρ along each branch, stable orbits solid and
+    unstable ones dashed, bifurcation points marked by kind; on the E_ρ panel, the E_ρ of
+    transient ``sweeps`` (e.g. up and down) as points. ``limits`` are labelled curves
+    (parameter, amplitude [m]) drawn thin and grey on the amplitude panel: the linear
+    responses with the interfaces open and stuck (``frequency_response``), between which
+    friction moves the branches."""
     figure = Figure(figsize=(8, 7), layout="constrained")
     peak_axes, energy_axes = figure.subplots(2, 1, sharex=True)
     for k, (label, (parameter, amplitude)) in enumerate((limits or {}).items()):
@@ -228,7 +228,7 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
             peak_axes.plot([], [], marker, color=color, mfc="none", lw=0, label=kind)
     if not all(np.all(branch.stable) for branch in branches.values()):
         peak_axes.plot([], [], "k--", lw=1.2, label="unstable")
-    peak_axes.set(ylabel=f"max |x| [{unit}]", title=title)
+    peak_axes.set(ylabel=f"amplitude, ½ peak-to-peak [{unit}]", title=title)
     peak_axes.legend(fontsize="small")
     energy_axes.set(xlabel=xlabel or next(iter(branches.values())).name,
                     ylabel=f"E_ρ [{unit}²]")

@@ -17,6 +17,7 @@ from contact_laws import check_int, check_real
 from .engine.codes import EventKind
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive
 from .scene import Scene
+from .extremes import orbit_extremes
 from .simulate import simulate
 from .simulation import EventLog, Simulation, SimulationError
 from .stability import TANGENT_METHOD, StroboscopicStep, stroboscopic_step
@@ -47,12 +48,16 @@ class PeriodicOrbit:
     the Floquet multipliers (eigenvalues of ``monodromy``), complex, by descending modulus;
     a stick phase gives zeros. ``residual``: max |φ(y) − y| over ``scale``, the state scale
     [m] (velocities count divided by l Ω). ``events``: the switches over one orbit, in
-    order. ``peak``: each response's max |x| [m] over the orbit (``Scene.responses``: a
-    blade's x, or a component of a point); ``mean_square``: each one's
-    E_ρ = ∫x² dt / (k T_e) [m²] (paper §3.2). ``singular``: switches on the orbit where the
-    map is not differentiable (grazing, or several independent interfaces at once); where
-    there are any, the monodromy matrix and the multipliers are not to be trusted, and
-    neither is ``stable``. ``history``: one orbit's ``Simulation``, when asked for.
+    order. Per response (``Scene.responses``: a blade's x, or a component of a point):
+    ``maximum`` and ``minimum`` [m], its extremes over the orbit, located where its
+    velocity crosses zero to the integrator's accuracy (``extremes``), not at samples;
+    ``peak`` = max |x| [m], the larger of |maximum| and |minimum| (a preload's static
+    deflection included); ``mean`` [m], its average over the orbit; ``mean_square``:
+    E_ρ = ∫x² dt / (k T_e) [m²] (paper §3.2). ``amplitude`` is half the peak-to-peak.
+    ``singular``: switches on the orbit where the map is not differentiable (grazing, or
+    several independent interfaces at once); where there are any, the monodromy matrix and
+    the multipliers are not to be trusted, and neither is ``stable``. ``history``: one
+    orbit's ``Simulation``, when asked for.
     """
 
     scene: Scene
@@ -66,6 +71,9 @@ class PeriodicOrbit:
     events: EventLog
     peak: np.ndarray
     mean_square: np.ndarray
+    maximum: np.ndarray
+    minimum: np.ndarray
+    mean: np.ndarray
     singular: int
     history: Simulation | None = None
 
@@ -99,9 +107,12 @@ class PeriodicOrbit:
         return counts
 
     def amplitude(self, blade) -> float:
-        """max |x| [m] of ``blade`` (a name or a position; with substructures a point
-        component, ``Scene.response_position``) over the orbit."""
-        return float(self.peak[self.scene.response_position(blade)])
+        """The vibration amplitude [m] of ``blade`` (a name or a position; with
+        substructures a point component, ``Scene.response_position``): half its
+        peak-to-peak, (max x − min x)/2, without the static deflection that ``peak``
+        includes."""
+        j = self.scene.response_position(blade)
+        return float(0.5 * (self.maximum[j] - self.minimum[j]))
 
     def energy_density(self, blade) -> float:
         """E_ρ [m²] of ``blade`` (as ``amplitude``) over the orbit."""
@@ -276,32 +287,21 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
     multipliers = np.linalg.eigvals(step.jacobian).astype(complex)
     multipliers = multipliers[np.argsort(-np.abs(multipliers), kind="stable")]
     n = len(y) // 2
+    initial = (y[:n].copy(), y[n:].copy())
     run = simulate(scene, periods, method=method, samples_per_period=samples_per_period,
-                   event_tolerance=event_tolerance, initial=(y[:n], y[n:]))
-    return PeriodicOrbit(scene=scene, initial=(y[:n].copy(), y[n:].copy()), periods=periods,
+                   event_tolerance=event_tolerance, initial=initial)
+    found = orbit_extremes(scene, initial, run.t, run.x, run.v, run.events.time,
+                           method=run.settings.method, event_tolerance=event_tolerance)
+    responses = scene.responses_of(run.x[:-1])
+    return PeriodicOrbit(scene=scene, initial=initial, periods=periods,
                          multipliers=multipliers, monodromy=step.jacobian,
                          residual=float(residual), scale=float(scale),
                          iterations=iterations, events=run.events,
-                         peak=periodic_peak(scene.responses_of(run.x[:-1])),
-                         mean_square=np.mean(scene.responses_of(run.x[:-1]) ** 2, axis=0),
+                         peak=np.maximum(np.abs(found.maximum), np.abs(found.minimum)),
+                         mean_square=np.mean(responses ** 2, axis=0),
+                         maximum=found.maximum, minimum=found.minimum,
+                         mean=np.mean(responses, axis=0),
                          singular=step.singular, history=run if history else None)
-
-
-def periodic_peak(x: np.ndarray) -> np.ndarray:
-    """Per column, max |x| of a periodic signal sampled evenly over whole periods (the
-    last sample left out), refined by the parabola through the largest sample and its
-    neighbours (wrapping around): exact to O(h⁴) for a smooth peak."""
-    magnitude = np.abs(x)
-    top = np.argmax(magnitude, axis=0)
-    columns = np.arange(x.shape[1])
-    before = magnitude[(top - 1) % len(x), columns]
-    at = magnitude[top, columns]
-    after = magnitude[(top + 1) % len(x), columns]
-    curvature = before - 2.0 * at + after
-    with np.errstate(divide="ignore", invalid="ignore"):
-        shift = np.where(curvature < 0.0, 0.5 * (before - after) / curvature, 0.0)
-    shift = np.clip(shift, -0.5, 0.5)
-    return at - 0.25 * (before - after) * shift
 
 
 def event_sequence(events: EventLog) -> tuple[tuple[int, str], ...]:

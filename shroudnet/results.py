@@ -735,6 +735,9 @@ def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
               "singular": np.array([o.singular for o in orbits]),
               "peak": np.array([o.peak for o in orbits]),
               "mean_square": np.array([o.mean_square for o in orbits]),
+              "maximum": np.array([o.maximum for o in orbits]),
+              "minimum": np.array([o.minimum for o in orbits]),
+              "mean": np.array([o.mean for o in orbits]),
               "event_offsets": np.concatenate([[0], np.cumsum(counts)]),
               "event_time": np.concatenate([o.events.time for o in orbits]),
               "event_interface": np.concatenate([o.events.interface for o in orbits]),
@@ -772,6 +775,10 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
     n = scenes[0].arrays.n_blades  # blades, or with substructures coordinates
     initial = _shape(path, arrays, "initial", (total, 2 * n), f"{total} orbits × 2 n_blades")
     offsets = _shape(path, arrays, "event_offsets", (total + 1,), "orbit starts in the log")
+    width = len(scenes[0].responses)
+    per_response = {name: _shape(path, arrays, name, (total, width),
+                                 f"{total} orbits × {width} responses")
+                    for name in ("peak", "mean_square", "maximum", "minimum", "mean")}
     orbits = []
     for k, scene in enumerate(scenes):
         run = slice(int(offsets[k]), int(offsets[k + 1]))
@@ -782,7 +789,7 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
             periods=meta["periods"], multipliers=arrays["multipliers"][k],
             monodromy=arrays["monodromy"][k], residual=float(arrays["residual"][k]),
             scale=float(arrays["scale"][k]), iterations=int(arrays["iterations"][k]),
-            events=events, peak=arrays["peak"][k], mean_square=arrays["mean_square"][k],
+            events=events, **{name: column[k] for name, column in per_response.items()},
             singular=int(arrays["singular"][k])))
     bifurcations = tuple(
         Bifurcation(kind=kind, parameter=float(values[points + j]), orbit=orbits[points + j],

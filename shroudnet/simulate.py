@@ -105,13 +105,15 @@ def integrate(scene: Scene, periods: int, *,
               samples_per_period: int = 100, event_tolerance: float = EVENT_TOLERANCE,
               zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
               tangent: np.ndarray | None = None,
-              orthonormalise: bool = False) -> Integration:
+              orthonormalise: bool = False, until: float | None = None) -> Integration:
     """``simulate``'s checks and run, returning the kernel's raw record.
 
     With ``tangent`` (2 n_blades × k), the run integrates those k tangent vectors of the
     start with the state (``engine.tangent``), in a kernel compiled for it, by the adaptive
-    method only; ``orthonormalise`` re-orthonormalises them after every step. Arguments
-    as ``simulate``; raises what it raises.
+    method only; ``orthonormalise`` re-orthonormalises them after every step. With
+    ``until`` [s] in (0, periods T_e], the run stops there instead, with two samples: the
+    start and the state at ``until`` (the steps before it are those of the whole run).
+    Arguments as ``simulate``; raises what it raises.
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"simulate needs a shroudnet.Scene, got {scene!r}")
@@ -149,6 +151,14 @@ def integrate(scene: Scene, periods: int, *,
                          adaptive=not isinstance(method, FixedStep))
     zeno_window = zeno.window_at(event_tolerance)
     n_samples = periods * samples_per_period + 1
+    sample_step = period / samples_per_period
+    if until is not None:
+        if isinstance(method, FixedStep):
+            raise ValueError("simulate: a run to a given time (until=) takes the adaptive "
+                             "method")
+        sample_step = check_real("simulate", "until", until, low=0.0, low_open=True,
+                                 high=periods * period, unit="s")
+        n_samples = 2
     if isinstance(method, FixedStep):
         step, rtol, atol = period / method.steps_per_period, 0.0, 0.0
         steps_per_sample = method.steps_per_period // samples_per_period
@@ -157,7 +167,7 @@ def integrate(scene: Scene, periods: int, *,
         step, rtol, atol = first_step(period), method.rtol, method.atol
         steps_per_sample = 0
     controls = Controls(
-        t0=0.0, sample_step=period / samples_per_period,
+        t0=0.0, sample_step=sample_step,
         n_samples=n_samples, step=step, steps_per_sample=steps_per_sample, rtol=rtol,
         atol_x=atol, atol_v=atol * scene.arrays.excitation_frequency,
         h_max=getattr(method, "max_step", 1.0) * period, h_min=smallest_step(period),

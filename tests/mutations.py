@@ -111,6 +111,8 @@ KINKS = "tests/test_continuation_kinks.py"
 HYSTERESIS = "tests/test_hysteresis.py"
 #: The linear forced response against closed forms and against runs.
 LINEAR_RESPONSE = "tests/test_linear_response.py"
+#: Orbit extremes against Den Hartog's and the linear oscillator's closed forms.
+EXTREMES = "tests/test_extremes.py"
 #: Elastic contacts: their geometry and their stuck limit against closed forms.
 ELASTIC = "tests/test_elastic_contacts.py"
 
@@ -250,6 +252,22 @@ MUTATIONS = (
              "change = least_squares(step.jacobian.T - np.eye(len(y)), y - step.end)",
              "Newton's step solves with Mᵀ − I: the multipliers are right, the step is not",
              (LINEAR_NEWTON, UNSTABLE_ORBIT)),
+    # ---- orbits: the extremes where the velocity crosses zero ----------------------------
+    Mutation("extreme-without-its-vertex", "orbits",
+             "            value -= slope * slope / (2.0 * curvature)\n        return value, "
+             "float(time)",
+             "            value -= 0.0\n        return value, float(time)",
+             "a smooth extremum is read at the interpolated time, not at the vertex of the "
+             "parabola through the state there", (EXTREMES,)),
+    Mutation("extreme-at-a-switch-taken-smooth", "orbits",
+             "    if not np.any((switches >= t[k]) & (switches <= t[k + 1])):",
+             "    if True:",
+             "an extremum at a switch (a friction force reversing) is read off the parabola "
+             "of one side", (EXTREMES,)),
+    Mutation("extreme-bracket-left-wide", "orbits",
+             "ROOT_WIDTH = 1e-7", "ROOT_WIDTH = 1e-2",
+             "the zero of the rate at a switch is bracketed to a hundredth of a period: the "
+             "extremum is read 10⁻³ low", (EXTREMES,)),
     # ---- continuation: the test functions of the smooth bifurcations ---------------------
     Mutation("kinks-not-crossed", "continuation",
              "                if sigma < KINK_STEP and crossing:",

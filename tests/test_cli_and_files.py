@@ -264,7 +264,7 @@ def test_command_line_continue_saves_a_branch_that_loads_back_equal_and_redraws(
                  "--to", "6300", "-o", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "followed speed_rpm from 6000 to 6300" in out and "torus" in out
-    assert "max |x| of blade2 =" in out  # the [run] blade, by name
+    assert "amplitude (half peak-to-peak) of blade2 =" in out  # the [run] blade, by name
     saved = tmp_path / "paper_three_blade-continue-speed_rpm.npz"
     figure = saved.with_suffix(".png")
     assert figure.stat().st_size > 10_000
@@ -277,7 +277,8 @@ def test_command_line_continue_saves_a_branch_that_loads_back_equal_and_redraws(
     for a, b in zip([*branch.orbits, *(x.orbit for x in branch.bifurcations)],
                     [*expected.orbits, *(x.orbit for x in expected.bifurcations)]):
         assert scenefile.document(a.scene) == scenefile.document(b.scene)
-        for name in ("multipliers", "monodromy", "peak", "mean_square", "state"):
+        for name in ("multipliers", "monodromy", "peak", "mean_square", "state", "maximum",
+                     "minimum", "mean"):
             np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
         assert a.event_sequence == b.event_sequence and a.events.counts == b.events.counts
         assert (a.residual, a.scale, a.periods, a.singular) == \

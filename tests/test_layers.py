@@ -13,7 +13,7 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "shroudnet"
 
 #: The run layer: what integrates a scene and the records runs return.
-RUN = ("simulate", "simulation", "methods", "baseline", "classification")
+RUN = ("simulate", "simulation", "methods", "baseline", "classification", "extremes")
 #: The studies and steady states, which run simulations and read them.
 STUDIES = ("analysis", "stability", "sweep", "precision", "mistuning", "linear",
            "linear_response", "orbits",
