@@ -5,9 +5,9 @@ Run: python examples/bladed_disc.py [OUTPUT_FOLDER]
 Saves in OUTPUT_FOLDER (default examples/output/):
 - bladed_disc_zzenf.png: the first three families' frequencies against the nodal diameter
   with the shrouds open and stuck, and the engine-order zig-zag at 3000 rpm;
-- bladed_disc_response.png: a tip's peak |x| and E_ρ along the period-1 orbits
-  (``continuation``) across the engine-order-6 resonance, 2900–3300 rpm, where the
-  preloaded shrouds open, slip and stick every period;
+- bladed_disc_response.png: a tip's amplitude (half its peak-to-peak) and E_ρ along the
+  period-1 orbits (``continuation``) across the engine-order-6 resonance, 2900–3300 rpm,
+  where the preloaded shrouds open, slip and stick every period;
 - bladed_disc_mistuning.png: the distribution of the amplification factor over random
   blade frequency patterns (``mistuning_study``), with Whitehead's bound.
 The scene is ``shroudnet.scenes.bladed_disc_24``: a disc node and a two-node blade per
@@ -68,8 +68,8 @@ def report(result: Result):
               f"{'  '.join(f'{f:7.1f}' for f in held if np.isfinite(f))}")
     branch = result.branch
     print(f"forced response: {len(branch)} period-1 orbits from {branch.parameter[0]:.1f} to "
-          f"{branch.parameter[-1]:.1f} rpm, {branch.stable.sum()} stable; peak |x| of the tip "
-          f"{branch.amplitude(TIP).max() * 1e3:.4f} mm")
+          f"{branch.parameter[-1]:.1f} rpm, {branch.stable.sum()} stable; the tip's largest "
+          f"amplitude {branch.amplitude(TIP).max() * 1e3:.4f} mm")
     for b in branch.bifurcations:
         print(f"  {b.kind} at {b.parameter:.2f} rpm")
     study = result.mistuning

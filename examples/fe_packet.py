@@ -17,9 +17,9 @@ Saves in OUTPUT_FOLDER (default examples/output/):
   family meets engine order 4 at 2995.4 rpm) and stuck, with the engine-order lines;
 - fe_packet_response.png: the forced response over speed across the first flap
   resonance, for the gap and the preload, each followed up from 2600 rpm and down from
-  3400 rpm: the largest flapwise displacement of blade 1's shroud and its E_ρ, stable
-  orbits solid, unstable ones dashed, bifurcations marked, between the linear responses
-  with the shrouds open and stuck (``frequency_response``; stuck, the preloaded shrouds
+  3400 rpm: the flapwise amplitude (half the peak-to-peak) of blade 1's shroud and its
+  E_ρ, stable orbits solid, unstable ones dashed, bifurcations marked, between the linear
+  responses with the shrouds open and stuck (``frequency_response``; stuck, the preloaded shrouds
   also push by their contact springs, so the two designs have stuck limits of their own);
 - fe_packet_hysteresis.png: the friction force of the shroud interface between blades 1
   and 2 against its tangential relative displacement over one period of the preloaded

@@ -2,8 +2,8 @@
 
 Run: python examples/forced_response.py [OUTPUT_FOLDER]
 Saves in OUTPUT_FOLDER (default examples/output/):
-- forced_response_speed.png: blade 2's peak |x| and E_ρ against the speed across the
-  l = 2 resonance, at the paper's gap and at a 10 times larger one;
+- forced_response_speed.png: blade 2's amplitude (half its peak-to-peak) and E_ρ against
+  the speed across the l = 2 resonance, at the paper's gap and at a 10 times larger one;
 - forced_response_q1.png: the same against the excitation amplitude q1 (Fig. 16's
   parameter) at 6000 rpm.
 Each branch of period-1 orbits comes from ``continuation``; stable orbits are drawn

@@ -138,6 +138,24 @@ class Branch:
         """E_ρ = ∫x² dt / (k T_e) [m²] of ``blade`` over each orbit (paper §3.2)."""
         return np.array([orbit.energy_density(blade) for orbit in self.orbits])
 
+    @property
+    def equivalent_damping(self) -> np.ndarray:
+        """ζ_eq = W_d / (4π T_max) [-] of each orbit (``PeriodicOrbit.equivalent_damping``)."""
+        return np.array([orbit.equivalent_damping for orbit in self.orbits])
+
+    @property
+    def energy_per_cycle(self) -> np.ndarray:
+        """Per orbit, the energy per excitation period [J]: columns excitation, damping,
+        friction, contact (``cycle.EnergyPerCycle``)."""
+        return np.array([orbit.energy_per_cycle.as_array() for orbit in self.orbits])
+
+    def harmonics(self, blade, order: int = 5) -> tuple[np.ndarray, np.ndarray]:
+        """(amplitudes A_n [m], phases φ_n [rad]) of ``blade`` along the branch, one row
+        per orbit and one column per harmonic n = 0 … ``order``
+        (``PeriodicOrbit.harmonics``; each orbit is run again)."""
+        found = [orbit.harmonics(blade, order) for orbit in self.orbits]
+        return (np.array([h.amplitudes for h in found]), np.array([h.phases for h in found]))
+
     def worst_blade(self) -> np.ndarray:
         """Per point, the position of the blade (the response) with the largest peak."""
         return np.argmax(self.peak, axis=1)

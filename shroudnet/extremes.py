@@ -138,7 +138,7 @@ def _refine(scene, initial, time, row, sign, t, r, rate, switches, method,
         h = t[k + 1] - t[k]
         curvature = sign * _hermite_slopes(r[k], r[k + 1], h * rate[k], h * rate[k + 1],
                                            (time - t[k]) / h)[1] / (h * h)
-        x, v = _state_at(scene, initial, time, method, event_tolerance)
+        x, v = state_at(scene, initial, time, method, event_tolerance)
         value, slope = sign * float(row @ x), sign * float(row @ v)
         if curvature < 0.0:
             value -= slope * slope / (2.0 * curvature)
@@ -147,7 +147,7 @@ def _refine(scene, initial, time, row, sign, t, r, rate, switches, method,
     best, trial, stale = (-np.inf, time), time, 0
     width = ROOT_WIDTH * scene.excitation_period
     for _ in range(ROOT_STEPS):
-        x, v = _state_at(scene, initial, trial, method, event_tolerance)
+        x, v = state_at(scene, initial, trial, method, event_tolerance)
         value, slope = sign * float(row @ x), sign * float(row @ v)
         best = max(best, (value, trial))
         if slope > 0.0:
@@ -170,7 +170,7 @@ ROOT_WIDTH = 1e-7
 ROOT_STEPS = 40
 
 
-def _state_at(scene, initial, time, method, event_tolerance):
+def state_at(scene, initial, time, method, event_tolerance):
     """(x, ẋ) of the orbit at ``time`` [s], by running it again from its start."""
     if time <= 0.0:
         return initial

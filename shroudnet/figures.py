@@ -184,18 +184,43 @@ BIFURCATION_MARKERS = {"fold": ("o", "C3"), "period-doubling": ("s", "C2"),
                        "stick-slip": ("v", "0.4")}
 
 
+#: What ``forced_response`` may draw on its upper panel: (the value of an orbit for a
+#: blade, its label, whether it is a length drawn in ``unit``).
+QUANTITIES = {
+    "amplitude": (lambda orbit, blade: orbit.amplitude(blade),
+                  "amplitude, ½ peak-to-peak", True),
+    "peak": (lambda orbit, blade: orbit.peak[orbit.scene.response_position(blade)],
+             "peak, max |x|", True),
+    "equivalent damping": (lambda orbit, blade: orbit.equivalent_damping,
+                           "equivalent damping ratio ζ_eq [-]", False),
+    "friction loss": (lambda orbit, blade: orbit.energy_per_cycle.friction,
+                      "friction loss per cycle [J]", False),
+    "phase": (lambda orbit, blade: orbit.harmonics(blade, 1).phases[1],
+              "phase of the first harmonic [rad]", False),
+}
+
+
 def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
                     sweeps: Mapping[str, Sweep] | None = None,
                     limits: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None,
                     xlabel: str = "", title: str = "", scale: float = 1e3,
-                    unit: str = "mm") -> Figure:
+                    unit: str = "mm", quantity: str = "amplitude") -> Figure:
     """Forced-response curves: the amplitude of ``blade`` (half its peak-to-peak,
-    ``PeriodicOrbit.amplitude``) and its E_ρ along each branch, stable orbits solid and
-    unstable ones dashed, bifurcation points marked by kind; on the E_ρ panel, the E_ρ of
+    ``PeriodicOrbit.amplitude``), or another ``quantity`` of ``QUANTITIES`` (its peak
+    |x|, the orbit's equivalent damping ratio, its friction loss per cycle, the phase of
+    its first harmonic), and its E_ρ along each branch, stable orbits solid and unstable
+    ones dashed, bifurcation points marked by kind; on the E_ρ panel, the E_ρ of
     transient ``sweeps`` (e.g. up and down) as points. ``limits`` are labelled curves
     (parameter, amplitude [m]) drawn thin and grey on the amplitude panel: the linear
     responses with the interfaces open and stuck (``frequency_response``), between which
     friction moves the branches."""
+    if quantity not in QUANTITIES:
+        raise ValueError(f"forced_response: quantity must be one of {list(QUANTITIES)}, "
+                         f"got {quantity!r}")
+    value_of, quantity_label, length = QUANTITIES[quantity]
+    if limits and not length:
+        raise ValueError("forced_response: linear limits are amplitudes; draw them with "
+                         "quantity='amplitude' or 'peak'")
     figure = Figure(figsize=(8, 7), layout="constrained")
     peak_axes, energy_axes = figure.subplots(2, 1, sharex=True)
     for k, (label, (parameter, amplitude)) in enumerate((limits or {}).items()):
@@ -203,7 +228,8 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
                        ls=("-", ":", "-.", (0, (5, 2, 1, 2)))[k % 4], label=label)
     for k, (label, branch) in enumerate(branches.items()):
         color = f"C{k}"
-        peak = branch.amplitude(blade) * scale
+        factor = scale if length else 1.0
+        peak = np.array([value_of(orbit, blade) for orbit in branch.orbits]) * factor
         energy = branch.energy_density(blade) * scale**2
         stable = branch.stable
         for axes, values in ((peak_axes, peak), (energy_axes, energy)):
@@ -215,7 +241,7 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
         for bifurcation in branch.bifurcations:
             marker, marker_color = BIFURCATION_MARKERS[bifurcation.kind]
             orbit = bifurcation.orbit
-            for axes, value in ((peak_axes, orbit.amplitude(blade) * scale),
+            for axes, value in ((peak_axes, value_of(orbit, blade) * factor),
                                 (energy_axes, orbit.energy_density(blade) * scale**2)):
                 axes.plot(bifurcation.parameter, value, marker, color=marker_color, ms=5,
                           mfc="none")
@@ -228,7 +254,8 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
             peak_axes.plot([], [], marker, color=color, mfc="none", lw=0, label=kind)
     if not all(np.all(branch.stable) for branch in branches.values()):
         peak_axes.plot([], [], "k--", lw=1.2, label="unstable")
-    peak_axes.set(ylabel=f"amplitude, ½ peak-to-peak [{unit}]", title=title)
+    peak_axes.set(ylabel=f"{quantity_label} [{unit}]" if length else quantity_label,
+                  title=title)
     peak_axes.legend(fontsize="small")
     energy_axes.set(xlabel=xlabel or next(iter(branches.values())).name,
                     ylabel=f"E_ρ [{unit}²]")

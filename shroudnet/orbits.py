@@ -17,7 +17,10 @@ from contact_laws import check_int, check_real
 from .engine.codes import EventKind
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive
 from .scene import Scene
-from .extremes import orbit_extremes
+from .analysis import hysteresis_loop
+from .cycle import (EnergyPerCycle, Harmonics, energy_per_cycle, equivalent_damping,
+                    harmonics, kinetic_peak)
+from .extremes import orbit_extremes, state_at
 from .simulate import simulate
 from .simulation import EventLog, Simulation, SimulationError
 from .stability import TANGENT_METHOD, StroboscopicStep, stroboscopic_step
@@ -54,6 +57,9 @@ class PeriodicOrbit:
     ``peak`` = max |x| [m], the larger of |maximum| and |minimum| (a preload's static
     deflection included); ``mean`` [m], its average over the orbit; ``mean_square``:
     E_ρ = ∫x² dt / (k T_e) [m²] (paper §3.2). ``amplitude`` is half the peak-to-peak.
+    ``energy_per_cycle``: the work of the excitation and the losses per excitation period
+    (``cycle.EnergyPerCycle``); ``kinetic_peak``: the largest kinetic energy T_max [J]
+    over the orbit; ``equivalent_damping``: ζ_eq = W_d / (4π T_max) (``cycle``).
     ``singular``: switches on the orbit where the map is not differentiable (grazing, or
     several independent interfaces at once); where there are any, the monodromy matrix and
     the multipliers are not to be trusted, and neither is ``stable``. ``history``: one
@@ -74,6 +80,8 @@ class PeriodicOrbit:
     maximum: np.ndarray
     minimum: np.ndarray
     mean: np.ndarray
+    energy_per_cycle: EnergyPerCycle
+    kinetic_peak: float
     singular: int
     history: Simulation | None = None
 
@@ -117,6 +125,36 @@ class PeriodicOrbit:
     def energy_density(self, blade) -> float:
         """E_ρ [m²] of ``blade`` (as ``amplitude``) over the orbit."""
         return float(self.mean_square[self.scene.response_position(blade)])
+
+    @property
+    def equivalent_damping(self) -> float:
+        """ζ_eq = W_d / (4π T_max) [-]: the damping ratio a linear oscillator would need to
+        dissipate as much per cycle at this frequency and kinetic energy (``cycle``)."""
+        return equivalent_damping(self.energy_per_cycle, self.kinetic_peak)
+
+    def simulation(self, samples_per_period: int = 100) -> Simulation:
+        """One orbit's ``Simulation`` (the contact forces' histories with the motion): the
+        kept ``history`` if it has ``samples_per_period``, else the orbit run again."""
+        if self.history is not None and self.history.samples_per_period == samples_per_period:
+            return self.history
+        return simulate(self.scene, self.periods, method=TANGENT_METHOD,
+                        samples_per_period=samples_per_period, initial=self.initial)
+
+    def harmonics(self, blade, order: int = 5, samples_per_period: int = 100) -> Harmonics:
+        """The harmonics of ``blade`` (as ``amplitude``) up to ``order`` (``cycle``):
+        r = A_0 + Σ_n A_n sin(n ω_0 t + φ_n), ω_0 = 2π/(periods T_e)."""
+        run = self.simulation(samples_per_period)
+        response = self.scene.response_of(run.x, blade)
+        return harmonics(response, self.periods * self.scene.excitation_period, order)
+
+    def friction_losses(self, samples_per_period: int = 100) -> np.ndarray:
+        """The energy [J] each interface's friction takes per excitation period: the area
+        of its hysteresis loop (``analysis.hysteresis_loop``) over the orbit, from the
+        samples (0 where an interface has no friction)."""
+        run = self.simulation(samples_per_period)
+        return np.array([hysteresis_loop(run, e, 0).area_per_cycle()
+                         if law is not None else 0.0
+                         for e, law in enumerate(self.scene.arrays.friction_laws)])
 
 
 def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
@@ -301,6 +339,9 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
                          mean_square=np.mean(responses ** 2, axis=0),
                          maximum=found.maximum, minimum=found.minimum,
                          mean=np.mean(responses, axis=0),
+                         energy_per_cycle=energy_per_cycle(run, periods),
+                         kinetic_peak=kinetic_peak(scene, run, lambda time: state_at(
+                             scene, initial, time, run.settings.method, event_tolerance)),
                          singular=step.singular, history=run if history else None)
 
 

@@ -42,6 +42,7 @@ import numpy as np
 from . import scenefile
 from .classification import Classification
 from .continuation import Bifurcation, Branch
+from .cycle import EnergyPerCycle
 from .engine.codes import EventKind
 from .orbits import PeriodicOrbit
 from .reporting import SweepWarning
@@ -738,6 +739,8 @@ def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
               "maximum": np.array([o.maximum for o in orbits]),
               "minimum": np.array([o.minimum for o in orbits]),
               "mean": np.array([o.mean for o in orbits]),
+              "energy_per_cycle": np.array([o.energy_per_cycle.as_array() for o in orbits]),
+              "kinetic_peak": np.array([o.kinetic_peak for o in orbits]),
               "event_offsets": np.concatenate([[0], np.cumsum(counts)]),
               "event_time": np.concatenate([o.events.time for o in orbits]),
               "event_interface": np.concatenate([o.events.interface for o in orbits]),
@@ -779,6 +782,9 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
     per_response = {name: _shape(path, arrays, name, (total, width),
                                  f"{total} orbits × {width} responses")
                     for name in ("peak", "mean_square", "maximum", "minimum", "mean")}
+    energy = _shape(path, arrays, "energy_per_cycle", (total, 4),
+                    f"{total} orbits × (excitation, damping, friction, contact)")
+    kinetic = _shape(path, arrays, "kinetic_peak", (total,), f"{total} orbits")
     orbits = []
     for k, scene in enumerate(scenes):
         run = slice(int(offsets[k]), int(offsets[k + 1]))
@@ -790,7 +796,8 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
             monodromy=arrays["monodromy"][k], residual=float(arrays["residual"][k]),
             scale=float(arrays["scale"][k]), iterations=int(arrays["iterations"][k]),
             events=events, **{name: column[k] for name, column in per_response.items()},
-            singular=int(arrays["singular"][k])))
+            energy_per_cycle=EnergyPerCycle(*(float(e) for e in energy[k])),
+            kinetic_peak=float(kinetic[k]), singular=int(arrays["singular"][k])))
     bifurcations = tuple(
         Bifurcation(kind=kind, parameter=float(values[points + j]), orbit=orbits[points + j],
                     multiplier=complex(arrays["bifurcation_multiplier"][j]),

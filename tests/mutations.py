@@ -111,6 +111,8 @@ KINKS = "tests/test_continuation_kinks.py"
 HYSTERESIS = "tests/test_hysteresis.py"
 #: The linear forced response against closed forms and against runs.
 LINEAR_RESPONSE = "tests/test_linear_response.py"
+#: One cycle's harmonics, energy and equivalent damping against closed forms.
+CYCLE = "tests/test_cycle.py"
 #: Orbit extremes against Den Hartog's and the linear oscillator's closed forms.
 EXTREMES = "tests/test_extremes.py"
 #: Elastic contacts: their geometry and their stuck limit against closed forms.
@@ -268,6 +270,21 @@ MUTATIONS = (
              "ROOT_WIDTH = 1e-7", "ROOT_WIDTH = 1e-2",
              "the zero of the rate at a switch is bracketed to a hundredth of a period: the "
              "extremum is read 10⁻³ low", (EXTREMES,)),
+    Mutation("harmonic-phase-of-a-cosine", "orbits",
+             "phases = np.concatenate([[0.0], np.angle(2j * spectrum[1:])])",
+             "phases = np.concatenate([[0.0], np.angle(2.0 * spectrum[1:])])",
+             "the harmonics' phases are a cosine's, a quarter turn from the excitation's "
+             "sines", (CYCLE,)),
+    Mutation("equivalent-damping-over-2-pi", "orbits",
+             "return energy.dissipated / (4.0 * math.pi * kinetic) if kinetic > 0.0 else 0.0",
+             "return energy.dissipated / (2.0 * math.pi * kinetic) if kinetic > 0.0 else 0.0",
+             "ζ_eq divides the loss by 2π T_max: twice the damping a linear oscillator "
+             "needs", (CYCLE,)),
+    Mutation("kinetic-peak-sampled", "orbits",
+             "    if state_at is None:\n        return float(at - 0.25",
+             "    if True:\n        return float(at - 0.25",
+             "T_max is read off the samples' parabola, not the orbit's exact states",
+             (CYCLE,)),
     # ---- continuation: the test functions of the smooth bifurcations ---------------------
     Mutation("kinks-not-crossed", "continuation",
              "                if sigma < KINK_STEP and crossing:",

@@ -1,0 +1,90 @@
+"""One cycle of a periodic orbit in an engineer's terms: harmonics and phases, energy per
+cycle, equivalent damping, against closed forms; carried along a branch and drawn."""
+
+import math
+
+import numpy as np
+import pytest
+
+import shroudnet as sn
+from tests.test_extremes import MASS, NATURAL, STIFFNESS, rpm, single_blade
+
+Q0, Q1, DAMPING = 2.0, 5.0, 4.0
+
+
+def linear_orbit(beta):
+    omega = beta * NATURAL
+    scene = single_blade(speed_rpm=rpm(omega), amplitudes=(Q0, Q1), damping=DAMPING)
+    return sn.periodic_orbit(scene, tolerance=1e-12), omega
+
+
+@pytest.mark.parametrize("beta", [0.7, 1.4])
+def test_a_linear_oscillators_harmonics_and_phase_are_its_closed_form(beta):
+    """x = q0/k + X sin(ωt − ψ), X = q1/|k − mω² + icω|, ψ = atan2(cω, k − mω²); no
+    higher harmonic."""
+    orbit, omega = linear_orbit(beta)
+    found = orbit.harmonics("b", order=3)
+    amplitude = Q1 / abs(STIFFNESS - MASS * omega ** 2 + 1j * DAMPING * omega)
+    lag = math.atan2(DAMPING * omega, STIFFNESS - MASS * omega ** 2)
+    assert found.amplitudes[0] == pytest.approx(Q0 / STIFFNESS, rel=1e-10)
+    assert found.amplitudes[1] == pytest.approx(amplitude, rel=1e-10)
+    assert found.phases[1] == pytest.approx(-lag, abs=2e-10)
+    assert np.all(found.amplitudes[2:] < 1e-10 * amplitude)
+    assert found.frequencies[1] == pytest.approx(omega / (2 * math.pi), rel=1e-12)
+    with pytest.raises(ValueError, match="order must be at most 49 with 100 samples"):
+        orbit.harmonics("b", order=50)
+
+
+@pytest.mark.parametrize("beta", [0.7, 1.0, 1.4])
+def test_the_equivalent_damping_of_a_linear_viscous_oscillator_is_c_over_2m_omega(beta):
+    """W_d = π c ω X², T_max = ½ m ω² X²: ζ_eq = c/(2mω) at every forcing frequency; the
+    excitation's work per cycle is the viscous loss."""
+    orbit, omega = linear_orbit(beta)
+    assert orbit.equivalent_damping == pytest.approx(DAMPING / (2 * MASS * omega), rel=1e-9)
+    energy = orbit.energy_per_cycle
+    amplitude = Q1 / abs(STIFFNESS - MASS * omega ** 2 + 1j * DAMPING * omega)
+    assert energy.damping == pytest.approx(math.pi * DAMPING * omega * amplitude ** 2,
+                                           rel=1e-8)
+    assert energy.excitation == pytest.approx(energy.dissipated, rel=1e-8)
+    assert energy.friction == energy.contact == 0.0
+
+
+def test_friction_loss_per_cycle_is_den_hartogs_4fx_and_the_hysteresis_loops_area():
+    """Sliding without stops, the friction force F = μN reverses at the extremes ±X: it
+    takes 4 F X a cycle, the ledger's loss exactly and the loop's area to its samples."""
+    force, load, mu, beta = 10.0, 10.0, 0.3, 0.8
+    scene = single_blade(speed_rpm=rpm(beta * NATURAL), amplitudes=(0.0, force),
+                         rubbing=(load, mu))
+    orbit = sn.periodic_orbit(scene)
+    exact = 4.0 * mu * load * orbit.amplitude("b")
+    assert orbit.energy_per_cycle.friction == pytest.approx(exact, rel=1e-8)
+    assert orbit.energy_per_cycle.excitation == pytest.approx(exact, rel=1e-8)
+    assert orbit.friction_losses()[0] == pytest.approx(exact, rel=1e-3)
+    # undamped, friction alone dissipates: ζ_eq = 4FX / (4π · ½ m ω_max² …) > 0
+    assert orbit.equivalent_damping > 0.0
+
+
+def test_a_branch_carries_the_content_and_the_figure_draws_any_of_it(tmp_path):
+    from shroudnet import results
+    from shroudnet.figures import forced_response
+    branch = sn.continuation(lambda speed: single_blade(
+        speed_rpm=speed, amplitudes=(Q0, Q1), damping=DAMPING), rpm(0.7 * NATURAL),
+        rpm(0.8 * NATURAL), max_points=3)
+    omega = 2 * math.pi * branch.parameter / 60.0
+    np.testing.assert_allclose(branch.equivalent_damping, DAMPING / (2 * MASS * omega),
+                               rtol=1e-8)
+    amplitudes, phases = branch.harmonics("b", order=2)
+    np.testing.assert_allclose(amplitudes[:, 1], branch.amplitude("b"), rtol=1e-8)
+    assert amplitudes.shape == phases.shape == (len(branch), 3)
+    np.testing.assert_allclose(branch.energy_per_cycle[:, 0], branch.energy_per_cycle[:, 1],
+                               rtol=1e-8)
+    loaded = results.load(results.save_branch(tmp_path / "branch.npz", branch))
+    np.testing.assert_array_equal(loaded.equivalent_damping, branch.equivalent_damping)
+    np.testing.assert_array_equal(loaded.energy_per_cycle, branch.energy_per_cycle)
+    for quantity in ("amplitude", "peak", "equivalent damping", "friction loss", "phase"):
+        axes = forced_response({"up": branch}, "b", quantity=quantity).axes[0]
+        assert len(axes.lines[0].get_ydata()) == len(branch)
+    assert "ζ_eq" in forced_response({"up": branch}, "b",
+                                     quantity="equivalent damping").axes[0].get_ylabel()
+    with pytest.raises(ValueError, match="quantity must be one of"):
+        forced_response({"up": branch}, "b", quantity="colour")
