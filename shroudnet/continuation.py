@@ -33,6 +33,7 @@ import numpy as np
 
 from contact_laws import check_int, check_real
 
+from .linear_response import frequency_response
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive
 from .orbits import (ORBIT_TOLERANCE, UNIT_CIRCLE, ConvergenceError, PeriodicOrbit,
                      least_squares, orbit_at, periodic_orbit, state_weights)
@@ -75,6 +76,40 @@ LOCATING_STEPS = 16
 LOCATED = 1e-6
 #: |Im μ| / |μ| below which a multiplier is taken as real.
 REAL = 1e-8
+
+
+@dataclass(frozen=True)
+class FrequencyShift:
+    """A branch's resonance against the linear limits it lies between [Hz]: ``peak``, the
+    excitation frequency where its amplitude is largest; ``open`` and ``stuck``, where the
+    linear responses with the interfaces open and stuck peak. Friction and contact move
+    the resonance by ``peak − open`` from the open blades', a fraction ``stiffening`` of
+    the way to the stuck one."""
+
+    peak: float
+    open: float
+    stuck: float
+
+    @property
+    def stiffening(self) -> float:
+        """(peak − open)/(stuck − open): 0 at the open resonance, 1 at the stuck one."""
+        return (self.peak - self.open) / (self.stuck - self.open)
+
+
+#: Frequencies at which ``Branch.frequency_shift`` evaluates each linear limit.
+SHIFT_POINTS = 3001
+
+
+def _parabola_top(grid, values) -> float:
+    """The abscissa of the largest of ``values`` on the even ``grid``, refined by the
+    parabola through it and its neighbours."""
+    k = int(np.argmax(values))
+    if k == 0 or k == len(values) - 1:
+        return float(grid[k])
+    before, at, after = values[k - 1], values[k], values[k + 1]
+    curvature = before - 2.0 * at + after
+    shift = 0.5 * (before - after) / curvature if curvature < 0.0 else 0.0
+    return float(grid[k] + shift * (grid[1] - grid[0]))
 
 
 @dataclass(frozen=True)
@@ -148,6 +183,23 @@ class Branch:
         """Per orbit, the energy per excitation period [J]: columns excitation, damping,
         friction, contact (``cycle.EnergyPerCycle``)."""
         return np.array([orbit.energy_per_cycle.as_array() for orbit in self.orbits])
+
+    def frequency_shift(self, blade) -> FrequencyShift:
+        """Where the branch peaks against the linear limits (``FrequencyShift``): the
+        excitation frequency 1/T_e of the orbit of largest ``amplitude(blade)``, and
+        those at which ``frequency_response`` of that orbit's scene (at its speed) peaks
+        for ``blade`` with the interfaces open and stuck, each sought over a half to twice
+        the branch's (a grid of ``SHIFT_POINTS``, refined by a parabola)."""
+        top = int(np.argmax(self.amplitude(blade)))
+        scene = self.orbits[top].scene
+        peak = 1.0 / scene.excitation_period
+        grid = np.linspace(0.5 * peak, 2.0 * peak, SHIFT_POINTS)
+        limits = []
+        for contacts in ("open", "stuck"):
+            found = frequency_response(scene, grid, contacts)
+            limits.append(_parabola_top(grid, np.abs(scene.response_of(found.response,
+                                                                         blade))))
+        return FrequencyShift(peak=peak, open=limits[0], stuck=limits[1])
 
     def harmonics(self, blade, order: int = 5) -> tuple[np.ndarray, np.ndarray]:
         """(amplitudes A_n [m], phases φ_n [rad]) of ``blade`` along the branch, one row

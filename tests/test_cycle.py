@@ -88,3 +88,29 @@ def test_a_branch_carries_the_content_and_the_figure_draws_any_of_it(tmp_path):
                                      quantity="equivalent damping").axes[0].get_ylabel()
     with pytest.raises(ValueError, match="quantity must be one of"):
         forced_response({"up": branch}, "b", quantity="colour")
+
+
+@pytest.mark.slow
+def test_the_frequency_shift_places_a_stuck_pairs_peak_at_its_stuck_resonance():
+    """Two blades forced in phase through a preloaded contact that never slips: the pair
+    moves as one body, so the branch peaks at √((k_a + k_b)/(m_a + m_b)), the stuck
+    limit's resonance, far from the open blades' √(k_a/m_a)."""
+    from contact_laws import Coulomb, LinearSpring
+
+    def pair(speed):
+        group = sn.BladeGroup().add_blade("a", sn.Blade(mass=0.1, damping=2.0,
+                                                        stiffness=1e5))
+        group.add_blade("b", sn.Blade(mass=0.3, damping=6.0, stiffness=2e5))
+        group.connect("a", "b", sn.Interface(gap=-1e-3, angle=0.3,
+                                             normal=LinearSpring(stiffness=1e6),
+                                             friction=Coulomb(mu=50.0)))
+        return sn.Scene(group=group, speed_rpm=speed, excitation=sn.Excitation(
+            engine_order=1, amplitudes=(0.0, 1.0), phases=sn.ExplicitPhases((0.0, 0.0))))
+
+    stuck = math.sqrt(3e5 / 0.4) / (2 * math.pi)
+    branch = sn.continuation(pair, 60 * 0.9 * stuck, 60 * 1.1 * stuck, max_step=0.05)
+    shift = branch.frequency_shift("a")
+    assert shift.stuck == pytest.approx(stuck, rel=1e-3)
+    assert shift.open == pytest.approx(math.sqrt(1e5 / 0.1) / (2 * math.pi), rel=1e-3)
+    assert shift.peak == pytest.approx(stuck, rel=5e-3)
+    assert shift.stiffening == pytest.approx(1.0, abs=0.02)
