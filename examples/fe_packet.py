@@ -21,13 +21,16 @@ Saves in OUTPUT_FOLDER (default examples/output/):
   E_ρ, stable orbits solid, unstable ones dashed, bifurcations marked, between the linear
   responses with the shrouds open and stuck (``frequency_response``; stuck, the preloaded shrouds
   also push by their contact springs, so the two designs have stuck limits of their own);
+- fe_packet_content.png: along the same branches, the amplitude, the phase of its first
+  harmonic and the orbit's equivalent damping ratio ζ_eq;
 - fe_packet_hysteresis.png: the friction force of the shroud interface between blades 1
   and 2 against its tangential relative displacement over one period of the preloaded
   design's orbit, at three speeds: below, at and above its peak. Stick is rigid, so
   each loop's stuck stretches are vertical.
 Prints, for each branch, its orbits and how long they took, how many are stable, where
-it ended, its smooth bifurcations, the response peak and the share of the dissipated
-energy that friction takes there.
+it ended, its smooth bifurcations, the response peak, the share of the dissipated
+energy that friction takes there and the equivalent damping ratio, and the resonance's
+frequency against the linear limits' (``Branch.frequency_shift``).
 """
 
 import sys
@@ -123,11 +126,9 @@ def loops(branch: Branch, samples=2000) -> dict[str, HysteresisLoop]:
 
 
 def friction_share(branch: Branch, point: int) -> float:
-    """Friction loss over all dissipation, over one period of the branch's orbit
-    ``point``."""
-    orbit = branch.orbits[point]
-    energy = simulate(orbit.scene, 1, initial=orbit.initial).energy
-    return energy.friction_loss / (energy.friction_loss + energy.damping_loss)
+    """Friction loss over all dissipation per cycle of the branch's orbit ``point``."""
+    energy = branch.orbits[point].energy_per_cycle
+    return energy.friction / energy.dissipated
 
 
 def report(packet: Packet):
@@ -148,7 +149,12 @@ def report(packet: Packet):
         print(f"{label}: {len(branch)} orbits in {packet.seconds[label]:.1f} s, "
               f"{int(branch.stable.sum())} stable, {branch.ended}; peak "
               f"{peak[top] * 1e6:.2f} µm at {branch.parameter[top]:.1f} rpm, friction "
-              f"{friction_share(branch, top):.0%} of the loss there")
+              f"{friction_share(branch, top):.0%} of the loss there, ζ_eq "
+              f"{branch.equivalent_damping[top]:.4f}")
+        shift = branch.frequency_shift(RESPONSE)
+        print(f"  resonance at {shift.peak:.1f} Hz: the linear limits' at {shift.open:.1f} "
+              f"Hz (open) and {shift.stuck:.1f} Hz (stuck); {shift.stiffening:.0%} of the "
+              "way from open to stuck")
         switches = sum(b.kind in ("grazing", "stick-slip") for b in branch.bifurcations)
         print(f"  {switches} changes of the switch sequence (grazing, stick-slip)")
         for b in branch.bifurcations:
@@ -161,7 +167,8 @@ def report(packet: Packet):
 
 def main(speeds=41, max_points=600, max_step=0.05, output=OUTPUT):
     """Compute, print and save the figures in ``output``; returns the ``Packet``."""
-    from shroudnet.figures import forced_response, group_campbell_diagram, hysteresis_loops
+    from shroudnet.figures import (branch_content, forced_response, group_campbell_diagram,
+                                   hysteresis_loops)
     packet = compute(speeds, max_points, max_step)
     report(packet)
     output = Path(output)
@@ -174,6 +181,9 @@ def main(speeds=41, max_points=600, max_step=0.05, output=OUTPUT):
                     scale=1e6, unit="µm",
                     title="Blade 1's shroud, flapwise: period-1 orbits").savefig(
         output / "fe_packet_response.png", dpi=110)
+    branch_content(packet.branches, RESPONSE, xlabel="Ω [rpm]", scale=1e6, unit="µm",
+                   title="Blade 1's shroud, flapwise: amplitude, phase and equivalent "
+                   "damping").savefig(output / "fe_packet_content.png", dpi=110)
     hysteresis_loops(packet.loops, title=f"Shroud interface blade 1–blade 2, "
                      f"{LOOP_BRANCH.rsplit(',', 1)[0]}: one period").savefig(
         output / "fe_packet_hysteresis.png", dpi=110)

@@ -264,6 +264,32 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
     return figure
 
 
+def branch_content(branches: Mapping[str, Branch], blade: Hashable | int, *,
+                   xlabel: str = "", title: str = "", scale: float = 1e3,
+                   unit: str = "mm") -> Figure:
+    """A branch's response in an engineer's terms, one panel each along the branches: the
+    amplitude of ``blade`` (half its peak-to-peak), the phase of its first harmonic
+    against the excitation's sine, unwrapped along each branch, and the orbit's
+    equivalent damping ratio ζ_eq; stable orbits solid, unstable ones dashed."""
+    figure = Figure(figsize=(8, 8), layout="constrained")
+    panels = figure.subplots(3, 1, sharex=True)
+    for k, (label, branch) in enumerate(branches.items()):
+        phases = np.unwrap(branch.harmonics(blade, order=1)[1][:, 1])
+        curves = (branch.amplitude(blade) * scale, phases, branch.equivalent_damping)
+        for axes, values in zip(panels, curves):
+            for start, stop, stable in _runs(branch.stable):
+                piece = slice(start, min(stop + 1, len(branch)))
+                axes.plot(branch.parameter[piece], values[piece], color=f"C{k}",
+                          ls="-" if stable else "--", lw=1.2,
+                          label=label if start == 0 and axes is panels[0] else None)
+    panels[0].set(ylabel=f"amplitude, ½ peak-to-peak [{unit}]", title=title)
+    panels[0].legend(fontsize="small")
+    panels[1].set(ylabel="phase of the 1st harmonic [rad]")
+    panels[2].set(ylabel="equivalent damping ratio ζ_eq [-]",
+                  xlabel=xlabel or next(iter(branches.values())).name)
+    return figure
+
+
 def _runs(flags):
     """(start, stop, flag) of each run of equal ``flags``: stop is the run's last index + 1."""
     edges = np.flatnonzero(np.diff(np.asarray(flags, dtype=int))) + 1
