@@ -147,6 +147,15 @@ class PeriodicOrbit:
         response = self.scene.response_of(run.x, blade)
         return harmonics(response, self.periods * self.scene.excitation_period, order)
 
+    def slip_harmonics(self, interface: int, order: int = 5,
+                       samples_per_period: int = 100) -> Harmonics:
+        """The harmonics up to ``order`` of interface ``interface``'s tangential relative
+        displacement (``Simulation.slip_displacement``: the motion of its pair of points
+        along the face), as ``harmonics``."""
+        run = self.simulation(samples_per_period)
+        slip = run.slip_displacement(run.checked_interface(interface, "slip_harmonics"))
+        return harmonics(slip, self.periods * self.scene.excitation_period, order)
+
     def friction_losses(self, samples_per_period: int = 100) -> np.ndarray:
         """The energy [J] each interface's friction takes per excitation period: the area
         of its hysteresis loop (``analysis.hysteresis_loop``) over the orbit, from the

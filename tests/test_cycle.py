@@ -62,6 +62,12 @@ def test_friction_loss_per_cycle_is_den_hartogs_4fx_and_the_hysteresis_loops_are
     assert orbit.friction_losses()[0] == pytest.approx(exact, rel=1e-3)
     # undamped, friction alone dissipates: ζ_eq = 4FX / (4π · ½ m ω_max² …) > 0
     assert orbit.equivalent_damping > 0.0
+    # the blade slides on a fixed pad along x: the interface's slip is the blade's motion
+    slip, motion = orbit.slip_harmonics(0, order=3), orbit.harmonics("b", order=3)
+    np.testing.assert_allclose(slip.amplitudes, motion.amplitudes, rtol=1e-12, atol=1e-20)
+    np.testing.assert_allclose(slip.phases[1], motion.phases[1], atol=1e-12)
+    with pytest.raises(ValueError, match="slip_harmonics"):
+        orbit.slip_harmonics(3)
 
 
 def test_a_branch_carries_the_content_and_the_figure_draws_any_of_it(tmp_path):
