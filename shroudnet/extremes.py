@@ -74,6 +74,21 @@ def orbit_extremes(scene, initial, t, x, v, switches, *, method,
         time_of_minimum=np.array([best[(j, -1.0)][1] for j in range(n)]))
 
 
+def sampled_peaks(t, x, v, rows) -> np.ndarray:
+    """max |r| [m] of each response r = ``rows`` · x over a sampled run that need not be
+    periodic (a transient's record): the largest sample of ±r, or, larger, the maximum of
+    the cubic Hermite interpolant of (r, ṙ) in an interval where ṙ changes sign (within
+    O(h⁴) of the motion's there, h the samples' spacing, where it is smooth)."""
+    r, rate = x @ rows.T, v @ rows.T
+    peaks = np.abs(r).max(axis=0)
+    for j in range(r.shape[1]):
+        for sign in (1.0, -1.0):
+            found = _crossings(t, sign * r[:, j], sign * rate[:, j])
+            if found:
+                peaks[j] = max(peaks[j], found[0][1])
+    return peaks
+
+
 def _crossings(t, r, rate) -> list[tuple[float, float]]:
     """(t_c, interpolated maximum) of the ``CANDIDATES`` intervals where the rate falls
     through zero with the largest cubic Hermite maximum, best first; one whose maximum

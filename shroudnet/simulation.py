@@ -202,7 +202,8 @@ class SweepPoint:
     classification: Classification
     final_state: tuple[np.ndarray, np.ndarray]  # (x, ẋ) at the end, to continue from
     error: str | None = None             # why the point failed; None for a computed point
-    #: max |x| [m] of each blade over the recorded periods (empty: failed, or not kept)
+    #: max |x| [m] of each blade over the recorded periods, between samples where the
+    #: velocity crosses zero (``extremes.sampled_peaks``; empty: failed, or not kept)
     peak: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     @property

@@ -39,6 +39,7 @@ import numpy as np
 from .analysis import classify, friction_loss_per_cycle
 from .stability import LYAPUNOV_BLOCKS, lyapunov
 from .classification import REPEAT_TOLERANCE
+from .extremes import sampled_peaks
 from .methods import TRANSIENT, Accuracy, Adaptive, FixedStep
 from .reporting import ProgressReporter, SweepWarning
 from .scene import Scene
@@ -115,7 +116,7 @@ def steady_point(scene: Scene, value: float, *, blade: Hashable | int, transient
                       classification=classify(sim, blade, skip=0, tolerance=tolerance,
                                               exponent=exponent),
                       final_state=(sim.x[-1].copy(), sim.v[-1].copy()),
-                      peak=np.abs(sim.scene.responses_of(sim.x)).max(axis=0))
+                      peak=sampled_peaks(sim.t, sim.x, sim.v, sim.scene.response_matrix))
 
 
 def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,

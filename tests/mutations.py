@@ -270,6 +270,12 @@ MUTATIONS = (
              "ROOT_WIDTH = 1e-7", "ROOT_WIDTH = 1e-2",
              "the zero of the rate at a switch is bracketed to a hundredth of a period: the "
              "extremum is read 10⁻³ low", (EXTREMES,)),
+    Mutation("sweep-peak-at-samples", "orbits",
+             "                peaks[j] = max(peaks[j], found[0][1])",
+             "                peaks[j] = max(peaks[j], 0.0)",
+             "a sweep point's peak is its largest sample, up to 1 − cos(π/50) = 2e-3 low",
+             ("tests/test_orbits.py::"
+              "test_sweeps_and_branches_give_every_blades_peak_and_the_worst_blade",)),
     Mutation("harmonic-phase-of-a-cosine", "orbits",
              "phases = np.concatenate([[0.0], np.angle(2j * spectrum[1:])])",
              "phases = np.concatenate([[0.0], np.angle(2.0 * spectrum[1:])])",
