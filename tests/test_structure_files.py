@@ -327,7 +327,7 @@ def test_the_command_line_runs_sweeps_continues_and_mistunes_a_substructure_scen
 
     assert main(["continue", str(scene), "--param", "excitation.amplitudes.1", "--from",
                  "20", "--to", "25", "--max-points", "3", "-o", str(tmp_path)]) == 0
-    assert "max |x| of blade2.shroud[0]" in capsys.readouterr().out
+    assert "amplitude (half peak-to-peak) of blade2.shroud[0]" in capsys.readouterr().out
     branch = results.load(tmp_path / "scene-continue-excitation.amplitudes.1.npz")
     assert len(branch) == 3 and branch.orbits[0].state.shape == (16,)
 
