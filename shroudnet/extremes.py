@@ -50,28 +50,20 @@ def orbit_extremes(scene, initial, t, x, v, switches, *, method,
     orbit again to it with ``method`` and ``event_tolerance`` (module docstring)."""
     rows = scene.response_matrix
     r, rate = x @ rows.T, v @ rows.T
-    candidates = []  # (response, sign, time, value) to refine
+    best = {1.0: [], -1.0: []}  # per sign, (sign · extremum, time) of each response
     for j in range(r.shape[1]):
-        for sign in (1.0, -1.0):
-            for time, value in _crossings(t, sign * r[:, j], sign * rate[:, j]):
-                candidates.append((j, sign, time, value))
-    refined = {}
-    for j, sign, time, _ in candidates:
-        refined[(j, sign, time)] = _refine(scene, initial, time, rows[j], sign, t, r[:, j],
-                                           rate[:, j], switches, method, event_tolerance)
-    best = {}
-    for j in range(r.shape[1]):
-        for sign in (1.0, -1.0):
+        for sign in best:
             k = int(np.argmax(sign * r[:-1, j]))
-            found = [(sign * r[k, j], t[k])] + [value for (i, s, _), value in refined.items()
-                                                if i == j and s == sign]
-            best[(j, sign)] = max(found, key=lambda pair: pair[0])
-    n = r.shape[1]
+            options = [(sign * r[k, j], t[k])] + [
+                _refine(scene, initial, time, rows[j], sign, t, r[:, j], rate[:, j],
+                        switches, method, event_tolerance)
+                for time, _ in _crossings(t, sign * r[:, j], sign * rate[:, j])]
+            best[sign].append(max(options, key=lambda pair: pair[0]))
     return Extremes(
-        maximum=np.array([best[(j, 1.0)][0] for j in range(n)]),
-        minimum=np.array([-best[(j, -1.0)][0] for j in range(n)]),
-        time_of_maximum=np.array([best[(j, 1.0)][1] for j in range(n)]),
-        time_of_minimum=np.array([best[(j, -1.0)][1] for j in range(n)]))
+        maximum=np.array([value for value, _ in best[1.0]]),
+        minimum=np.array([-value for value, _ in best[-1.0]]),
+        time_of_maximum=np.array([time for _, time in best[1.0]]),
+        time_of_minimum=np.array([time for _, time in best[-1.0]]))
 
 
 def sampled_peaks(t, x, v, rows) -> np.ndarray:
