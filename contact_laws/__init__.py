@@ -9,6 +9,10 @@ Normal laws: ``LinearSpring`` (the paper's eqs. 2–3), ``Hertz``, ``KelvinVoigt
 (the paper's eq. 4), ``Stribeck``, and ``Regularised`` (a tanh-smoothed wrapper).
 """
 
+from ._checks import check_array as check_array
+from ._checks import check_callable as check_callable
+from ._checks import check_choice as check_choice
+from ._checks import check_instance as check_instance
 from ._checks import check_int as check_int
 from ._checks import check_real as check_real
 from .base import FrictionLaw as FrictionLaw
@@ -28,3 +32,27 @@ from .normal import LinearSpring as LinearSpring
 #: one of these). A new built-in law is added to one of these tuples.
 BUILT_IN_NORMAL = (LinearSpring, Hertz, KelvinVoigt, HuntCrossley, ConstantLoad)
 BUILT_IN_FRICTION = (Coulomb, ExponentialFriction, Stribeck)
+
+#: Every public name, so that tools and tests can walk the public surface; a new export
+#: is added here too.
+__all__ = [
+    "check_array",
+    "check_callable",
+    "check_choice",
+    "check_instance",
+    "check_int",
+    "check_real",
+    "FrictionLaw",
+    "NormalLaw",
+    "Coulomb",
+    "ExponentialFriction",
+    "Regularised",
+    "Stribeck",
+    "ConstantLoad",
+    "Hertz",
+    "HuntCrossley",
+    "KelvinVoigt",
+    "LinearSpring",
+    "BUILT_IN_NORMAL",
+    "BUILT_IN_FRICTION",
+]

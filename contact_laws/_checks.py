@@ -1,9 +1,13 @@
-"""Parameter checks shared by the laws and the model: each names the field and the range."""
+"""Argument checks shared by the laws, the model and every public function: each names the
+field, and the type or range allowed (``TypeError`` for a wrong type, ``ValueError`` for a
+wrong value)."""
 
 from __future__ import annotations
 
 import math
 from numbers import Integral, Real
+
+import numpy as np
 
 
 def check_real(owner: str, field: str, value: object, *, low: float = -math.inf,
@@ -55,3 +59,88 @@ def check_int(owner: str, field: str, value: object, *, low: int | None = None,
         raise ValueError(f"{name} must be an int {' and '.join(bounds)}"
                          + (f" {unit}" if unit else "") + f", got {number}")
     return number
+
+
+def _name(owner: str, field: str) -> str:
+    return f"{owner}.{field}" if owner else field
+
+
+def _shown(value: object) -> str:
+    """``value`` as a message shows it: its type and a repr cut to 80 characters."""
+    text = repr(value)
+    return f"{type(value).__name__} {text if len(text) <= 80 else text[:77] + '...'}"
+
+
+def check_array(owner: str, field: str, value: object, *, shape: tuple[int | None, ...],
+                low: float = -math.inf, high: float = math.inf, low_open: bool = False,
+                unit: str = "", min_length: int = 0) -> np.ndarray:
+    """Return ``value`` as a new float array of ``shape``, or raise naming ``owner.field``.
+
+    ``shape`` gives each axis's length, ``None`` for any: ``(None,)`` is a sequence of any
+    length, ``(3, 3)`` a 3 × 3 matrix and ``()`` a single number. A 0-d array, a number or a
+    string where a sequence is expected, and a sequence of non-numbers, raise
+    ``TypeError``; the wrong number of axes or length, fewer than ``min_length`` entries
+    along the first axis, a NaN, an infinity or an entry outside ``[low, high]`` (``(low,
+    high]`` when ``low_open``) raise ``ValueError``.
+    """
+    name = _name(owner, field)
+    kind = "a number" if shape == () else (
+        "a sequence of numbers" if len(shape) == 1 else f"a {len(shape)}-d array of numbers")
+    if isinstance(value, str | bytes | bool | np.bool_) or value is None \
+            or (np.ndim(value) == 0 and shape != ()) or isinstance(value, dict | set):
+        raise TypeError(f"{name} must be {kind}, got {_shown(value)}")
+    try:
+        array = np.array(value, dtype=float)
+    except (TypeError, ValueError) as error:
+        raise TypeError(f"{name} must be {kind}, got {_shown(value)} ({error})") from None
+    if np.asarray(value).dtype == np.bool_:
+        raise TypeError(f"{name} must be {kind}, got booleans {_shown(value)}")
+    wanted = "×".join("n" if n is None else str(n) for n in shape) or "scalar"
+    if array.ndim != len(shape) or any(n is not None and n != m
+                                       for n, m in zip(shape, array.shape)):
+        raise ValueError(f"{name} must have shape ({wanted}), got shape {array.shape}")
+    if array.ndim and array.shape[0] < min_length:
+        raise ValueError(f"{name} needs at least {min_length} entries, got {array.shape[0]}")
+    if not np.isfinite(array).all():
+        raise ValueError(f"{name} must be finite, got a NaN or an infinity in {_shown(value)}")
+    below = array <= low if low_open else array < low
+    if below.any() or (array > high).any():
+        bracket = "(" if low_open or math.isinf(low) else "["
+        closing = ")" if math.isinf(high) else "]"
+        allowed = f"{bracket}{low:g}, {high:g}{closing}" + (f" {unit}" if unit else "")
+        bad = array[below | (array > high)].flat[0]
+        raise ValueError(f"{name} must lie in {allowed}, got {bad:g}")
+    return array
+
+
+def check_callable(owner: str, field: str, value: object, *, expected: str = "a function"
+                   ) -> object:
+    """Return ``value`` if it can be called, or raise ``TypeError`` naming ``owner.field``
+    and what is ``expected`` (``"a function speed -> Scene"``)."""
+    if not callable(value) or isinstance(value, type):
+        raise TypeError(f"{_name(owner, field)} must be {expected}, got {_shown(value)}")
+    return value
+
+
+def check_instance(owner: str, field: str, value: object, kinds: type | tuple[type, ...], *,
+                   expected: str = "", optional: bool = False) -> object:
+    """Return ``value`` if it is an instance of ``kinds`` (or None, when ``optional``), or
+    raise ``TypeError`` naming ``owner.field`` and the expected type (``expected`` words it,
+    by default the types' names: "a Scene")."""
+    if (optional and value is None) or isinstance(value, kinds):
+        return value
+    names = [k.__name__ for k in (kinds if isinstance(kinds, tuple) else (kinds,))]
+    wanted = expected or "a " + " or ".join(names) + (" or None" if optional else "")
+    raise TypeError(f"{_name(owner, field)} must be {wanted}, got {_shown(value)}")
+
+
+def check_choice(owner: str, field: str, value: object, choices: tuple[str, ...]) -> str:
+    """Return ``value`` if it is one of the strings ``choices``, or raise naming
+    ``owner.field`` and the choices (``TypeError`` for a non-string)."""
+    name = _name(owner, field)
+    listed = ", ".join(repr(c) for c in choices)
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be one of {listed}, got {_shown(value)}")
+    if value not in choices:
+        raise ValueError(f"{name} must be one of {listed}, got {value!r}")
+    return value
