@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -37,6 +37,7 @@ from .linear_response import frequency_response
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive
 from .orbits import (ORBIT_TOLERANCE, UNIT_CIRCLE, ConvergenceError, PeriodicOrbit,
                      least_squares, orbit_at, periodic_orbit, state_weights)
+from .parametric import checked_scene_at
 from .scene import Scene
 from .simulate import integrate
 from .simulation import SimulationError
@@ -292,7 +293,8 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         raise ValueError(f"continuation.from_bifurcation must be a 'period-doubling' "
                          f"Bifurcation of a branch, got {from_bifurcation!r}")
     span = abs(stop - start)
-    solver = Solver(scene_at=_checked(scene_at, start, span), span=span,
+    checked_scene_at("continuation", scene_at, start, start + 1e-3 * span)
+    solver = Solver(scene_at=scene_at, span=span,
                     low=min(start, stop), high=max(start, stop), method=method,
                     tolerance=tolerance, event_tolerance=event_tolerance)
     if from_bifurcation is None:
@@ -588,22 +590,6 @@ class Solver:
         point, _ = self.correct(base + size * away, away, away @ base + size, periods,
                                 reach=1.0)
         return point, point.u - base
-
-
-def _checked(scene_at, start, span):
-    """``scene_at``, once it is seen to change its scene with the parameter."""
-    first = scene_at(start)
-    if not isinstance(first, Scene):
-        raise TypeError(f"continuation.scene_at must return a shroudnet.Scene, got "
-                        f"{type(first).__name__}")
-    moved = scene_at(start + 1e-3 * span)
-    same = all(np.array_equal(getattr(first.arrays, f.name), getattr(moved.arrays, f.name))
-               for f in fields(first.arrays))
-    if same:
-        raise ValueError("continuation: scene_at returns the same scene for different "
-                         "values: its value must change the scene (the speed, an "
-                         "amplitude, a gap, a law's parameter, …)")
-    return scene_at
 
 
 def _stick_phases(orbit):
