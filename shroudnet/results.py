@@ -31,10 +31,12 @@ import hashlib
 import json
 import math
 import os
+import re
 import tempfile
 import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass
+from enum import IntEnum
 from pathlib import Path
 
 import numpy as np
@@ -43,7 +45,7 @@ from . import scenefile
 from .classification import Classification
 from .continuation import Bifurcation, Branch
 from .cycle import EnergyPerCycle
-from .engine.codes import EventKind
+from .engine.codes import EventKind, Mode
 from .orbits import PeriodicOrbit
 from .reporting import SweepWarning
 from .methods import SimulationSettings
@@ -208,19 +210,142 @@ def _number_table(names: Iterable[str]) -> Callable[[object], bool]:
         and all(_is_number(v) for v in value.values())
 
 
-def _shape(path: Path, arrays: dict, name: str, shape: tuple, meaning: str) -> np.ndarray:
-    """``arrays[name]``, checked to be numbers of ``shape`` (None: any length there)."""
-    if name not in arrays:
-        raise ResultsError(f"{path}: has no array {name!r}")
-    array = arrays[name]
-    if not (np.issubdtype(array.dtype, np.number) or array.dtype == np.bool_):
-        raise ResultsError(f"{path}: array {name!r} holds {array.dtype}, not numbers")
-    if array.ndim != len(shape) or any(want is not None and have != want
-                                       for have, want in zip(array.shape, shape)):
-        wanted = " × ".join("any" if n is None else str(n) for n in shape) or "a scalar"
-        raise ResultsError(f"{path}: array {name!r} has shape {array.shape}; it must be "
-                           f"{wanted} ({meaning})")
+# ---- checking what a file holds: arrays ---------------------------------------------------
+
+#: The kinds of number an array may hold: numpy dtype kinds, and what they are in words.
+_REAL, _INTEGER, _COMPLEX = ("fiu", "real numbers"), ("iu", "integers"), ("fciu", "numbers")
+
+
+@dataclass(frozen=True)
+class _Array:
+    """What an array of a results file must be, for ``_checked_arrays``.
+
+    ``dims`` names its sizes (keys of the sizes the check is given, or found on the way:
+    the first array with a size unknown so far sets it, each later one must agree);
+    ``numbers`` its kind (``_REAL``, ``_INTEGER``, ``_COMPLEX``); ``finite``: no NaN or
+    inf; ``rising``: along its first axis it must ``"increase"`` (strictly) or ``"not
+    decrease"``; ``codes``: every value a member of this ``IntEnum``; ``indexes``: every
+    value an index into the size of that name (0 to size − 1); ``optional``: it may be
+    missing.
+    """
+
+    name: str
+    dims: tuple[str, ...]
+    numbers: tuple[str, str] = _REAL
+    finite: bool = True
+    rising: str = ""
+    codes: type[IntEnum] | None = None
+    indexes: str = ""
+    optional: bool = False
+
+
+def _checked_arrays(path: Path, arrays: dict, fields: Iterable[_Array], sizes: dict,
+                    words: dict | None = None) -> dict[str, np.ndarray]:
+    """The arrays ``fields`` name, each checked as its record says; ``ResultsError`` naming
+    the file and the array at the first fault.
+
+    ``sizes``: the sizes known (None: set by the first array that has it), updated as
+    arrays set them; ``words``: how a size is said, where not by its own name.
+    """
+    words = words or {}
+    checked = {}
+    for field in fields:
+        if field.name not in arrays:
+            if field.optional:
+                continue
+            raise ResultsError(f"{path}: has no array {field.name!r}")
+        checked[field.name] = _checked_array(path, arrays[field.name], field, sizes, words)
+    return checked
+
+
+def _checked_array(path: Path, array: np.ndarray, field: _Array, sizes: dict,
+                   words: dict) -> np.ndarray:
+    """``array``, checked in turn for each fault ``_ARRAY_FAULTS`` names; the sizes it has
+    that were unknown are then known."""
+    for fault in _ARRAY_FAULTS:
+        found = fault(array, field, sizes, words)
+        if found:
+            raise ResultsError(f"{path}: {found}")
+    sizes.update(zip(field.dims, array.shape))
     return array
+
+
+def _kind_fault(array, field: _Array, sizes: dict, words: dict) -> str:
+    kinds, numbers = field.numbers
+    if array.dtype.kind not in kinds:
+        return f"array {field.name!r} holds {array.dtype}, not " + (
+            numbers if array.dtype.kind in "biufc" else "numbers")
+    return ""
+
+
+def _shape_fault(array, field: _Array, sizes: dict, words: dict) -> str:
+    wanted = tuple(sizes.get(dim) for dim in field.dims)
+    if array.ndim == len(wanted) and all(want is None or have == want
+                                         for have, want in zip(array.shape, wanted)):
+        return ""
+    shape = " × ".join("any" if n is None else str(n) for n in wanted) or "a scalar"
+    meaning = " × ".join(_count(n, words.get(dim, dim)) for n, dim in zip(wanted, field.dims))
+    return f"array {field.name!r} has shape {array.shape}; it must be {shape} ({meaning})"
+
+
+def _finite_fault(array, field: _Array, sizes: dict, words: dict) -> str:
+    if not field.finite or array.dtype.kind not in "fc" or np.isfinite(array).all():
+        return ""
+    at = np.unravel_index(np.argmax(~np.isfinite(array)), array.shape)
+    value = "NaN" if np.isnan(array[at]) else "inf"
+    return f"array {field.name!r} holds {value} at {_along(field, words)} {at[0]}"
+
+
+def _order_fault(array, field: _Array, sizes: dict, words: dict) -> str:
+    if not field.rising or len(array) < 2:
+        return ""
+    step = np.diff(array, axis=0).reshape(len(array) - 1, -1)
+    bad = (step <= 0 if field.rising == "increase" else step < 0).any(axis=1)
+    if not bad.any():
+        return ""
+    at = int(np.argmax(bad))
+    how = "falls" if (step[at] < 0).any() else "repeats a value"
+    return (f"array {field.name!r} must {field.rising}, it {how} at "
+            f"{_along(field, words)} {at + 1}")
+
+
+def _code_fault(array, field: _Array, sizes: dict, words: dict) -> str:
+    if field.codes is None:
+        return ""
+    unknown = ~np.isin(array, [member.value for member in field.codes])
+    if not unknown.any():
+        return ""
+    at = np.unravel_index(np.argmax(unknown), array.shape)
+    what = re.sub(r"(?<!^)(?=[A-Z])", " ", field.codes.__name__).lower()  # EventKind
+    known = ", ".join(f"{member.value} ({member.name.lower()})" for member in field.codes)
+    return (f"array {field.name!r} holds the unknown {what} {array[at]} at "
+            f"{_along(field, words)} {at[0]}; the {what}s are {known}")
+
+
+def _index_fault(array, field: _Array, sizes: dict, words: dict) -> str:
+    if not field.indexes or not array.size:
+        return ""
+    count, low, high = sizes[field.indexes], array.min(), array.max()
+    if 0 <= low and high < count:
+        return ""
+    things = words.get(field.indexes, field.indexes) + "s"
+    return f"{field.name} holds {low} to {high}; the scene has " + (
+        f"{things} 0 to {count - 1}" if count else f"no {things}")
+
+
+#: The faults an array is checked for, in this order (each check may take the ones
+#: before it as passed).
+_ARRAY_FAULTS = (_kind_fault, _shape_fault, _finite_fault, _order_fault, _code_fault,
+                 _index_fault)
+
+
+def _along(field: _Array, words: dict) -> str:
+    """What the first axis of an array counts, in words (``sample``, ``orbit``)."""
+    return words.get(field.dims[0], field.dims[0])
+
+
+def _count(n: int | None, word: str) -> str:
+    return word + "s" if n is None else f"{n} {word}" + ("s" if n != 1 else "")
 
 
 # ---- a simulation -------------------------------------------------------------------------
@@ -235,6 +360,25 @@ _SIMULATION_HEADER = (
                                                  for k, n in v.items())),
     _Field("samples_per_period", "an int >= 1", lambda v: _is_count(v) and v >= 1),
     _Field("steps", "an int >= 0", _is_count),
+)
+
+
+#: The arrays of a simulation file, in the order checked: a column is a blade (with
+#: substructures, a coordinate); the events are in time order.
+_EVENT_ARRAYS = (
+    _Array("event_time", ("event",), rising="not decrease"),
+    _Array("event_interface", ("event",), _INTEGER, indexes="interface"),
+    _Array("event_kind", ("event",), _INTEGER, codes=EventKind),
+)
+_SIMULATION_ARRAYS = (
+    _Array("t", ("sample",), rising="increase"),
+    _Array("x", ("sample", "column")),
+    _Array("v", ("sample", "column")),
+    _Array("normal_force", ("sample", "interface")),
+    _Array("friction_force", ("sample", "interface")),
+    _Array("modes", ("sample", "interface"), _INTEGER, codes=Mode),
+    _Array("work", ("sample", "work column")),
+    *_EVENT_ARRAYS,
 )
 
 
@@ -288,41 +432,35 @@ def save_simulation(path: str | Path, sim: Simulation,
 def load_arrays(path: str | Path) -> SimulationArrays:
     """Read a simulation file without rebuilding its scene.
 
-    Every array is checked against the others and against the numbers of blades and
+    Every array is checked as ``_SIMULATION_ARRAYS`` says: there, numbers of its kind,
+    finite, its shape consistent with the others and with the numbers of blades and
     interfaces of the scene document (with substructures, whose coordinates the document
-    does not count, x and v against each other); raises ``ResultsError`` naming the file
-    and what is wrong.
+    does not count, x and v with each other), its times in order, its modes and event
+    kinds known; raises ``ResultsError`` naming the file, the array and what is wrong.
     """
     path = Path(path)
     meta, arrays = _load_npz(path, kind="simulation")
     _checked(path, meta, _SIMULATION_HEADER)
     blades, interfaces = _document_counts(path, meta["scene"])
-    samples = _shape(path, arrays, "t", (None,), "one time per sample")
-    n = len(samples)
+    # with substructures, whose coordinates the document does not count, x sets them
+    sizes = {"sample": None, "column": blades, "interface": interfaces}
+    words = {"column": "coordinate" if blades is None else "blade"}
+    checked = _checked_arrays(path, arrays, _SIMULATION_ARRAYS[:1], sizes, words)
+    n = len(checked["t"])
     if n < 1 or (n - 1) % meta["samples_per_period"]:
         raise ResultsError(f"{path}: {n} samples are not a whole number of periods of "
                            f"{meta['samples_per_period']} samples, plus one")
-    if blades is None:  # substructures: as many coordinates as x has columns
-        x = _shape(path, arrays, "x", (n, None), f"{n} samples × coordinates")
-        blades, what = x.shape[1], "coordinates (as x)"
-    else:
-        what = "blades"
-    columns = {name: _shape(path, arrays, name, (n, count), f"{n} samples × {count} {kind}")
-               for name, count, kind in (("x", blades, what), ("v", blades, what),
-                                         ("normal_force", interfaces, "interfaces"),
-                                         ("friction_force", interfaces, "interfaces"),
-                                         ("modes", interfaces, "interfaces"))}
-    work = _shape(path, arrays, "work", (n, None), f"{n} samples × work columns")
+    checked.update(_checked_arrays(path, arrays, _SIMULATION_ARRAYS[1:], sizes, words))
     try:
         settings = SimulationSettings.from_dict(meta["settings"])
     except (TypeError, ValueError) as error:
         raise ResultsError(f"{path}: meta.settings is damaged ({error})") from None
+    events = EventLog(time=checked.pop("event_time"), interface=checked.pop("event_interface"),
+                      kind=checked.pop("event_kind"), counts=meta["event_counts"])
     return SimulationArrays(path=path, document=meta["scene"], settings=settings,
-                            t=samples, work=work, events=_events(path, arrays, meta,
-                                                                 interfaces),
-                            energy=EnergyLedger(**meta["energy"]),
+                            events=events, energy=EnergyLedger(**meta["energy"]),
                             samples_per_period=meta["samples_per_period"],
-                            steps=meta["steps"], **columns)
+                            steps=meta["steps"], **checked)
 
 
 def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
@@ -337,19 +475,6 @@ def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
     if any(scenefile.is_substructure(entry) for entry in document["blades"]):
         return None, counts[1]
     return counts[0], counts[1]
-
-
-def _events(path: Path, arrays: dict, meta: dict, interfaces: int) -> EventLog:
-    time = _shape(path, arrays, "event_time", (None,), "one time per event")
-    count = len(time)
-    where = _shape(path, arrays, "event_interface", (count,), f"{count} events")
-    kind = _shape(path, arrays, "event_kind", (count,), f"{count} events")
-    if count and (where.min() < 0 or where.max() >= interfaces):
-        raise ResultsError(f"{path}: event_interface holds {where.min()} to {where.max()}; "
-                           f"the scene has interfaces 0 to {interfaces - 1}")
-    if count and not np.isin(kind, [k.value for k in EventKind]).all():
-        raise ResultsError(f"{path}: event_kind holds values that are no EventKind")
-    return EventLog(time=time, interface=where, kind=kind, counts=meta["event_counts"])
 
 
 def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation:
@@ -449,6 +574,15 @@ _FAILURE_HEADER = (
     _Field("message", "text", lambda v: isinstance(v, str)),
 )
 _POINT, _FAILED_POINT = "sweep point", "failed sweep point"
+#: The arrays of a sweep point: its Poincaré points (x, v), its final state by
+#: coordinate, and its peak per response (which the file does not count; files written
+#: before peaks were kept have none).
+_POINT_ARRAYS = (
+    _Array("poincare", ("recorded period", "phase coordinate")),
+    _Array("final_x", ("coordinate",)),
+    _Array("final_v", ("coordinate",)),
+    _Array("peak", ("response",), optional=True),
+)
 
 
 def _save_point(path: Path, point: SweepPoint, fingerprint: str | None = None) -> Path:
@@ -485,13 +619,10 @@ def _read_point(path: Path) -> tuple[SweepPoint, str | None]:
     if meta.get("kind") != _POINT:
         raise ResultsError(f"{path}: holds a {meta.get('kind')!r}, not a sweep point")
     _checked(path, meta, _POINT_HEADER)
-    poincare = _shape(path, arrays, "poincare", (None, 2), "(x, v) per recorded period")
-    final_x = _shape(path, arrays, "final_x", (None,), "one value per blade")
-    final_v = _shape(path, arrays, "final_v", final_x.shape, "one value per blade")
-    peak = np.empty(0)  # none kept, or a file written before peaks were kept
-    if "peak" in arrays and arrays["peak"].size:  # one per response: per blade, or with
-        # substructures per component of a point, which the file does not count
-        peak = _shape(path, arrays, "peak", (None,), "one value per response")
+    checked = _checked_arrays(path, arrays, _POINT_ARRAYS, {"phase coordinate": 2})
+    poincare, final_x, final_v = (checked[name] for name in ("poincare", "final_x", "final_v"))
+    # none kept, or a file written before peaks were kept: empty
+    peak = checked.get("peak", np.empty(0))
     try:
         classification = Classification(**meta["classification"])
     except (TypeError, ValueError) as error:
@@ -704,6 +835,38 @@ _BRANCH_HEADER = (
     _Field("points", "an int >= 1", lambda v: _is_count(v) and v >= 1),
     _Field("kinds", "a list of bifurcation kinds",
            lambda v: isinstance(v, list) and all(isinstance(k, str) for k in v)),
+    _Field("event_counts", "a list of tables of event counts by kind, one per orbit",
+           lambda v: isinstance(v, list) and all(
+               isinstance(c, dict) and all(isinstance(k, str) and _is_count(n)
+                                           for k, n in c.items()) for c in v)),
+)
+
+
+#: The measures a branch file keeps per orbit and response.
+_PER_RESPONSE = ("peak", "mean_square", "maximum", "minimum", "mean")
+#: The arrays of a branch file, in the order checked: per orbit (its branch points, then
+#: the orbits of its bifurcations) its parameter value, state y = (x, ẋ), Floquet
+#: multipliers and monodromy matrix, ...; the events of every orbit, one after another
+#: (orbit k's from event_offsets[k]); then per bifurcation. The critical multiplier of a
+#: nonsmooth bifurcation is NaN.
+_BRANCH_ARRAYS = (
+    _Array("parameter", ("orbit",)),
+    _Array("initial", ("orbit", "state variable")),
+    _Array("multipliers", ("orbit", "state variable"), _COMPLEX),
+    _Array("monodromy", ("orbit", "state variable", "state variable")),
+    _Array("residual", ("orbit",)),
+    _Array("scale", ("orbit",)),
+    _Array("iterations", ("orbit",), _INTEGER),
+    _Array("singular", ("orbit",), _INTEGER),
+    *(_Array(name, ("orbit", "response")) for name in _PER_RESPONSE),
+    _Array("energy_per_cycle", ("orbit", "energy term")),
+    _Array("kinetic_peak", ("orbit",)),
+    _Array("event_offsets", ("orbit start",), _INTEGER, rising="not decrease"),
+    _Array("event_time", ("event",)),
+    *_EVENT_ARRAYS[1:],
+    _Array("bifurcation_multiplier", ("bifurcation",), _COMPLEX, finite=False),
+    _Array("bifurcation_index", ("bifurcation",), _INTEGER),
+    _Array("bifurcation_bracket", ("bifurcation", "bracket end")),
 )
 
 
@@ -761,7 +924,12 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
     _checked(path, meta, _BRANCH_HEADER)
     points, kinds = meta["points"], meta["kinds"]
     total = points + len(kinds)
-    values = _shape(path, arrays, "parameter", (total,), f"{total} orbits")
+    if len(meta["event_counts"]) != total:
+        raise ResultsError(f"{path}: meta.event_counts has {len(meta['event_counts'])} "
+                           f"tables for {total} orbits")
+    sizes = {"orbit": total, "bifurcation": len(kinds), "bracket end": 2,
+             "energy term": len(dataclasses.fields(EnergyPerCycle))}
+    values = _checked_arrays(path, arrays, _BRANCH_ARRAYS[:1], sizes)["parameter"]
     if meta["parameter_path"] is not None:
         document = _scene(path, meta["scenes"], laws).document
         scene_at = scenefile.SceneAt(document, meta["parameter_path"], laws=laws)
@@ -776,33 +944,43 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
                                "orbits")
         scenes = [_scene(path, document, laws).scene for document in meta["scenes"]]
     n = scenes[0].arrays.n_blades  # blades, or with substructures coordinates
-    initial = _shape(path, arrays, "initial", (total, 2 * n), f"{total} orbits × 2 n_blades")
-    offsets = _shape(path, arrays, "event_offsets", (total + 1,), "orbit starts in the log")
-    width = len(scenes[0].responses)
-    per_response = {name: _shape(path, arrays, name, (total, width),
-                                 f"{total} orbits × {width} responses")
-                    for name in ("peak", "mean_square", "maximum", "minimum", "mean")}
-    energy = _shape(path, arrays, "energy_per_cycle", (total, 4),
-                    f"{total} orbits × (excitation, damping, friction, contact)")
-    kinetic = _shape(path, arrays, "kinetic_peak", (total,), f"{total} orbits")
+    sizes.update({"state variable": 2 * n, "response": len(scenes[0].responses),
+                  "orbit start": total + 1, "interface": len(scenes[0].group.interfaces)})
+    columns = _checked_arrays(path, arrays, _BRANCH_ARRAYS[1:], sizes)
+    offsets = columns["event_offsets"]
+    if offsets[0] != 0 or offsets[-1] != sizes["event"]:
+        raise ResultsError(f"{path}: array 'event_offsets' runs from {offsets[0]} to "
+                           f"{offsets[-1]}; it must run from 0 to {sizes['event']}, the "
+                           "number of events")
+    time = columns["event_time"]
+    falls = np.setdiff1d(np.flatnonzero(np.diff(time) < 0) + 1, offsets)
+    if len(falls):
+        raise ResultsError(f"{path}: array 'event_time' must not decrease within an orbit, "
+                           f"it falls at event {falls[0]}")
+    index = columns["bifurcation_index"]
+    if len(index) and (index.min() < 0 or index.max() >= points):
+        raise ResultsError(f"{path}: bifurcation_index holds {index.min()} to "
+                           f"{index.max()}; the branch has points 0 to {points - 1}")
     orbits = []
     for k, scene in enumerate(scenes):
         run = slice(int(offsets[k]), int(offsets[k + 1]))
-        events = EventLog(time=arrays["event_time"][run], interface=arrays["event_interface"][run],
-                          kind=arrays["event_kind"][run], counts=meta["event_counts"][k])
+        events = EventLog(time=time[run], interface=columns["event_interface"][run],
+                          kind=columns["event_kind"][run], counts=meta["event_counts"][k])
+        initial = columns["initial"][k]
         orbits.append(PeriodicOrbit(
-            scene=scene, initial=(initial[k, :n].copy(), initial[k, n:].copy()),
-            periods=meta["periods"], multipliers=arrays["multipliers"][k],
-            monodromy=arrays["monodromy"][k], residual=float(arrays["residual"][k]),
-            scale=float(arrays["scale"][k]), iterations=int(arrays["iterations"][k]),
-            events=events, **{name: column[k] for name, column in per_response.items()},
-            energy_per_cycle=EnergyPerCycle(*(float(e) for e in energy[k])),
-            kinetic_peak=float(kinetic[k]), singular=int(arrays["singular"][k])))
+            scene=scene, initial=(initial[:n].copy(), initial[n:].copy()),
+            periods=meta["periods"], multipliers=columns["multipliers"][k],
+            monodromy=columns["monodromy"][k], residual=float(columns["residual"][k]),
+            scale=float(columns["scale"][k]), iterations=int(columns["iterations"][k]),
+            events=events, **{name: columns[name][k] for name in _PER_RESPONSE},
+            energy_per_cycle=EnergyPerCycle(*(float(e) for e in columns["energy_per_cycle"][k])),
+            kinetic_peak=float(columns["kinetic_peak"][k]),
+            singular=int(columns["singular"][k])))
     bifurcations = tuple(
         Bifurcation(kind=kind, parameter=float(values[points + j]), orbit=orbits[points + j],
-                    multiplier=complex(arrays["bifurcation_multiplier"][j]),
-                    index=int(arrays["bifurcation_index"][j]),
-                    bracket=tuple(float(b) for b in arrays["bifurcation_bracket"][j]))
+                    multiplier=complex(columns["bifurcation_multiplier"][j]),
+                    index=int(index[j]),
+                    bracket=tuple(float(b) for b in columns["bifurcation_bracket"][j]))
         for j, kind in enumerate(kinds))
     return Branch(parameter=values[:points].copy(), orbits=tuple(orbits[:points]),
                   bifurcations=bifurcations, periods=meta["periods"], name=meta["name"],
