@@ -22,13 +22,14 @@ from __future__ import annotations
 
 import ctypes
 import os
+import reprlib
 import pickle
 import signal
 import sys
 import threading
 import time
 import warnings
-from collections.abc import Callable, Hashable, Mapping, Sequence
+from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence, Set
 from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from contextlib import contextmanager
 from typing import Protocol
@@ -36,11 +37,14 @@ from typing import Protocol
 import cloudpickle
 import numpy as np
 
+from contact_laws import check_int, check_real
+
 from .analysis import classify, friction_loss_per_cycle
 from .stability import LYAPUNOV_BLOCKS, lyapunov
 from .classification import REPEAT_TOLERANCE
 from .extremes import sampled_peaks
 from .methods import TRANSIENT, Accuracy, Adaptive, FixedStep
+from .parametric import checked_scene_at
 from .reporting import ProgressReporter, SweepWarning
 from .scene import Scene
 from .simulate import simulate
@@ -191,20 +195,33 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     Raises
     ------
     ValueError, TypeError
-        Bad arguments, named.
+        Bad arguments, named, before any point runs: among them a ``scene_at`` that
+        returns the same scene for the first value and the one farthest from it (its value
+        changes nothing, as ``continuation`` refuses too), a ``blade`` or an ``initial``
+        state that the first value's scene does not have.
     shroudnet.results.ResultsError
         ``save_to`` holds another sweep, is a file, or its ``sweep.json`` is damaged and
         its points cannot be matched to this sweep. A ``store`` raises its own errors.
     """
-    values = [float(v) for v in values]
-    _check_arguments(values, transient, record, method, workers, executor, continuation,
-                     scene_at, retry_failed, save_to, store)
+    values = _checked_values(values)
+    transient = check_int("sweep", "transient", transient, low=0, unit="periods")
+    record = check_int("sweep", "record", record, low=3, unit="periods")
+    samples_per_period = check_int("sweep", "samples_per_period", samples_per_period, low=1)
+    tolerance = check_real("sweep", "tolerance", tolerance, low=0.0, low_open=True)
+    workers = None if workers is None else check_int("sweep", "workers", workers, low=1)
+    _check_arguments(scene_at, parameter, method, samples_per_period, workers, executor,
+                     store, save_to, continuation=continuation, lyapunov=lyapunov,
+                     retry_failed=retry_failed)
     executor = None if executor is None else _as_executor(executor)
+    report = _reporter(progress)
+    first = checked_scene_at("sweep", _named(scene_at, parameter), values[0],
+                             max(values, key=lambda value: abs(value - values[0])))
+    _check_for(first, blade, initial)
+    blade = int(blade) if isinstance(blade, np.integer) else blade  # kept as JSON
     if executor is None and not continuation:
         workers = min(default_workers() if workers is None else workers, len(values))
     serial = continuation or (executor is None and workers == 1)
     pickled = None if serial else _pickled(scene_at)
-    report = _reporter(progress)
     notice = _notifier(report)
     options = {"blade": blade, "transient": transient, "record": record, "method": method,
                "samples_per_period": samples_per_period, "tolerance": tolerance,
@@ -248,32 +265,46 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     return Sweep(parameter=parameter, blade=blade, points=tuple(points), settings=settings)
 
 
-def _check_arguments(values, transient, record, method, workers, executor, continuation,
-                     scene_at, retry_failed, save_to, store) -> None:
-    """Raise ``ValueError``/``TypeError`` naming the first bad argument of ``sweep``."""
-    if not values:
+def _checked_values(values) -> list[float]:
+    """``values`` as a list of floats: a sequence of finite real numbers (a list, a tuple,
+    a range, a 1-d array; numpy's numbers as Python's), at least one."""
+    if (isinstance(values, str | bytes | Mapping | Set) or not isinstance(values, Iterable)
+            or (isinstance(values, np.ndarray) and values.ndim != 1)):
+        raise TypeError(f"sweep.values must be a sequence of numbers (a list, a tuple or a "
+                        f"1-d array), got {type(values).__name__} {reprlib.repr(values)}")
+    checked = [check_real("sweep", f"values[{index}]", value)
+               for index, value in enumerate(values)]
+    if not checked:
         raise ValueError("sweep needs at least one value")
-    for name, number in (("transient", transient), ("record", record)):
-        if isinstance(number, bool) or not isinstance(number, int) or number < 0:
-            raise ValueError(f"sweep.{name} must be an int >= 0, got {number!r}")
-    if record < 3:
-        raise ValueError(f"sweep.record must be at least 3 periods, got {record}")
+    return checked
+
+
+def _check_arguments(scene_at, parameter, method, samples_per_period, workers, executor,
+                     store, save_to, **flags) -> None:
+    """Raise ``ValueError``/``TypeError`` naming the first bad argument of ``sweep`` (the
+    numbers are checked already; ``flags`` are those that must be True or False)."""
+    if not callable(scene_at):
+        raise TypeError(f"sweep.scene_at must be a callable value -> Scene, got {scene_at!r}")
+    if not isinstance(parameter, str):
+        raise TypeError(f"sweep.parameter must be a str (the parameter's name), got "
+                        f"{type(parameter).__name__} {parameter!r}")
+    for name, flag in flags.items():
+        if not isinstance(flag, bool):
+            raise TypeError(f"sweep.{name} must be True or False, got {flag!r}")
     if not isinstance(method, FixedStep | Adaptive | Accuracy):
         raise TypeError("sweep.method must be FixedStep(...), Adaptive(...) or Accuracy(...), "
                         f"got {method!r}")
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
-                                or workers < 1):
-        raise ValueError(f"sweep.workers must be an int >= 1 or None (every core), "
-                         f"got {workers!r}")
+    if isinstance(method, FixedStep) and method.steps_per_period % samples_per_period:
+        raise ValueError(f"sweep.samples_per_period must divide FixedStep.steps_per_period "
+                         f"= {method.steps_per_period}, got {samples_per_period}")
     if executor is not None and workers is not None:
         raise ValueError("sweep: give workers (a pool of our own) or executor, not both")
-    if continuation and (executor is not None or (workers or 1) > 1):
+    if flags["continuation"] and (executor is not None or (workers or 1) > 1):
         raise ValueError("sweep: continuation chains each point from the previous one and "
                          "runs serially; leave out workers and executor")
-    if not callable(scene_at):
-        raise TypeError(f"sweep.scene_at must be a callable value -> Scene, got {scene_at!r}")
-    if not isinstance(retry_failed, bool):
-        raise TypeError(f"sweep.retry_failed must be True or False, got {retry_failed!r}")
+    if save_to is not None and not isinstance(save_to, str | os.PathLike):
+        raise TypeError(f"sweep.save_to must be the path of a folder (str or os.PathLike), "
+                        f"got {type(save_to).__name__} {save_to!r}")
     if save_to is not None and store is not None:
         raise ValueError("sweep: give save_to (a folder) or store (where to keep the "
                          "points), not both")
@@ -281,6 +312,38 @@ def _check_arguments(values, transient, record, method, workers, executor, conti
         raise TypeError(f"sweep.store must be a callable store(manifest, notice=...) that "
                         f"opens a store, such as results.open_sweep_store(folder); got "
                         f"{store!r}")
+
+
+def _named(scene_at, parameter):
+    """``scene_at``, with the value named in any error it raises."""
+    def scene(value):
+        with _naming(parameter, value):
+            return scene_at(value)
+    return scene
+
+
+def _check_for(scene: Scene, blade, initial) -> None:
+    """Raise naming ``blade`` or ``initial`` if ``scene`` (the first value's) has no such
+    response or no state of that size: found now, not in every point."""
+    try:
+        scene.response_position(blade)
+    except ValueError as error:
+        raise ValueError(f"sweep.blade: {error}") from None
+    if initial is None:
+        return
+    n = scene.arrays.n_blades  # coordinates, with substructures
+    if isinstance(initial, str | bytes) or not isinstance(initial, Sequence | np.ndarray) \
+            or len(initial) != 2:
+        raise TypeError(f"sweep.initial must be None or (x0, v0), two arrays of {n} "
+                        f"numbers, got {reprlib.repr(initial)}")
+    for name, part in zip(("x0", "v0"), initial):
+        try:
+            array = np.asarray(part, dtype=float)
+        except (TypeError, ValueError):
+            array = None
+        if array is None or array.shape != (n,) or not np.isfinite(array).all():
+            raise ValueError(f"sweep.initial {name} must hold {n} finite numbers, got "
+                             f"{reprlib.repr(part)}")
 
 
 def _reporter(progress) -> ProgressCallback | None:
@@ -292,8 +355,9 @@ def _reporter(progress) -> ProgressCallback | None:
         return None
     if callable(progress):
         return progress
-    raise ValueError(f"progress must be 'auto', True, False, None or a callable "
-                     f"progress(done, total), got {progress!r}")
+    wrong = ValueError if isinstance(progress, str) else TypeError
+    raise wrong(f"sweep.progress must be 'auto', True, False, None or a callable "
+                f"progress(done, total), got {progress!r}")
 
 
 def _notifier(report) -> Callable[[str], None]:
