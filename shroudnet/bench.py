@@ -320,21 +320,48 @@ def beams_against_plain(periods: int, repeats: int) -> dict[str, tuple[float, fl
     return rows
 
 
-def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(prog="python -m shroudnet.bench",
-                                     description=__doc__.split("\n\n")[0])
-    parser.add_argument("--points", type=int, default=400,
+def whole(low: int):
+    """An argparse type: a whole number >= ``low``, so that a bad option stops the benchmark
+    before any of its work, not in the middle of it."""
+    def number(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"must be a whole number >= {low}, "
+                                             f"got {text!r}") from None
+        if value < low:
+            raise argparse.ArgumentTypeError(f"must be a whole number >= {low}, got {value}")
+        return value
+    number.__name__ = f"whole number >= {low}"
+    return number
+
+
+def options_parser(prog: str = "python -m shroudnet.bench",
+                   parser_class: type[argparse.ArgumentParser] = argparse.ArgumentParser
+                   ) -> argparse.ArgumentParser:
+    """The benchmark's options, every one checked as it is read; ``prog`` and
+    ``parser_class`` those of the command that runs it (``shroudnet bench``)."""
+    parser = parser_class(prog=prog, description=__doc__.split("\n\n")[0])
+    parser.add_argument("--points", type=whole(1), default=400,
                         help="values of γ1 in the diagram (default 400)")
-    parser.add_argument("--transient", type=int, default=TRANSIENT)
-    parser.add_argument("--record", type=int, default=100)
-    parser.add_argument("--scaling-points", type=int, default=None,
+    parser.add_argument("--transient", type=whole(0), default=TRANSIENT,
+                        help=f"periods before recording, per value (default {TRANSIENT})")
+    parser.add_argument("--record", type=whole(3), default=100,
+                        help="periods recorded per value, at least 3 (default 100)")
+    parser.add_argument("--scaling-points", type=whole(1), default=None,
                         help="values per run of the worker scaling (default 8 per core)")
-    parser.add_argument("--baseline-periods", type=int, default=50)
+    parser.add_argument("--baseline-periods", type=whole(1), default=50,
+                        help="periods of the comparison with solve_ivp (default 50)")
     parser.add_argument("--quick", action="store_true",
                         help="small sizes everywhere, to check that the benchmark runs")
     parser.add_argument("--diagram-only", action="store_true", help=argparse.SUPPRESS)
-    parser.add_argument("--workers", type=int, default=None, help=argparse.SUPPRESS)
-    args = parser.parse_args(argv)
+    parser.add_argument("--workers", type=whole(1), default=None, help=argparse.SUPPRESS)
+    return parser
+
+
+def main(argv=None) -> None:
+    """Run the benchmark with the options ``argv`` (default: the process's)."""
+    args = options_parser().parse_args(argv)
     if args.diagram_only:
         return _diagram_only(args.points, args.transient, args.record, args.workers)
     if args.quick:
