@@ -13,7 +13,9 @@
 
 Whatever goes wrong is told in one line, ``shroudnet COMMAND: error: …``, with exit status
 2 (bad input: a file, a folder, an option), 1 (a fault of shroudnet itself; set
-``SHROUDNET_TRACEBACK=1`` to see where) or 130 (interrupted with Ctrl-C).
+``SHROUDNET_TRACEBACK=1`` to see where) or 130 (interrupted with Ctrl-C). Options, files and
+output folders are checked before any work: a folder to write in is made and a file written
+and removed there first.
 """
 
 from __future__ import annotations
@@ -23,13 +25,19 @@ import importlib
 import os
 import re
 import sys
+import tempfile
 import time
+import traceback
 import zipfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 from types import ModuleType
 
 import numpy as np
+
+import contact_laws
 
 from . import results, scenefile
 from .analysis import classify
@@ -39,6 +47,7 @@ from .group import BLADE_POINT
 from .linear import CONTACTS, linear_modes
 from .methods import TRANSIENT
 from .mistuning import mistuning_study
+from .parametric import same_scene
 from .progress import ProgressReporter, TerminalProgress
 from .simulate import simulate
 from .simulation import SimulationError, steady_rows
@@ -49,8 +58,12 @@ from .sweep import sweep
 BAD_INPUT, FAULT, INTERRUPTED = 2, 1, 130
 
 #: Errors that mean bad input (a file, a folder, an option, a parameter value), told in a
-#: line: ``SceneFileError`` and ``ResultsError`` are ``ValueError``s.
+#: line: ``SceneFileError`` and ``ResultsError`` are ``ValueError``s. A ``TypeError`` is bad
+#: input too when one of shroudnet's checks raised it (``_refused``).
 _INPUT_ERRORS = (ValueError, OSError, EOFError, zipfile.BadZipFile, SimulationError)
+
+#: The folders of the packages whose ``raise TypeError(...)`` is a check of an argument.
+_CHECKING_CODE = (Path(__file__).resolve().parent, Path(contact_laws.__file__).resolve().parent)
 
 
 class UsageError(ValueError):
@@ -71,8 +84,10 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _bench(options: list[str]) -> int:
-    from .bench import main as bench_main
-    bench_main(options)
+    from . import bench
+    # a bad option is told now, in one line, not after minutes of benchmark
+    bench.options_parser("shroudnet bench", OneLineParser).parse_args(options)
+    bench.main(options)
     return 0
 
 
@@ -91,11 +106,27 @@ def _guarded(name: str, command) -> int:
         _say(name, f"error: {_describe(error)}")
         return BAD_INPUT
     except Exception as error:
+        if isinstance(error, TypeError) and _refused(error):
+            _say(name, f"error: {_describe(error)}")
+            return BAD_INPUT
         if os.environ.get("SHROUDNET_TRACEBACK"):
             raise
         _say(name, f"error: unexpected {type(error).__name__}: {_describe(error)} (a fault of "
                    "shroudnet; set SHROUDNET_TRACEBACK=1 to see where)")
         return FAULT
+
+
+def _refused(error: TypeError) -> bool:
+    """Whether ``error`` is a check's verdict on the input: raised by a ``raise`` statement
+    of shroudnet or contact_laws (a value of the wrong type, named, as DESIGN §4 asks),
+    not by Python on an operation that met the wrong type, which is a fault."""
+    frames = traceback.extract_tb(error.__traceback__)
+    if not frames:
+        return False
+    last = frames[-1]
+    where = Path(last.filename).resolve()
+    return (any(where.is_relative_to(folder) for folder in _CHECKING_CODE)
+            and (last.line or "").startswith("raise "))
 
 
 def _say(name: str, message: str) -> None:
@@ -113,8 +144,16 @@ def _describe(error: BaseException) -> str:
     return " ".join(" ".join([text, *(f"({note})" for note in notes)]).split())
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """argparse's parser, telling a bad option in one line, ``PROG: error: …``, with exit
+    status 2, as every other bad input is told (the usage is in ``--help``)."""
+
+    def error(self, message: str):
+        self.exit(BAD_INPUT, f"{self.prog}: error: {message}\n")
+
+
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="shroudnet", description="Nonlinear forced vibration of shrouded blade groups "
         "that rub, impact and stick: simulate scene files, sweep their parameters, redraw "
         "saved results, benchmark.",
@@ -322,7 +361,7 @@ def _cache(args) -> int:
 
 
 def _run(args) -> int:
-    loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
+    loaded = _load_scene(args.scene, _import_laws(args.laws))
     settings = loaded.run
     periods = settings.periods if args.periods is None else args.periods
     if periods <= settings.transient:
@@ -334,6 +373,7 @@ def _run(args) -> int:
     _check_folder(args.output, "--output")
     for suffix in (".npz", ".png"):
         _check_file(_beside(stem, suffix), "--output")
+    _prove_writable(args.output, "--output")
     start = time.perf_counter()
     sim = simulate(scene, periods, method=settings.method,
                    samples_per_period=settings.samples_per_period,
@@ -411,6 +451,98 @@ def _check_file(path: Path, option: str) -> None:
     if path.is_dir():
         raise UsageError(f"{option} {path}: is a folder, so the file cannot be written")
     _check_folder(path.parent, option, requested=path)
+
+
+def _writable_file(path: Path, option: str) -> None:
+    """``_check_file``, and its folder made and proven writable (``_prove_writable``)."""
+    _check_file(path, option)
+    _prove_writable(path.parent, option, requested=path)
+
+
+def _prove_writable(folder: Path, option: str, requested: Path | None = None) -> None:
+    """Make ``folder`` (and its parents) and write and remove a file there, now, before any
+    work: what the system refuses only to a write (a read-only or pseudo file system such
+    as /proc, a full disc, rights that ``os.access`` does not see) fails here, not after
+    the run. The message names ``requested`` (default ``folder``), what the user gave."""
+    requested = folder if requested is None else requested
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        handle, probe = tempfile.mkstemp(prefix=".shroudnet-probe-", dir=folder)
+        try:
+            os.write(handle, b"shroudnet")
+        finally:
+            os.close(handle)
+            os.unlink(probe)
+    except OSError as error:
+        raise UsageError(f"{option} {requested}: cannot write there "
+                         f"({error.strerror or _describe(error)})") from None
+
+
+def _load_scene(path: Path, laws: tuple[ModuleType, ...]):
+    """``scenefile.load``, with what its reader met unnamed told as the file's."""
+    with _reading(path):
+        return scenefile.load(path, laws=laws)
+
+
+@contextmanager
+def _reading(path: Path) -> Iterator[None]:
+    """Tell an error that no check named while a scene file is read or built (a number
+    where a table was expected, ...) as a ``SceneFileError`` of the file: it is bad input,
+    like the errors its checks name. A ``TypeError`` a check raised passes as it is."""
+    try:
+        yield
+    except (TypeError, KeyError, IndexError, AttributeError) as error:
+        if isinstance(error, TypeError) and _refused(error):
+            raise
+        raise scenefile.SceneFileError(
+            f"{path}: not a scene file shroudnet can read ({type(error).__name__}: "
+            f"{_describe(error)})") from error
+
+
+def _scenes_of(path: Path, scene_at: scenefile.SceneAt, values, document: dict) -> None:
+    """Build the scene at each value, before any work: a bad path or value fails now; and
+    refuse a ``--param`` that does not change the scene, naming those that do."""
+    param = scene_at.path
+    if param.split(".")[0] == "run":
+        raise UsageError(f"--param {param}: the [run] table says how the scene is run, "
+                         "not what it is, so its values would all give the same scene; vary "
+                         f"a number of the scene: {_scene_numbers(document)}")
+    first, changes = None, False
+    with _reading(path):
+        for value in values:
+            scene = scene_at(value)
+            first = scene if first is None else first
+            changes = changes or not same_scene(first, scene)
+    if len(set(values)) > 1 and not changes:
+        raise UsageError(f"--param {param}: the scene is the same at every value, so the "
+                         "value would change nothing; vary a number of the scene: "
+                         f"{_scene_numbers(document)}")
+
+
+#: The most paths ``_scene_numbers`` lists.
+LISTED_NUMBERS = 24
+
+
+def _scene_numbers(document: dict) -> str:
+    """The dotted paths of a scene file's numbers outside [run], a list's index shown as
+    N: what ``--param`` may vary."""
+    found: dict[str, None] = {}
+
+    def walk(node, path):
+        if isinstance(node, dict):
+            for key, item in node.items():
+                if path or key != "run":
+                    walk(item, [*path, str(key)])
+        elif isinstance(node, list):
+            for item in node:
+                walk(item, [*path, "N"])
+        elif isinstance(node, int | float) and not isinstance(node, bool):
+            found[".".join(path)] = None
+
+    walk(document, [])
+    listed = list(found)
+    more = f", … ({len(listed) - LISTED_NUMBERS} more)" if len(listed) > LISTED_NUMBERS else ""
+    return ", ".join(listed[:LISTED_NUMBERS]) + more + " (N: an index from 0)"
 
 
 def _share(part: float, whole: float) -> str:
@@ -494,11 +626,10 @@ def _save_response(sim, settings, path: Path) -> Path:
 
 def _sweep(args) -> int:
     laws = _import_laws(args.laws)
-    loaded = scenefile.load(args.scene, laws=laws)
+    loaded = _load_scene(args.scene, laws)
     values = _values(args.values)
     scene_at = scenefile.SceneAt(loaded.document, args.param, laws=laws)
-    for value in values:  # a bad path or value fails before any work
-        scene_at(value)
+    _scenes_of(args.scene, scene_at, values, loaded.document)
     settings = _reference(loaded.scene, loaded.run, args)
     position = loaded.scene.response_position(settings.blade)
     blade = loaded.scene.responses[position] if loaded.scene.arrays.is_structure \
@@ -507,6 +638,7 @@ def _sweep(args) -> int:
     folder = args.output or Path(f"{args.scene.stem}-sweep-{args.param}")
     _check_folder(folder, "--output")
     _check_file(folder / "bifurcation.png", "--output")
+    _prove_writable(folder, "--output")
     start = time.perf_counter()
     try:
         result = sweep(scene_at, values, parameter=args.param, blade=blade,
@@ -611,16 +743,17 @@ def _save_diagram(result, path: Path) -> Path:
 
 def _continue(args) -> int:
     laws = _import_laws(args.laws)
-    loaded = scenefile.load(args.scene, laws=laws)
+    loaded = _load_scene(args.scene, laws)
     scene_at = scenefile.SceneAt(loaded.document, args.param, laws=laws)
-    for value in (args.start, args.stop):  # a bad path or value fails before any work
+    for value in (args.start, args.stop):
         if not np.isfinite(value):
             raise UsageError(f"--from and --to must be finite, got {value}")
-        scene_at(value)
+    _scenes_of(args.scene, scene_at, [args.start, args.stop], loaded.document)
     _check_folder(args.output, "--output")
     stem = args.output / f"{args.scene.stem}-continue-{args.param}"
     for suffix in (".npz", ".png"):
         _check_file(_beside(stem, suffix), "--output")
+    _prove_writable(args.output, "--output")
     blade = _reference(loaded.scene, loaded.run, args).blade
     start = time.perf_counter()
     try:
@@ -654,11 +787,12 @@ def _continue(args) -> int:
 
 def _modes(args) -> int:
     from .figures import zzenf_diagram
-    loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
+    loaded = _load_scene(args.scene, _import_laws(args.laws))
     scene = loaded.scene
     _check_folder(args.output, "--output")
     path = args.output / f"{args.scene.stem}-modes.png"
-    args.output.mkdir(parents=True, exist_ok=True)
+    _check_file(path, "--output")
+    _prove_writable(args.output, "--output")
     both = {contacts: linear_modes(scene, contacts) for contacts in CONTACTS}
     if both["open"].sectors is None:
         for contacts, found in both.items():
@@ -684,12 +818,12 @@ def _modes(args) -> int:
 
 def _mistuning(args) -> int:
     from .figures import mistuning_histogram
-    loaded = scenefile.load(args.scene, laws=_import_laws(args.laws))
+    loaded = _load_scene(args.scene, _import_laws(args.laws))
     speeds = _values(args.speeds, "--speeds")
     _check_folder(args.output, "--output")
     path = args.output / f"{args.scene.stem}-mistuning.png"
     _check_file(path, "--output")
-    args.output.mkdir(parents=True, exist_ok=True)
+    _prove_writable(args.output, "--output")
     start = time.perf_counter()
     study = mistuning_study(loaded.scene, spread=args.spread, samples=args.samples,
                             speeds_rpm=speeds, seed=args.seed, transient=args.transient,
@@ -727,10 +861,12 @@ def _save_branch_figure(branch, blade, path: Path) -> Path:
 
 def _plot(args) -> int:
     laws = _import_laws(args.laws)  # a saved scene names its laws as its scene file did
+    if args.output is not None:  # before reading what may be a sweep of many points
+        _writable_file(args.output, "--output")
     saved = _load_results(args.results, laws)
     if isinstance(saved, Branch):
         path = args.output or args.results.with_suffix(".png")
-        _check_file(path, "--output")
+        _writable_file(path, "--output")
         settings = results.load_run_settings(args.results, laws=laws)
         blade = _reference(saved.orbits[0].scene, settings, args).blade
         _save_branch_figure(saved, blade, path)
@@ -741,11 +877,11 @@ def _plot(args) -> int:
             raise UsageError(f"--blade: a sweep records one blade ({saved.blade!r}); sweep "
                              "again with --blade to see another")
         path = args.output or args.results / "bifurcation.png"
-        _check_file(path, "--output")
+        _writable_file(path, "--output")
         _save_diagram(saved, path)
     else:
         path = args.output or args.results.with_suffix(".png")
-        _check_file(path, "--output")
+        _writable_file(path, "--output")
         _save_response(saved, _reference(
             saved.scene, results.load_run_settings(args.results, laws=laws), args), path)
     print(f"saved    {path}")
