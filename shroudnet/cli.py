@@ -120,13 +120,24 @@ def _refused(error: TypeError) -> bool:
     """Whether ``error`` is a check's verdict on the input: raised by a ``raise`` statement
     of shroudnet or contact_laws (a value of the wrong type, named, as DESIGN §4 asks),
     not by Python on an operation that met the wrong type, which is a fault."""
-    frames = traceback.extract_tb(error.__traceback__)
-    if not frames:
+    raised = _raised_at(error)
+    if raised is None:
         return False
-    last = frames[-1]
-    where = Path(last.filename).resolve()
+    where, line = Path(raised[0]).resolve(), raised[1]
     return (any(where.is_relative_to(folder) for folder in _CHECKING_CODE)
-            and (last.line or "").startswith("raise "))
+            and line.startswith("raise "))
+
+
+def _raised_at(error: BaseException) -> tuple[str, str] | None:
+    """(file, source line) of the statement that raised ``error``; for an error raised in
+    a worker process of a sweep, that statement in the worker (whose traceback comes as
+    the error's cause, in words)."""
+    remote = getattr(error.__cause__, "tb", None)
+    if isinstance(remote, str):
+        frames = re.findall(r'^  File "(.+)", line \d+, in .+\n    (.*)$', remote, re.M)
+        return frames[-1] if frames else None
+    frames = traceback.extract_tb(error.__traceback__)
+    return (frames[-1].filename, frames[-1].line or "") if frames else None
 
 
 def _say(name: str, message: str) -> None:

@@ -209,6 +209,18 @@ def test_a_checks_type_error_is_bad_input_and_a_bug_is_a_fault(tmp_path, capsys,
     assert ("a fault of shroudnet" in error) == (status == 1)
 
 
+def test_a_checks_type_error_in_a_worker_process_is_bad_input_too():
+    """A sweep's point raises in a worker: the worker's traceback decides."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(max_workers=1) as pool:
+        for call, arguments, verdict in ((check_real, ("simulate", "rtol", "x"), True),
+                                         (len, (5,), False)):
+            with pytest.raises(TypeError) as caught:
+                pool.submit(call, *arguments).result()
+            assert cli._refused(caught.value) is verdict
+
+
 def test_a_bug_still_shows_its_traceback_when_asked(tmp_path, monkeypatch):
     monkeypatch.setattr(cli, "simulate", raising(lambda: len(5)))
     monkeypatch.setenv("SHROUDNET_TRACEBACK", "1")
