@@ -113,8 +113,9 @@ identical sectors (``BladeGroup.bladed_disc``) as ``shape = "bladed_disc"``, ``c
 (sectors), ``disc = {…}`` (a blade table), ``disc_coupling = {stiffness, damping}``,
 ``blade = [{…}, …]`` (its nodes, root to tip), ``blade_couplings = [{…}, …]`` (one per
 blade node) and, optionally, ``interface = {…}`` between neighbouring tips. A law is named by its
-class in ``contact_laws``; its other keys are the law's fields. ``Regularised`` takes
-``law = {…}`` and ``velocity``.
+class in ``contact_laws``; its other keys are the law's fields, a law it wraps as that
+law's table. ``Regularised`` takes ``exact = {law = "Coulomb", mu = 0.3}`` (its field
+``law``, spelled so because ``law`` names the class) and ``velocity``.
 
 A law of one's own is named ``"module:Class"``. Reading a file never imports a module nor
 runs any code of its own choosing: the class must come from a module that is already
@@ -129,8 +130,9 @@ imported, or be passed in ``laws``::
 ``[excitation]`` may be left out: no force Q(t) acts (a block driven by a belt alone), and
 the period the run counts in is 60/``speed_rpm`` s.
 
-Every key is checked before anything runs: a bad file raises ``SceneFileError`` naming
-the file, the key and what is allowed there.
+Every key is checked before anything runs: each table declares its keys and what each
+holds (a number, an integer, text, a table, a list of numbers, ...), and a bad file raises
+``SceneFileError`` naming the file, the key and what is allowed there.
 """
 
 from __future__ import annotations
@@ -143,8 +145,9 @@ import os
 import re
 import sys
 import tomllib
+import typing
 import weakref
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
@@ -154,6 +157,7 @@ import numpy as np
 import scipy.sparse
 
 import contact_laws
+from contact_laws import check_int, check_real
 
 from . import fe_files
 from .beam import cantilever_beam
@@ -186,14 +190,22 @@ class RunSettings:
     blade: str | int | tuple = 1
 
     def __post_init__(self):
+        if not isinstance(self.method, FixedStep | Adaptive | Accuracy):
+            raise TypeError(f"run.method must be FixedStep(...), Adaptive(...) or "
+                            f"Accuracy(...), got {self.method!r}")
         for name in ("periods", "samples_per_period"):
-            number = getattr(self, name)
-            if isinstance(number, bool) or not isinstance(number, int) or number < 1:
-                raise ValueError(f"run.{name} must be an int >= 1, got {number!r}")
+            check_int("run", name, getattr(self, name), low=1)
         if isinstance(self.transient, bool) or not isinstance(self.transient, int) \
                 or not 0 <= self.transient < self.periods:
             raise ValueError(f"run.transient must be an int in [0, periods = {self.periods}), "
                              f"got {self.transient!r}")
+        check_real("run", "event_tolerance", self.event_tolerance, low=0.0, low_open=True,
+                   unit="periods")
+        blade = self.blade
+        if not (_is_name(blade) or isinstance(blade, tuple) and blade
+                and all(_is_name(part) for part in blade)):
+            raise TypeError(f"run.blade must be a blade's name or position, or (node, point, "
+                            f"component), got {blade!r}")
 
 
 #: What ``laws`` may hold: law classes, or modules whose law classes are allowed.
@@ -309,8 +321,84 @@ class _KeyError(Exception):
         self.key, self.message = key, message
 
 
-_TOP = {"speed_rpm", "excitation", "blades", "fixed", "prescribed", "interfaces",
-        "couplings", "sectors", "group", "run"}
+# ---- what each key holds: one check for every table ----------------------------------------
+
+@dataclass(frozen=True)
+class _Kind:
+    """What a key of a scene file holds: ``test(value)`` says whether a value is one,
+    ``words`` what it must be. ``a | b`` is either."""
+
+    words: str
+    test: Callable[[object], bool]
+
+    def __or__(self, other: _Kind) -> _Kind:
+        return _Kind(f"{self.words} or {other.words}",
+                     lambda value: self.test(value) or other.test(value))
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def _is_name(value) -> bool:
+    return isinstance(value, str | int) and not isinstance(value, bool)
+
+
+def _list_of(test: Callable[[object], bool], empty: bool = True) -> Callable[[object], bool]:
+    return lambda value: isinstance(value, list) and (empty or bool(value)) \
+        and all(test(item) for item in value)
+
+
+_NUMBER = _Kind("a number", _is_number)
+_INTEGER = _Kind("an integer", lambda value: isinstance(value, int)
+                 and not isinstance(value, bool))
+_TEXT = _Kind("text", lambda value: isinstance(value, str))
+_TABLE = _Kind("a table", lambda value: isinstance(value, dict))
+_TABLES = _Kind("a list of tables", _list_of(lambda item: isinstance(item, dict)))
+_NUMBERS = _Kind("a list of numbers", _list_of(_is_number))
+_MATRIX = _Kind("rows of numbers [[…], …]", _list_of(_list_of(_is_number)))
+_INDICES = _Kind("a list of integers", _list_of(_INTEGER.test))
+_NAME = _Kind("a node name (text or integer)", _is_name)
+_NAMES = _Kind("a list of node names", _list_of(_is_name))
+_END = _Kind("a node name (text or integer) or [node, point name]", lambda value: _is_name(
+    value) or (isinstance(value, list) and len(value) == 2 and _is_name(value[0])
+               and isinstance(value[1], str) and bool(value[1])))
+_RESPONSE = _Kind("a blade name or position, or [node, point, component]", lambda value:
+                  _is_name(value) or _list_of(_is_name, empty=False)(value))
+_DIRECTION_LIST = _Kind("a list of one or two directions [[…], …]",
+                        _list_of(_NUMBERS.test, empty=False))
+_FREQUENCY = _NUMBER | _TABLE
+_LAW = _Kind("a law's table {law = …, …}", _TABLE.test)
+
+
+def _only(table: dict, allowed: dict[str, _Kind], key: str, what: str = "keys") -> None:
+    """Check that every key of ``table`` is one ``allowed`` names and holds what it says
+    (those required are read with ``_required``)."""
+    for name, value in table.items():
+        where = f"{key}.{name}" if key != "the file" else name
+        if name not in allowed:
+            raise _KeyError(where, f"unknown key; allowed {what}: {', '.join(sorted(allowed))}")
+        _expect(value, allowed[name], where)
+
+
+def _choice(value, choices: dict, key: str) -> str:
+    """``value`` if it is one of the names ``choices`` holds, else the key's error."""
+    if not isinstance(value, str) or value not in choices:
+        raise _KeyError(key, f"must be one of {', '.join(map(repr, choices))}, got "
+                             f"{_short(value)}")
+    return value
+
+
+def _expect(value, kind: _Kind, key: str):
+    """``value`` if it is of ``kind``, else the key's error saying what it must be."""
+    if not kind.test(value):
+        raise _KeyError(key, f"must be {kind.words}, got {_short(value)}")
+    return value
+
+
+_TOP = {"speed_rpm": _NUMBER, "excitation": _TABLE, "blades": _TABLES, "fixed": _NAMES,
+        "prescribed": _TABLES, "interfaces": _TABLES, "couplings": _TABLES,
+        "sectors": _INTEGER, "group": _TABLE, "run": _TABLE}
 
 
 def _scene(document: dict, own: dict[str, type]) -> Scene:
@@ -348,24 +436,19 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
         name = _name(entry, key)
         blade = _body({k: v for k, v in entry.items() if k != "name"}, key)
         _build(key, lambda: group.add_blade(name, blade))
-    fixed = document.get("fixed", [])
-    if not isinstance(fixed, list):
-        raise _KeyError("fixed", f"must be a list of node names, got {fixed!r}")
-    for i, name in enumerate(fixed):
-        if not isinstance(name, str | int) or isinstance(name, bool):
-            raise _KeyError(f"fixed[{i}]", f"must be a name (text or integer), got {name!r}")
+    for i, name in enumerate(document.get("fixed", [])):
         _build(f"fixed[{i}]", lambda: group.add_fixed(name))
     for i, entry in enumerate(_list(document, "prescribed", "prescribed")):
         key = f"prescribed[{i}]"
         entry = _as_table(entry, key)
-        _only(entry, {"name", "motion"}, key)
+        _only(entry, {"name": _NAME, "motion": _TABLE}, key)
         name = _name(entry, key)
         motion = _motion(_table(entry, "motion", f"{key}.motion"), f"{key}.motion")
         _build(key, lambda: group.add_prescribed(name, motion))
     for i, entry in enumerate(document.get("interfaces", [])):
         key = f"interfaces[{i}]"
         entry = _as_table(entry, key)
-        _only(entry, {"left", "right"} | _INTERFACE_KEYS, key)
+        _only(entry, _ENDS | _INTERFACE_KEYS, key)
         left, right = (_end(entry, end, f"{key}.{end}") for end in ("left", "right"))
         interface = _interface({k: v for k, v in entry.items() if k not in ("left", "right")},
                                key, own)
@@ -373,7 +456,7 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
     for i, entry in enumerate(_list(document, "couplings", "couplings")):
         key = f"couplings[{i}]"
         entry = _as_table(entry, key)
-        _only(entry, {"left", "right", "stiffness", "damping"}, key)
+        _only(entry, _ENDS | _COUPLING_KEYS, key)
         left, right = (_end(entry, end, f"{key}.{end}") for end in ("left", "right"))
         coupling = _coupling({k: v for k, v in entry.items() if k not in ("left", "right")},
                              key)
@@ -383,13 +466,12 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
 
 def _shorthand(table, own: dict[str, type]) -> BladeGroup:
     table = _as_table(table, "group")
-    shape = table.get("shape")
+    shape = _choice(table.get("shape"), dict.fromkeys(("ring", "chain", "bladed_disc")),
+                    "group.shape")
     if shape == "bladed_disc":
         return _bladed_disc(table, own)
-    _only(table, {"shape", "count", "blade", "interface"}, "group")
-    if shape not in ("ring", "chain"):
-        raise _KeyError("group.shape", f'must be "ring", "chain" or "bladed_disc", got '
-                                       f'{shape!r}')
+    _only(table, {"shape": _TEXT, "count": _INTEGER, "blade": _TABLE, "interface": _TABLE},
+          "group")
     count = table.get("count")
     if isinstance(count, bool) or not isinstance(count, int) or count < (3 if shape == "ring"
                                                                           else 1):
@@ -404,8 +486,8 @@ def _shorthand(table, own: dict[str, type]) -> BladeGroup:
 
 def _bladed_disc(table, own: dict[str, type]) -> BladeGroup:
     """``BladeGroup.bladed_disc`` from [group] with shape = "bladed_disc"."""
-    _only(table, {"shape", "count", "disc", "disc_coupling", "blade", "blade_couplings",
-                  "interface"}, "group")
+    _only(table, {"shape": _TEXT, "count": _INTEGER, "disc": _TABLE, "disc_coupling": _TABLE,
+                  "blade": _TABLES, "blade_couplings": _TABLES, "interface": _TABLE}, "group")
     count = table.get("count")
     if isinstance(count, bool) or not isinstance(count, int) or count < 3:
         raise _KeyError("group.count", f"must be an integer >= 3 sectors, got {count!r}")
@@ -427,18 +509,17 @@ def _bladed_disc(table, own: dict[str, type]) -> BladeGroup:
 
 
 #: The ``kind`` of a prescribed motion in a file, its class and its keys.
-_MOTIONS = {"constant_velocity": (ConstantVelocity, {"velocity", "position"}),
-            "harmonic": (HarmonicMotion, {"amplitude", "frequency", "phase"}),
-            "table": (MotionTable, {"times", "displacements"})}
+_MOTIONS = {"constant_velocity": (ConstantVelocity, dict.fromkeys(("velocity", "position"),
+                                                                   _NUMBER)),
+            "harmonic": (HarmonicMotion, dict.fromkeys(("amplitude", "frequency", "phase"),
+                                                       _NUMBER)),
+            "table": (MotionTable, dict.fromkeys(("times", "displacements"), _NUMBERS))}
 
 
 def _motion(table: dict, key: str):
-    kind = table.get("kind")
-    if kind not in _MOTIONS:
-        raise _KeyError(f"{key}.kind", f"must be one of {', '.join(map(repr, _MOTIONS))}, "
-                                       f"got {kind!r}")
+    kind = _choice(table.get("kind"), _MOTIONS, f"{key}.kind")
     cls, keys = _MOTIONS[kind]
-    _only(table, {"kind"} | keys, key)
+    _only(table, {"kind": _TEXT} | keys, key)
     fields = {k: tuple(v) if isinstance(v, list) else v for k, v in table.items()
               if k != "kind"}
     return _build(key, lambda: cls(**fields))
@@ -453,13 +534,16 @@ def _motion_document(motion) -> dict:
 
 
 def _coupling(table: dict, key: str) -> Coupling:
-    _only(table, {"stiffness", "damping"}, key)
+    _only(table, _COUPLING_KEYS, key)
     stiffness = _number(table, "stiffness", f"{key}.stiffness")
     damping = _number(table, "damping", f"{key}.damping") if "damping" in table else 0.0
     return _build(key, lambda: Coupling(stiffness=stiffness, damping=damping))
 
 
-_BLADE_KEYS = {"mass", "damping", "frequency", "stiffness", "excitation_scale"}
+_BLADE_KEYS = {"mass": _NUMBER, "damping": _NUMBER, "frequency": _FREQUENCY,
+               "stiffness": _NUMBER, "excitation_scale": _NUMBER}
+_COUPLING_KEYS = {"stiffness": _NUMBER, "damping": _NUMBER}
+_ENDS = {"left": _END, "right": _END}
 
 
 def _blade(table: dict, key: str) -> Blade:
@@ -478,34 +562,45 @@ def _blade(table: dict, key: str) -> Blade:
     return _build(key, lambda: Blade(**arguments))
 
 
+#: A speed-dependent frequency by the keys of its table: its model and what each key holds.
+_FREQUENCY_MODELS = {frozenset({"f0", "coefficient"}): (Southwell, _NUMBER),
+                     frozenset({"speeds_rpm", "frequencies"}): (FrequencyTable, _NUMBERS)}
+
+
 def _frequency(value, key):
     if isinstance(value, int | float) and not isinstance(value, bool):
         return _build(key, lambda: ConstantFrequency(hz=float(value)))
     value = _as_table(value, key, "a number [Hz] or a table")
-    if set(value) == {"f0", "coefficient"}:
-        return _build(key, lambda: Southwell(**value))
-    if set(value) == {"speeds_rpm", "frequencies"}:
-        return _build(key, lambda: FrequencyTable(**value))
-    raise _KeyError(key, "must be a number [Hz], {f0, coefficient} (Southwell's law) or "
-                         f"{{speeds_rpm, frequencies}} (a table), got keys {sorted(value)}")
+    if frozenset(value) not in _FREQUENCY_MODELS:
+        raise _KeyError(key, "must be a number [Hz], {f0, coefficient} (Southwell's law) or "
+                             f"{{speeds_rpm, frequencies}} (a table), got keys {sorted(value)}")
+    model, what = _FREQUENCY_MODELS[frozenset(value)]
+    _only(value, dict.fromkeys(value, what), key)
+    return _build(key, lambda: model(**{k: tuple(v) if isinstance(v, list) else v
+                                        for k, v in value.items()}))
 
 
 # ---- substructures: nodes of many degrees of freedom ---------------------------------------
 
 #: How a node of many degrees of freedom is given: its key, and the keys each way takes.
-_STRUCTURE_COMMON = {"points", "load", "damping_ratios", "excitation_scale"}
+_STRUCTURE_COMMON = {"points": _TABLE, "load": _TEXT | _TABLE | _NUMBERS,
+                     "damping_ratios": _NUMBER | _NUMBERS, "excitation_scale": _NUMBER}
 _MATRICES = ("mass", "stiffness", "damping", "stiffness_speed")
 _STRUCTURE_KEYS = {
-    "file": {"file", "names", "reduce"} | _STRUCTURE_COMMON,
-    "matrices": {*_MATRICES, "reduce"} | _STRUCTURE_COMMON,
-    "modal": {"modal"} | _STRUCTURE_COMMON,
-    "beam": {"beam", "damping_ratios", "excitation_scale", "reduce"},
+    "file": {"file": _TEXT, "names": _TABLE, "reduce": _TABLE} | _STRUCTURE_COMMON,
+    "matrices": dict.fromkeys(_MATRICES, _MATRIX | _TABLE) | {"reduce": _TABLE}
+    | _STRUCTURE_COMMON,
+    "modal": {"modal": _TABLE} | _STRUCTURE_COMMON,
+    "beam": {"beam": _TABLE, "damping_ratios": _NUMBER | _NUMBERS,
+             "excitation_scale": _NUMBER, "reduce": _TABLE},
 }
-#: The keywords of ``cantilever_beam`` that a ``beam`` table holds (the rest are the node's).
-_BEAM_KEYS = {name for name in inspect.signature(cantilever_beam).parameters} \
-    - {"damping_ratios", "excitation_scale"}
-_REDUCTIONS = {"craig_bampton": {"method", "boundary", "modes"},
-               "modal_truncation": {"method", "modes"}}
+#: The keywords of ``cantilever_beam`` that a ``beam`` table holds (the rest are the node's):
+#: numbers, but for the count of elements and the two second moments of area.
+_BEAM_KEYS = {name: {"elements": _INTEGER, "second_moments": _NUMBERS}.get(name, _NUMBER)
+              for name in inspect.signature(cantilever_beam).parameters
+              if name not in ("damping_ratios", "excitation_scale")}
+_REDUCTIONS = {"craig_bampton": {"method": _TEXT, "boundary": _INDICES, "modes": _INTEGER},
+               "modal_truncation": {"method": _TEXT, "modes": _INTEGER}}
 
 #: What a substructure read from a file was given as (its table, the file's path made
 #: absolute), so that ``document`` writes it back so: by the substructure, which is frozen
@@ -570,12 +665,9 @@ def _file_matrices(table: dict, key: str) -> dict:
     if not isinstance(path, str) or not path:
         raise _KeyError(f"{key}.file", f"must be the path of a .npz or .mat file, got "
                                        f"{_short(path)}")
-    names = _as_table(table.get("names", {}), f"{key}.names")
-    _only(names, set(_MATRICES), f"{key}.names", what="matrices")
-    for field, name in names.items():
-        if not isinstance(name, str):
-            raise _KeyError(f"{key}.names.{field}", f"must be the name of a matrix in the "
-                                                    f"file, got {_short(name)}")
+    names = table.get("names", {})
+    _only(names, dict.fromkeys(_MATRICES, _Kind("the name of a matrix in the file",
+                                                _TEXT.test)), f"{key}.names", what="matrices")
     try:
         read = fe_files.read_matrices(path, **names)
     except FileNotFoundError:
@@ -597,7 +689,7 @@ def _matrix(table: dict, name: str, key: str):
     value = table[name]
     if not isinstance(value, dict):
         return _numbers(value, key, "rows of numbers [[…], …]")
-    _only(value, {"shape", "rows", "columns", "values"}, key)
+    _only(value, dict.fromkeys(("shape", "rows", "columns", "values"), _NUMBERS), key)
     parts = {part: _numbers(_required(value, part, f"{key}.{part}"), f"{key}.{part}",
                             "a list of numbers") for part in ("shape", "rows", "columns", "values")}
     indices = [parts[part] for part in ("shape", "rows", "columns")]
@@ -627,7 +719,7 @@ def _load(table: dict, key: str, points: dict):
     if isinstance(value, list):
         return _vector(value, where)
     if isinstance(value, dict):
-        _only(value, {"point", "direction"}, where)
+        _only(value, {"point": _TEXT, "direction": _NUMBERS}, where)
         point = value.get("point")
         direction = tuple(_vector(_required(value, "direction", f"{where}.direction"),
                                   f"{where}.direction"))
@@ -644,11 +736,10 @@ def _load(table: dict, key: str, points: dict):
 
 def _modal(table: dict, key: str, points: dict, load, options: dict) -> Substructure:
     modal = _table(table, "modal", f"{key}.modal")
-    _only(modal, {"frequencies", "masses"}, f"{key}.modal")
+    _only(modal, {"frequencies": _Kind("a list, one frequency per mode [Hz]",
+                                       _list_of(_FREQUENCY.test)),
+                  "masses": _NUMBER | _NUMBERS}, f"{key}.modal")
     frequencies = _required(modal, "frequencies", f"{key}.modal.frequencies")
-    if not isinstance(frequencies, list):
-        raise _KeyError(f"{key}.modal.frequencies", "must be a list, one frequency per mode "
-                                                    f"[Hz], got {_short(frequencies)}")
     models = [_frequency(value, f"{key}.modal.frequencies[{k}]")
               for k, value in enumerate(frequencies)]
     masses = _required(modal, "masses", f"{key}.modal.masses")
@@ -674,10 +765,7 @@ def _beam(table: dict, key: str, options: dict) -> Substructure:
 
 def _reduce(body: Substructure, table: dict, key: str) -> Substructure:
     """``body`` reduced as ``table`` says: Craig–Bampton or modal truncation."""
-    method = table.get("method")
-    if method not in _REDUCTIONS:
-        raise _KeyError(f"{key}.method", f"must be one of {', '.join(map(repr, _REDUCTIONS))}, "
-                                         f"got {_short(method)}")
+    method = _choice(table.get("method"), _REDUCTIONS, f"{key}.method")
     _only(table, _REDUCTIONS[method], key, what=f"keys of {method}")
     if body.damping is not None:
         raise _KeyError(key, "a reduction takes modal damping (damping_ratios), not a "
@@ -690,9 +778,6 @@ def _reduce(body: Substructure, table: dict, key: str) -> Substructure:
         return _build(key, lambda: modal_truncation(body.mass, body.stiffness, modes,
                                                     **options))
     boundary = _required(table, "boundary", f"{key}.boundary")
-    if not isinstance(boundary, list):
-        raise _KeyError(f"{key}.boundary", "must be a list of degree-of-freedom indices "
-                                           f"(from 0), got {_short(boundary)}")
     return _build(key, lambda: craig_bampton(body.mass, body.stiffness, boundary, modes,
                                              **options))
 
@@ -753,8 +838,9 @@ def _absolute_files(document: dict, folder) -> dict:
 
 
 _DIRECTIONS = ("normal_direction", "tangent_direction")
-_INTERFACE_KEYS = {"gap", "angle", "normal", "friction", "tangent_directions",
-                   "tangential_stiffness", *_DIRECTIONS}
+_INTERFACE_KEYS = {"gap": _NUMBER, "angle": _NUMBER, "normal": _TABLE, "friction": _TABLE,
+                   "tangent_directions": _DIRECTION_LIST, "tangential_stiffness": _NUMBER,
+                   **dict.fromkeys(_DIRECTIONS, _NUMBERS)}
 
 
 def _interface(table: dict, key: str, own: dict[str, type]) -> Interface:
@@ -782,9 +868,6 @@ def _interface(table: dict, key: str, own: dict[str, type]) -> Interface:
                                                    f"{key}.normal_direction"))
     if "tangent_directions" in table:
         planes = table["tangent_directions"]
-        if not isinstance(planes, list) or not planes:
-            raise _KeyError(f"{key}.tangent_directions", "must be a list of one or two "
-                                                         f"directions, got {planes!r}")
         directions["tangent_directions"] = tuple(
             tuple(_vector(t, f"{key}.tangent_directions[{k}]")) for k, t in enumerate(planes))
     if "tangent_direction" in table or "tangent_directions" not in table:
@@ -799,23 +882,57 @@ def _interface(table: dict, key: str, own: dict[str, type]) -> Interface:
                                          friction=friction, **directions, **elastic))
 
 
+#: A law's fields a file spells otherwise: ``law`` names the law's class there, so the law
+#: that ``Regularised`` (or a law of one's own) wraps in its field ``law`` is ``exact``.
+_FIELD_KEYS = {"law": "exact"}
+
+
 def _law(table: dict, key: str, kind: type, own: dict[str, type]):
     name = table.get("law")
     if not isinstance(name, str):
         raise _KeyError(f"{key}.law", f"must name a {kind.__name__} ({_law_names(kind)}), "
-                                      f"got {name!r}")
+                                      f"got {_short(name)}")
     law_class = _law_class(name, kind, f"{key}.law", own)
-    fields = {f.name for f in dataclasses.fields(law_class) if f.init}
-    arguments = {k: v for k, v in table.items() if k != "law"}
-    _only(arguments, fields, key, what=f"fields of {name}")
-    missing = sorted(f.name for f in dataclasses.fields(law_class) if f.init
-                     and f.default is dataclasses.MISSING and f.name not in arguments)
+    fields = _law_fields(law_class, kind)
+    given = {k: v for k, v in table.items() if k != "law"}
+    _only(given, {file_key: what for file_key, (_, what, _) in fields.items()}, key,
+          what=f"fields of {name}")
+    missing = sorted(file_key for file_key, (field, _, _) in fields.items()
+                     if file_key not in given and _required_field(law_class, field))
     if missing:
         raise _KeyError(key, f"{name} needs {', '.join(missing)}")
-    if "law" in fields:  # a law wrapping another (Regularised)
-        arguments["law"] = _law(_table(arguments, "law", f"{key}.law"), f"{key}.law", kind,
-                                own)
+    arguments = {}
+    for file_key, value in given.items():
+        field, _, contract = fields[file_key]
+        arguments[field] = _law(value, f"{key}.{file_key}", contract, own) \
+            if isinstance(value, dict) else value
     return _build(key, lambda: law_class(**arguments))
+
+
+def _law_fields(law_class: type, kind: type) -> dict[str, tuple[str, _Kind, type]]:
+    """A law's fields by the keys a file gives them: (field, what the key holds, the
+    contract of the law it holds if a table). A field is a number, or where it is
+    annotated as a law (``Regularised.law``), the table of that law; where annotations
+    cannot be resolved here, either (a table read as a law of ``kind``)."""
+    try:
+        hints = typing.get_type_hints(law_class)
+    except (NameError, TypeError, AttributeError):  # a law of one's own, annotated so
+        hints = {}
+    fields = {}
+    for field in dataclasses.fields(law_class):
+        if not field.init:
+            continue
+        hint = hints.get(field.name)
+        contract = next((c for c in (contact_laws.NormalLaw, contact_laws.FrictionLaw)
+                         if isinstance(hint, type) and issubclass(hint, c)), None)
+        what = _LAW if contract else _NUMBER if hint is not None else _NUMBER | _LAW
+        fields[_FIELD_KEYS.get(field.name, field.name)] = (field.name, what, contract or kind)
+    return fields
+
+
+def _required_field(law_class: type, name: str) -> bool:
+    field = next(f for f in dataclasses.fields(law_class) if f.name == name)
+    return field.default is dataclasses.MISSING and field.default_factory is dataclasses.MISSING
 
 
 def _law_class(name: str, kind: type, key: str, own: dict[str, type]) -> type:
@@ -864,7 +981,9 @@ def _law_names(kind: type) -> str:
 
 
 def _excitation(table: dict) -> Excitation:
-    _only(table, {"engine_order", "amplitudes", "phases", "blades_on_disc"}, "excitation")
+    _only(table, {"engine_order": _INTEGER, "amplitudes": _NUMBERS,
+                  "phases": _TEXT | _TABLE | _NUMBERS, "blades_on_disc": _INTEGER},
+          "excitation")
     for name in ("engine_order", "amplitudes"):
         if name not in table:
             raise _KeyError(f"excitation.{name}", "is required")
@@ -887,31 +1006,26 @@ def _excitation(table: dict) -> Excitation:
                                              "{travelling_wave = nd} or a list of phases "
                                              f"[rad], got {phases!r}")
     amplitudes = table["amplitudes"]
-    if not isinstance(amplitudes, list):
-        raise _KeyError("excitation.amplitudes", f"must be a list [q0, q1, …] [N], "
-                                                 f"got {amplitudes!r}")
     return _build("excitation", lambda: Excitation(engine_order=table["engine_order"],
                                                    amplitudes=tuple(amplitudes),
                                                    phases=pattern))
 
 
-_METHODS = {"adaptive": (Adaptive, {"rtol", "atol", "max_step"}),
-            "fixed": (FixedStep, {"steps_per_period"}),
-            "accuracy": (Accuracy, {"target"})}
+_METHODS = {"adaptive": (Adaptive, dict.fromkeys(("rtol", "atol", "max_step"), _NUMBER)),
+            "fixed": (FixedStep, {"steps_per_period": _INTEGER}),
+            "accuracy": (Accuracy, {"target": _NUMBER})}
+_RUN_KEYS = {"method": _TEXT, "periods": _INTEGER, "transient": _INTEGER,
+             "samples_per_period": _INTEGER, "event_tolerance": _NUMBER, "blade": _RESPONSE}
 
 
 def _run(table) -> RunSettings:
     table = dict(_as_table(table, "run"))
-    method_keys = set().union(*(keys for _, keys in _METHODS.values()))
-    _only(table, {"method", "periods", "transient", "samples_per_period", "event_tolerance",
-                  "blade"} | method_keys, "run")
-    name = table.pop("method", "adaptive")
-    if name not in _METHODS:
-        raise _KeyError("run.method", f"must be one of {', '.join(map(repr, _METHODS))}, "
-                                      f"got {name!r}")
+    method_keys = {k: what for _, keys in _METHODS.values() for k, what in keys.items()}
+    _only(table, _RUN_KEYS | method_keys, "run")
+    name = _choice(table.pop("method", "adaptive"), _METHODS, "run.method")
     method_class, keys = _METHODS[name]
     knobs = {k: table.pop(k) for k in list(table) if k in method_keys}
-    stray = sorted(set(knobs) - keys)
+    stray = sorted(set(knobs) - set(keys))
     if stray:
         raise _KeyError(f"run.{stray[0]}", f"does not apply to method = {name!r}; it takes "
                                            f"{', '.join(sorted(keys))}")
@@ -921,67 +1035,33 @@ def _run(table) -> RunSettings:
     return _build("run", lambda: RunSettings(method=method, **table))
 
 
-# ---- small checks ---------------------------------------------------------------------------
-
-def _only(table: dict, allowed: set, key: str, what: str = "keys") -> None:
-    for name in table:
-        if name not in allowed:
-            where = f"{key}.{name}" if key != "the file" else name
-            raise _KeyError(where, f"unknown key; allowed {what}: {', '.join(sorted(allowed))}")
-
-
 def _as_table(value, key: str, expected: str = "a table") -> dict:
-    if not isinstance(value, dict):
-        raise _KeyError(key, f"must be {expected}, got {value!r}")
-    return value
+    return _expect(value, _TABLE if expected == "a table" else _Kind(expected, _TABLE.test), key)
 
 
 def _table(table: dict, name: str, key: str) -> dict:
-    if name not in table:
-        raise _KeyError(key, "is required")
-    return _as_table(table[name], key)
+    return _expect(_required(table, name, key), _TABLE, key)
 
 
 def _list(table: dict, name: str, key: str) -> list:
-    value = table.get(name, [])
-    if not isinstance(value, list):
-        raise _KeyError(key, f"must be a list of tables ([[{name}]]), got {value!r}")
-    return value
+    return _expect(table.get(name, []), _TABLES, key)
 
 
 def _number(table: dict, name: str, key: str, low: float = -math.inf) -> float:
-    if name not in table:
-        raise _KeyError(key, "is required")
-    value = table[name]
-    if isinstance(value, bool) or not isinstance(value, int | float) or not value >= low:
-        raise _KeyError(key, f"must be a number >= {low:g}, got {value!r}" if low > -math.inf
-                        else f"must be a number, got {value!r}")
+    value = _expect(_required(table, name, key), _NUMBER, key)
+    if not value >= low:
+        raise _KeyError(key, f"must be a number >= {low:g}, got {value!r}")
     return float(value)
 
 
 def _name(entry: dict, key: str):
-    if "name" not in entry:
-        raise _KeyError(f"{key}.name", "is required")
-    return _node(entry, "name", f"{key}.name")
-
-
-def _node(entry: dict, name: str, key: str):
-    value = entry.get(name)
-    if isinstance(value, bool) or not isinstance(value, str | int):
-        raise _KeyError(key, f"must be a node name (text or integer), got {value!r}")
-    return value
+    return _expect(_required(entry, "name", f"{key}.name"), _NAME, f"{key}.name")
 
 
 def _end(entry: dict, name: str, key: str):
     """An edge's end: a node's name, or ``[node, point]`` (a point of a substructure)."""
-    value = entry.get(name)
-    node, point = (value[0], value[1]) if isinstance(value, list) and len(value) == 2 \
-        else (value, "")
-    if isinstance(node, bool) or not isinstance(node, str | int) or not isinstance(point, str) \
-            or isinstance(value, list) and not point:
-        raise _KeyError(key, f"must be a node name (text or integer) or [node, point name], "
-                             f"got {_short(value)}")
-    return (node, point) if isinstance(value, list) else node
+    value = _expect(entry.get(name), _END, key)
+    return tuple(value) if isinstance(value, list) else value
 
 
 def _build(key: str, make):
@@ -990,6 +1070,9 @@ def _build(key: str, make):
         return make()
     except (TypeError, ValueError) as error:
         raise _KeyError(key, str(error)) from None
+    except OverflowError as error:  # a number too large for what is made of it
+        raise _KeyError(key, f"a number there is too large to compute with ({error})") \
+            from None
 
 
 # ---- writing ------------------------------------------------------------------------------
@@ -1132,8 +1215,8 @@ def _law_document(law) -> dict:
     for field in dataclasses.fields(law):
         if field.init:
             value = getattr(law, field.name)
-            out[field.name] = _law_document(value) if dataclasses.is_dataclass(value) \
-                else float(value)
+            out[_FIELD_KEYS.get(field.name, field.name)] = _law_document(value) \
+                if dataclasses.is_dataclass(value) else float(value)
     return out
 
 
