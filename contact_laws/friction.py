@@ -137,6 +137,9 @@ class Regularised(FrictionLaw):
         The exact law giving μ(|v|).
     velocity : float
         The regularisation velocity v_ε > 0 [m/s].
+
+    In a scene file, where ``law`` names the class, the exact law is the table ``exact``:
+    ``friction = {law = "Regularised", exact = {law = "Coulomb", mu = 0.3}, velocity = 1e-3}``.
     """
 
     law: FrictionLaw
