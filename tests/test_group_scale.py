@@ -1,12 +1,16 @@
 """Groups are built in time linear in their size, keep the numbering and order of their
-edges, and refuse bad input at every door of ``BladeGroup`` with a message that names it."""
+edges, and refuse bad input at every door of ``BladeGroup`` with a message that names it; a
+run too large for the machine's memory is refused with the memory it would need."""
+
+from types import SimpleNamespace
 
 import networkx as nx
 import numpy as np
 import pytest
 
 from contact_laws import Coulomb, LinearSpring
-from shroudnet import Blade, BladeGroup, Coupling, Excitation, Interface, Scene, Substructure
+from shroudnet import (Blade, BladeGroup, Coupling, Excitation, Interface, Scene, Substructure,
+                       footprint)
 
 BLADE = Blade(mass=0.08, damping=4.0, stiffness=1.5e5)
 SHROUD = Interface(gap=2e-5, angle=1.0, normal=LinearSpring(stiffness=3e5),
@@ -235,3 +239,65 @@ def test_numpy_integers_count_blades_as_ints_do():
     disc = BladeGroup.bladed_disc(np.int64(3), BLADE, SPRING, BLADE, SPRING)
     assert disc.graph.graph["sectors"] == 3 and len(disc.couplings) == 6
     assert BladeGroup().add_blade(np.int64(7), BLADE).blade(7) is BLADE
+
+
+# ---- the memory of a run ---------------------------------------------------------------------
+
+def allocated_bytes(records):
+    if isinstance(records, np.ndarray):
+        return records.nbytes
+    return sum(allocated_bytes(r) for r in records) if isinstance(records, tuple) else 0
+
+
+@pytest.mark.parametrize("n, columns", [(3, None), (40, None), (40, 4)])
+def test_the_footprint_is_what_a_run_allocates_to_one_per_cent(n, columns):
+    from shroudnet.engine.generate import kernel_scene
+    from shroudnet.engine.records import allocate
+    scene = Scene(group=BladeGroup.ring(n, BLADE, SHROUD), speed_rpm=3000.0,
+                  excitation=Excitation(engine_order=1, amplitudes=(0.0, 1.0),
+                                        phases=[0.0] * n))
+    controls = SimpleNamespace(n_samples=1001, event_capacity=5000, zeno_events=50)
+    tangent = np.zeros((2 * n, columns or 0))
+    allocated = allocated_bytes(allocate(kernel_scene(scene), np.zeros(n), np.zeros(n), tangent,
+                                         controls, flow=columns is not None))
+    estimate = footprint.scene_footprint(scene, 1001, 5000, tangent_columns=columns)
+    assert estimate.total == pytest.approx(allocated, rel=0.01)
+
+
+def test_a_million_blades_are_refused_with_the_memory_they_would_need():
+    arrays = SimpleNamespace(n_blades=10**6, n_prescribed=0, n_interfaces=10**6,
+                             is_structure=False)
+    with pytest.raises(ValueError) as refused:
+        footprint.check_footprint(SimpleNamespace(arrays=arrays), 20_001, 10**6,
+                                  memory=24 * 2**30)
+    message = str(refused.value)
+    assert "\n" not in message
+    assert message.startswith("a run of 1,000,000 blades and 1,000,000 interfaces over 20,001 "
+                              "samples would need 45,319 GiB (44,703 GiB of it the "
+                              "stick-cluster matrices), more than the 24 GiB of memory this "
+                              "machine has")
+    footprint.check_footprint(SimpleNamespace(arrays=arrays), 20_001, 10**6,
+                              memory=46_000 * 2**30)
+
+
+def test_a_small_run_fits_and_the_memory_is_read_as_bytes():
+    memory = footprint.machine_memory()
+    assert memory is None or (isinstance(memory, int) and memory > 0)
+    scene = Scene(group=BladeGroup.ring(4, BLADE, SHROUD), speed_rpm=3000.0,
+                  excitation=Excitation(engine_order=1, amplitudes=(0.0, 1.0),
+                                        phases=[0.0] * 4))
+    footprint.check_footprint(scene, 10_001, 1000)
+    with pytest.raises(ValueError, match=r"^a run of 4 blades and 4 interfaces over 10,001 "
+                                         r"samples would need 0\.00\d+ GiB"):
+        footprint.check_footprint(scene, 10_001, 1000, memory=1000)
+
+
+@pytest.mark.parametrize("arguments, error, match", [
+    ((-1, 0, 1, 0), ValueError, r"run_footprint\.nodes must be an int >= 0, got -1"),
+    ((1, 2.5, 1, 0), TypeError, r"run_footprint\.interfaces must be an int"),
+    ((1, 1, "10", 0), TypeError, r"run_footprint\.samples must be an int"),
+])
+def test_footprint_arguments_are_checked_by_name(arguments, error, match):
+    with pytest.raises(error, match=match):
+        footprint.run_footprint(*arguments)
+    assert footprint.run_footprint(np.int64(2), np.int32(1), np.uint16(3), 0).total > 0
