@@ -15,6 +15,7 @@ from ._checks import check_choice as check_choice
 from ._checks import check_instance as check_instance
 from ._checks import check_int as check_int
 from ._checks import check_real as check_real
+from ._checks import check_sequence as check_sequence
 from .base import FrictionLaw as FrictionLaw
 from .base import NormalLaw as NormalLaw
 from .friction import Coulomb as Coulomb
@@ -42,6 +43,7 @@ __all__ = [
     "check_instance",
     "check_int",
     "check_real",
+    "check_sequence",
     "FrictionLaw",
     "NormalLaw",
     "Coulomb",

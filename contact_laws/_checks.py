@@ -87,14 +87,18 @@ def check_array(owner: str, field: str, value: object, *, shape: tuple[int | Non
     kind = "a number" if shape == () else (
         "a sequence of numbers" if len(shape) == 1 else f"a {len(shape)}-d array of numbers")
     if isinstance(value, str | bytes | bool | np.bool_) or value is None \
-            or (np.ndim(value) == 0 and shape != ()) or isinstance(value, dict | set):
+            or (_ndim(value) == 0 and shape != ()) or isinstance(value, dict | set):
         raise TypeError(f"{name} must be {kind}, got {_shown(value)}")
     try:
-        array = np.array(value, dtype=float)
+        raw = np.asarray(value)
+        if raw.dtype.kind == "O":  # mixed: numbers only if each entry is one
+            raw = np.array(value, dtype=float) if all(
+                isinstance(v, Real) and not isinstance(v, bool) for v in raw.flat) else raw
     except (TypeError, ValueError) as error:
         raise TypeError(f"{name} must be {kind}, got {_shown(value)} ({error})") from None
-    if np.asarray(value).dtype == np.bool_:
-        raise TypeError(f"{name} must be {kind}, got booleans {_shown(value)}")
+    if raw.dtype.kind not in "iuf":
+        raise TypeError(f"{name} must be {kind}, got {_shown(value)}")
+    array = np.array(raw, dtype=float)
     wanted = "×".join("n" if n is None else str(n) for n in shape) or "scalar"
     if array.ndim != len(shape) or any(n is not None and n != m
                                        for n, m in zip(shape, array.shape)):
@@ -102,7 +106,8 @@ def check_array(owner: str, field: str, value: object, *, shape: tuple[int | Non
     if array.ndim and array.shape[0] < min_length:
         raise ValueError(f"{name} needs at least {min_length} entries, got {array.shape[0]}")
     if not np.isfinite(array).all():
-        raise ValueError(f"{name} must be finite, got a NaN or an infinity in {_shown(value)}")
+        raise ValueError(f"{name} must be finite, got values that are not finite (NaN or "
+                         f"±inf) in {_shown(value)}")
     below = array <= low if low_open else array < low
     if below.any() or (array > high).any():
         bracket = "(" if low_open or math.isinf(low) else "["
@@ -111,6 +116,29 @@ def check_array(owner: str, field: str, value: object, *, shape: tuple[int | Non
         bad = array[below | (array > high)].flat[0]
         raise ValueError(f"{name} must lie in {allowed}, got {bad:g}")
     return array
+
+
+def _ndim(value: object) -> int:
+    """numpy's number of axes of ``value``; −1 for a ragged nesting, which has none."""
+    try:
+        return np.ndim(value)
+    except ValueError:
+        return -1
+
+
+def check_sequence(owner: str, field: str, value: object, *, expected: str = "a sequence",
+                   min_length: int = 0) -> tuple:
+    """Return ``value`` as a tuple if it is a list, tuple, range or 1-d array (of anything:
+    the items are checked by the caller), or raise naming ``owner.field``: ``TypeError``
+    for another type (a string, a number, a 0-d array, a set), ``ValueError`` for fewer
+    than ``min_length`` items."""
+    name = _name(owner, field)
+    if not (isinstance(value, list | tuple | range)
+            or (isinstance(value, np.ndarray) and value.ndim == 1)):
+        raise TypeError(f"{name} must be {expected}, got {_shown(value)}")
+    if len(value) < min_length:
+        raise ValueError(f"{name} needs at least {min_length} items, got {len(value)}")
+    return tuple(value)
 
 
 def check_callable(owner: str, field: str, value: object, *, expected: str = "a function"
