@@ -21,6 +21,21 @@ from .scene import Scene
 #: results is 0.3–6 times this (README, "What accuracy costs"): below the integrators'
 #: own at their default tolerances.
 EVENT_TOLERANCE = 1e-10
+#: The smallest event tolerance [periods]: ten times the resolution of a float, below which
+#: a switch's time bracket cannot shrink, and its location would never end.
+SMALLEST_EVENT_TOLERANCE = 1e-15
+
+
+def check_event_tolerance(owner: str, value: object) -> float:
+    """``value`` as an event tolerance [periods] in [``SMALLEST_EVENT_TOLERANCE``, 1e-3], or
+    raise naming ``owner.event_tolerance``."""
+    value = check_real(owner, "event_tolerance", value, low=0.0, low_open=True, high=1e-3,
+                       unit="periods")
+    if value < SMALLEST_EVENT_TOLERANCE:
+        raise ValueError(f"{owner}.event_tolerance must be at least "
+                         f"{SMALLEST_EVENT_TOLERANCE:g} periods, got {value:g}: a switch's time "
+                         "bracket cannot shrink below the resolution of a float")
+    return value
 
 #: The default number of excitation periods run and left out before a steady response is
 #: read (``sweep``, ``lyapunov``, ``mistuning_study``, the work-precision regimes, a scene

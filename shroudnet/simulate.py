@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from contact_laws import check_int, check_real
+from contact_laws import check_array, check_instance, check_int, check_real
 
 from .engine.codes import EventKind, Mode, Status, WorkColumn
 from .engine.dynamics import interface_kinematics
@@ -16,8 +16,9 @@ from .engine.controller import SMALLEST_STEP, first_step, smallest_step
 from .engine.generate import compiled, kernel_scene, load_kernel
 from .engine.records import Controls, Run, allocate, finish
 from .methods import (EVENT_TOLERANCE, Accuracy, Adaptive, FixedStep, SimulationSettings,
-                      ZenoGuard)
+                      ZenoGuard, check_event_tolerance)
 from .motion import motion_span
+from .scales import check_scales
 from .scene import Scene, edge_matrix
 from .simulation import EnergyLedger, EventLog, Simulation, SimulationError
 
@@ -59,13 +60,19 @@ def simulate(scene: Scene, periods: int, *,
 
     Raises
     ------
+    TypeError
+        Before any work, on an argument of the wrong type, naming it.
     ValueError
         Before any work, on a bad argument, or when the record of the run (``output_bytes``)
         would need more than ``MEMORY_FRACTION`` (half) of the memory available as the run
-        starts (``available_memory``; 8 GiB where it cannot be read).
+        starts (``available_memory``; 8 GiB where it cannot be read), or when the scene's
+        numbers cannot be run (``scales.check_scales``: a natural frequency or damping rate
+        whose stable step is below the smallest step, an energy beyond a float's range).
     SimulationError
         On Zeno or chattering behaviour, a mode set with no consistent choice, a step size
         that collapses, or a non-finite state; the message names the time and the interface.
+        A run never returns a non-finite value: one found in the record or the energy ledger
+        at the end raises this, naming the quantity.
     """
     done = integrate(scene, periods, method=method, samples_per_period=samples_per_period,
                      event_tolerance=event_tolerance, zeno=zeno, initial=initial,
@@ -75,14 +82,16 @@ def simulate(scene: Scene, periods: int, *,
     events = EventLog(time=run.events.time, interface=run.events.interface,
                       kind=run.events.kind,
                       counts={k.name.lower(): int(run.events.counts[k]) for k in EventKind})
-    ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy)
     settings = SimulationSettings(method=method, periods=periods,
                                   samples_per_period=samples_per_period,
                                   event_tolerance=done.event_tolerance,
                                   zeno=replace(zeno, window=done.zeno_window))
+    with np.errstate(over="ignore", invalid="ignore"):
+        ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy)
+    check_finished(out, ledger)
     return Simulation(scene=scene, settings=settings, t=out.t, x=out.x, v=out.v,
                       normal_force=out.normal, friction_force=out.friction, modes=out.modes,
-                      events=events, energy=ledger, work=out.energy,
+                      events=events, energy=EnergyLedger(**ledger), work=out.energy,
                       samples_per_period=samples_per_period, steps=int(run.steps),
                       compile_seconds=done.compile_seconds)
 
@@ -115,14 +124,12 @@ def integrate(scene: Scene, periods: int, *,
     start and the state at ``until`` (the steps before it are those of the whole run).
     Arguments as ``simulate``; raises what it raises.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"simulate needs a shroudnet.Scene, got {scene!r}")
-    periods = check_int("simulate", "periods", periods, low=1)
-    if not isinstance(method, FixedStep | Adaptive | Accuracy):
-        raise TypeError("method must be FixedStep(...), Adaptive(...) or Accuracy(...), "
-                        f"got {method!r}")
-    check_real("simulate", "event_tolerance", event_tolerance, low=0.0, low_open=True,
-               high=1e-3, unit="periods")
+    check_instance("simulate", "scene", scene, Scene, expected="a shroudnet.Scene")
+    periods = check_int("simulate", "periods", periods, low=1, high=MAX_PERIODS)
+    check_instance("simulate", "method", method, (FixedStep, Adaptive, Accuracy),
+                   expected="FixedStep(...), Adaptive(...) or Accuracy(...)")
+    check_instance("simulate", "zeno", zeno, ZenoGuard, expected="a ZenoGuard(...)")
+    check_event_tolerance("simulate", event_tolerance)
     if isinstance(method, Accuracy):
         method, event_tolerance = method.settings(scene, event_tolerance)
     samples_per_period = check_int("simulate", "samples_per_period", samples_per_period, low=1)
@@ -131,9 +138,9 @@ def integrate(scene: Scene, periods: int, *,
         raise ValueError(f"samples_per_period must divide FixedStep.steps_per_period = "
                          f"{method.steps_per_period}, got {samples_per_period}")
     n = scene.arrays.n_blades  # coordinates, with substructures
-    x0, v0 = (np.zeros(n), np.zeros(n)) if initial is None else (
-        _initial(initial[0], n, "x0"), _initial(initial[1], n, "v0"))
+    x0, v0 = initial_state(initial, n)
     _check_memory(scene, periods, samples_per_period, event_capacity)
+    check_scales(scene, periods, method, (x0, v0))
     period = scene.excitation_period
     _check_motions(scene, periods * period)
 
@@ -223,6 +230,10 @@ def _blades_only(run: Run, n: int) -> Run:
 
 
 
+#: The most excitation periods one run may span: beyond it the time t = periods·T_e is so
+#: large that a step of 1e-6 periods falls near the resolution of a float (1e-16 of t).
+MAX_PERIODS = 10**9
+
 #: A run may claim at most this fraction of the memory available when it starts.
 MEMORY_FRACTION = 0.5
 #: A record this small [bytes] is not checked against the available memory: 1 MiB.
@@ -282,17 +293,55 @@ def _check_memory(scene, periods, samples_per_period, event_capacity):
                 else f"the {MEMORY_FALLBACK / 2**30:g} GiB allowed where the available memory "
                      "cannot be read")
         raise ValueError(f"periods = {periods} with samples_per_period = {samples_per_period} "
-                         f"would record {periods * samples_per_period + 1:,} samples and need "
+                         f"and event_capacity = {event_capacity} would record "
+                         f"{periods * samples_per_period + 1:,} samples and need "
                          f"{needed / 2**30:.3g} GiB, more than {what}. Run fewer periods, "
                          "take fewer samples per period, or run in pieces, each starting from "
                          "the last state of the one before (initial=).")
 
 
-def _initial(values, n, name):
-    array = np.asarray(values, dtype=float)
-    if array.shape != (n,) or not np.isfinite(array).all():
-        raise ValueError(f"initial {name} must hold {n} finite numbers, got {values!r}")
-    return array
+def initial_state(initial, n: int, owner: str = "simulate",
+                  field: str = "initial") -> tuple[np.ndarray, np.ndarray]:
+    """(x0, v0) from ``initial``: None (rest) or a pair of sequences of ``n`` finite numbers
+    [m, m/s]; anything else raises naming ``owner.field``."""
+    if initial is None:
+        return np.zeros(n), np.zeros(n)
+    if isinstance(initial, str | bytes | np.ndarray) or not isinstance(initial, tuple | list) \
+            or len(initial) != 2:
+        raise TypeError(f"{owner}.{field} must be a pair (x0, v0) of {n} displacements [m] "
+                        f"and {n} velocities [m/s], or None for rest; got "
+                        f"{type(initial).__name__} {initial!r:.200}")
+    state = []
+    for name, values in zip(("x0", "v0"), initial):
+        try:
+            state.append(check_array(owner, f"{field} {name}", values, shape=(n,)))
+        except ValueError:
+            raise ValueError(f"{owner}.{field} {name} must hold {n} finite numbers, got "
+                             f"{values!r:.200}") from None
+    return tuple(state)
+
+
+def check_finished(out, ledger: dict) -> None:
+    """Raise ``SimulationError`` naming the first quantity of a finished run's record
+    ``out`` (``records.Output``) or of its energy ``ledger`` (the ``EnergyLedger`` fields)
+    that is not finite, and the time it first is, for a history: a run never returns one."""
+    histories = (("time t", out.t), ("displacement x", out.x), ("velocity v", out.v),
+                 ("normal force", out.normal), ("friction force", out.friction),
+                 ("cumulative work", out.energy))
+    for name, values in histories:
+        bad = ~np.isfinite(values)
+        if bad.any():
+            first = int(np.argmax(bad.reshape(len(values), -1).any(axis=1)))
+            raise SimulationError(
+                f"the run ended with a non-finite {name} (first at t = {out.t[first]:.9g} s, "
+                f"sample {first}): the scene's numbers overflow there; check the units of "
+                "its masses, stiffnesses, forces and initial state")
+    for name, value in ledger.items():
+        if not np.isfinite(value):
+            raise SimulationError(
+                f"the run ended with a non-finite energy ledger entry {name} = "
+                f"{value}: the energies of the scene overflow; check the units of its "
+                "masses, stiffnesses, forces and initial state")
 
 
 def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window):
@@ -340,7 +389,8 @@ def _stored(scene, t, x, v, modes):
     return kinetic + strain, contact
 
 
-def _ledger(scene, t, x, v, modes, work) -> EnergyLedger:
+def _ledger(scene, t, x, v, modes, work) -> dict[str, float]:
+    """The ``EnergyLedger`` fields of a run, by name."""
     mechanical_0, contact_0 = _stored(scene, t[0], x[0], v[0], modes[0])
     mechanical_1, contact_1 = _stored(scene, t[-1], x[-1], v[-1], modes[-1])
     excitation, damping, friction, contact_work, lock = work[-1] - work[0]
@@ -349,6 +399,6 @@ def _ledger(scene, t, x, v, modes, work) -> EnergyLedger:
     contact_loss = contact_work - contact_stored
     friction_loss = friction + lock
     residual = excitation - damping - friction_loss - contact_loss - stored
-    return EnergyLedger(excitation_work=float(excitation), damping_loss=float(damping),
-                        friction_loss=float(friction_loss), contact_loss=float(contact_loss),
-                        stored_change=float(stored), residual=float(residual))
+    return dict(excitation_work=float(excitation), damping_loss=float(damping),
+                friction_loss=float(friction_loss), contact_loss=float(contact_loss),
+                stored_change=float(stored), residual=float(residual))

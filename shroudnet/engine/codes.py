@@ -107,9 +107,11 @@ _MESSAGES = {
         "than the steps, with no event to follow (a contact law with a jump makes the motion "
         "chatter across it); make the law continuous, or loosen rtol/atol."),
     Status.NOT_FINITE: (
-        "the state or the forces became non-finite {when}{where}: a contact or friction law "
-        "returned inf or NaN there, or the fixed step is too large for the stiffest contact "
-        "(use Adaptive, or more steps per period)."),
+        "the state or the forces became non-finite {when}{where}: the motion left the range "
+        "of a float there. Either a contact or friction law returned inf or NaN, or the "
+        "fixed step is too large for the stiffest contact (use Adaptive, or more steps per "
+        "period), or the scene's forces and stiffnesses grow the motion beyond 1e308 (check "
+        "their units)."),
     Status.OVERCONSTRAINED: (
         "no consistent set of stick and slip modes {when}{where}: sticking there would tie "
         "two prescribed motions together (or a prescribed motion to a fixed node), and "
