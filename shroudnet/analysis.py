@@ -13,13 +13,15 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import brentq
 
-from contact_laws import check_int
+from contact_laws import (check_array, check_choice, check_instance, check_int, check_real,
+                          check_sequence)
 
+from .checked_records import check_record
 from .classification import (CHAOTIC, QUASI_PERIODIC, REPEAT_TOLERANCE, UNDETERMINED,
                              Classification)
 from .methods import Adaptive
 from .simulation import Simulation, steady_rows
-from .stability import LYAPUNOV_BLOCKS, lyapunov
+from .stability import LYAPUNOV_BLOCKS, LyapunovExponents, lyapunov
 
 
 @dataclass(frozen=True)
@@ -37,6 +39,9 @@ class Spectrum:
     resolution: float
     window: str
 
+    def __post_init__(self):
+        check_record(self)
+
     def peak(self) -> float:
         """f/f_e of the largest component other than the mean."""
         return float(self.frequency_ratio[1:][np.argmax(self.amplitude[1:])])
@@ -47,6 +52,13 @@ class Spectrum:
         return float(self.amplitude[near].max()) if near.any() else 0.0
 
 
+#: The windows ``amplitude_spectrum`` takes.
+WINDOWS = ("hann", "rectangular")
+#: The largest relative distance at which two Poincaré points count as the same: beyond
+#: it every bounded motion would repeat (a tolerance of 10 labels any motion "p1").
+LARGEST_TOLERANCE = 0.1
+
+
 def amplitude_spectrum(signal, samples_per_period: int, *, window: str = "hann") -> Spectrum:
     """The spectrum of ``signal`` sampled ``samples_per_period`` times per excitation period.
 
@@ -54,11 +66,10 @@ def amplitude_spectrum(signal, samples_per_period: int, *, window: str = "hann")
     "hann" (low leakage, for finding subharmonics) or "rectangular" (exact on whole
     periods of a periodic signal).
     """
-    x = np.asarray(signal, dtype=float)
-    if x.ndim != 1 or len(x) < 4 or not np.isfinite(x).all():
-        raise ValueError("amplitude_spectrum needs a 1-D finite signal of at least 4 samples")
-    if window not in ("hann", "rectangular"):
-        raise ValueError(f"window must be 'hann' or 'rectangular', got {window!r}")
+    x = check_array("amplitude_spectrum", "signal", signal, shape=(None,), min_length=4)
+    samples_per_period = check_int("amplitude_spectrum", "samples_per_period",
+                                   samples_per_period, low=1)
+    check_choice("amplitude_spectrum", "window", window, WINDOWS)
     mean = x.mean()
     weights = np.hanning(len(x) + 1)[:-1] if window == "hann" else np.ones(len(x))
     amplitude = 2.0 * np.abs(np.fft.rfft((x - mean) * weights)) / weights.sum()
@@ -71,6 +82,8 @@ def amplitude_spectrum(signal, samples_per_period: int, *, window: str = "hann")
 def spectrum(sim: Simulation, blade: Hashable | int, skip: int, *,
              window: str = "hann") -> Spectrum:
     """Amplitude spectrum of a blade's displacement over whole periods after ``skip``."""
+    check_instance("spectrum", "sim", sim, Simulation, expected="a shroudnet.Simulation")
+    check_choice("spectrum", "window", window, WINDOWS)
     x = sim.scene.response_of(sim.x[steady_rows(sim, skip, "spectrum")], blade)[:-1]  # whole
     # periods: the last sample is dropped
     return amplitude_spectrum(x, sim.samples_per_period, window=window)
@@ -84,7 +97,10 @@ def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
     a few hundred points; below 50 it returns NaN. The random frequencies c ∈ (π/5, 4π/5)
     come from ``seed``, so the result is reproducible.
     """
-    phi = np.asarray(series, dtype=float)
+    phi = check_array("zero_one_test", "series", series, shape=(None,))
+    n_frequencies = check_int("zero_one_test", "n_frequencies", n_frequencies, low=1,
+                              high=100_000)
+    seed = check_int("zero_one_test", "seed", seed, low=0)
     n = len(phi)
     if n < 50:
         return math.nan
@@ -126,7 +142,15 @@ def classify_section(points, *, scale=None, tolerance: float = REPEAT_TOLERANCE,
     chaotic, else quasi-periodic, and fewer than ``MIN_ZERO_ONE_POINTS`` points are
     undetermined.
     """
-    points = np.asarray(points, dtype=float)
+    points = check_array("classify_section", "points", points, shape=(None, None))
+    if scale is not None:
+        scale = check_array("classify_section", "scale", scale, shape=(points.shape[1],),
+                            low=0.0)
+    tolerance, max_period = _repeat_settings("classify_section", tolerance, max_period)
+    check_real("classify_section", "chaos_threshold", chaos_threshold, low=0.0, high=1.0)
+    if not (isinstance(broadband, float) and math.isnan(broadband)):
+        check_real("classify_section", "broadband", broadband, low=0.0, high=1.0)
+    check_instance("classify_section", "exponent", exponent, LyapunovExponents, optional=True)
     period, mismatch = repeat_period(points, scale, tolerance, max_period)
     if period is not None:
         return Classification(f"p{period}", period, len(points), tolerance, mismatch, 0.0,
@@ -196,6 +220,9 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
     ``exponent=False`` the 0–1 test decides instead, as ``classify_section`` does without
     an exponent.
     """
+    check_instance("classify", "sim", sim, Simulation, expected="a shroudnet.Simulation")
+    tolerance, max_period = _repeat_settings("classify", tolerance, max_period)
+    check_instance("classify", "exponent", exponent, bool, expected="True or False")
     rows = steady_rows(sim, skip, "classify")
     scale = (np.abs(sim.scene.response_of(sim.x[rows], blade)).max(),
              np.abs(sim.scene.response_of(sim.v[rows], blade)).max())
@@ -218,6 +245,14 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
                           initial=(sim.x[start], sim.v[start]), method=Adaptive(rtol=rtol))
     return classify_section(points, scale=scale, tolerance=tolerance, max_period=max_period,
                             broadband=broadband, exponent=result)
+
+
+def _repeat_settings(owner: str, tolerance, max_period) -> tuple[float, int]:
+    """The repeat test's ``tolerance`` (relative distance, in (0, ``LARGEST_TOLERANCE``])
+    and ``max_period`` (≥ 1), checked."""
+    tolerance = check_real(owner, "tolerance", tolerance, low=0.0, low_open=True,
+                           high=LARGEST_TOLERANCE)
+    return tolerance, check_int(owner, "max_period", max_period, low=1, high=100_000)
 
 
 def broadband_fraction(spectrum: Spectrum, lines: int = 20) -> float:
@@ -246,6 +281,8 @@ def friction_loss_per_cycle(sim: Simulation, skip: int) -> float:
 
     Sliding friction work plus the kinetic energy lost as slipping blades lock together.
     """
+    check_instance("friction_loss_per_cycle", "sim", sim, Simulation,
+                   expected="a shroudnet.Simulation")
     rows = steady_rows(sim, skip, "friction_loss_per_cycle")
     work = sim.work[rows]
     return float((work[-1, 2] + work[-1, 4] - work[0, 2] - work[0, 4])
@@ -268,6 +305,9 @@ class HysteresisLoop:
     cycles: int
     interface: int
 
+    def __post_init__(self):
+        check_record(self)
+
     def area_per_cycle(self) -> float:
         """∮ f du_t per period [J/cycle], by the trapezoidal rule over the samples: the
         friction loss per cycle of a steady response, to the sampling's second order
@@ -280,6 +320,8 @@ class HysteresisLoop:
 def hysteresis_loop(sim: Simulation, interface: int, skip: int) -> HysteresisLoop:
     """The hysteresis loop of interface ``interface`` (its position, 0-based) over the
     periods of ``sim`` after ``skip`` (as ``steady_rows`` takes it)."""
+    check_instance("hysteresis_loop", "sim", sim, Simulation,
+                   expected="a shroudnet.Simulation")
     interface = sim.checked_interface(interface, "hysteresis_loop")
     rows = steady_rows(sim, skip, "hysteresis_loop")
     slip = sim.slip_displacement(interface)[rows]
@@ -300,6 +342,9 @@ class Campbell:
     engine_orders: tuple[int, ...]
     crossings: tuple[tuple[int, float, float], ...]
 
+    def __post_init__(self):
+        check_record(self)
+
     def line(self, engine_order: int) -> np.ndarray:
         """The excitation frequency l Ω/60 [Hz] of an engine order at each speed."""
         return engine_order * self.speeds_rpm / 60.0
@@ -309,11 +354,17 @@ def campbell(frequency_model, speeds_rpm: Sequence[float],
              engine_orders: Sequence[int] = (1, 2, 3, 4)) -> Campbell:
     """Campbell diagram of a blade frequency model (anything with ``at(speed_rpm)`` in Hz:
     ``ConstantFrequency``, ``Southwell``, ``FrequencyTable``) over increasing speeds [rpm]."""
-    speeds = np.asarray(speeds_rpm, dtype=float)
-    if speeds.ndim != 1 or len(speeds) < 2 or np.any(np.diff(speeds) <= 0):
+    if not callable(getattr(frequency_model, "at", None)):
+        raise TypeError("campbell.frequency_model must be a frequency model with at(speed_rpm) "
+                        "in Hz (ConstantFrequency, Southwell, FrequencyTable), got "
+                        f"{type(frequency_model).__name__} {frequency_model!r:.80}")
+    speeds = check_array("campbell", "speeds_rpm", speeds_rpm, shape=(None,), low=0.0,
+                         unit="rpm")
+    if len(speeds) < 2 or np.any(np.diff(speeds) <= 0):
         raise ValueError("campbell needs at least two increasing speeds_rpm")
     engine_orders = [check_int("campbell", "engine_orders", order, low=1)
-                     for order in engine_orders]
+                     for order in check_sequence("campbell", "engine_orders", engine_orders,
+                                                 expected="a sequence of ints", min_length=1)]
     frequency = np.array([frequency_model.at(s) for s in speeds])
     crossings = []
     for order in engine_orders:

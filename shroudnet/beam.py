@@ -21,6 +21,11 @@ from .substructure import Substructure
 
 #: Degrees of freedom per node, in this order: flapwise v, θ_z; edgewise w, θ_y.
 NODE_DOFS = ("v", "theta_z", "w", "theta_y")
+#: The most elements a beam may have: 4 degrees of freedom each, assembled sparse.
+MAX_ELEMENTS = 100_000
+#: The largest tip mass, as a multiple of the beam's own mass ρAL, whose mass matrix a
+#: float still resolves (its eigenvalues span that ratio).
+TIP_MASS_RATIO = 1e12
 #: Gauss–Legendre points on [0, 1]: five integrate the degree-8 products exactly.
 _GAUSS_POINTS, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(5)
 _GAUSS_POINTS = 0.5 * (_GAUSS_POINTS + 1.0)
@@ -105,8 +110,13 @@ def cantilever_beam(*, length: float, youngs_modulus: float, density: float,
     modulus = check_real(owner, "youngs_modulus", youngs_modulus, low=0.0, low_open=True,
                          unit="Pa")
     density = check_real(owner, "density", density, low=0.0, low_open=True, unit="kg/m³")
-    area, flap, edge = _section(owner, width, thickness, area, second_moments)
-    elements = check_int(owner, "elements", elements, low=1)
+    try:
+        area, flap, edge = _section(owner, width, thickness, area, second_moments)
+    except OverflowError:
+        raise ValueError(f"{owner}: the section (width = {width}, thickness = {thickness}, "
+                         f"area = {area}, second_moments = {second_moments}) overflows a "
+                         "float: check its units [m]") from None
+    elements = check_int(owner, "elements", elements, low=1, high=MAX_ELEMENTS)
     shear = None
     if shear_modulus is not None:
         shear = check_real(owner, "shear_modulus", shear_modulus, low=0.0, low_open=True,
@@ -119,21 +129,37 @@ def cantilever_beam(*, length: float, youngs_modulus: float, density: float,
     if hub_radius is not None:
         hub_radius = check_real(owner, "hub_radius", hub_radius, low=0.0, unit="m")
 
-    size = 4 * elements
-    step = length / elements
+    size, step = 4 * elements, length / elements
     mass, stiffness, speed = ([], [], [])
-    for plane, inertia in ((0, flap), (2, edge)):
-        shape = _ElementShape(step, modulus * inertia, None if shear is None else shear * area)
-        # Euler–Bernoulli elements carry no rotary inertia, like the classical beam theory.
-        element_m = shape.mass(density * area, 0.0 if shear is None else density * inertia)
-        element_k = shape.stiffness()
-        for e in range(elements):
-            dofs = _element_dofs(e, plane)
-            mass.append((dofs, element_m))
-            stiffness.append((dofs, element_k))
-            if hub_radius is not None:
-                speed.append((dofs, shape.geometric(
-                    _tension(density * area, tip_mass, hub_radius, length, e * step))))
+    try:
+        with np.errstate(over="raise", invalid="raise"):
+            for plane, inertia in ((0, flap), (2, edge)):
+                shape = _ElementShape(step, modulus * inertia,
+                                      None if shear is None else shear * area)
+                # Euler–Bernoulli elements carry no rotary inertia, like the classical beam
+                # theory.
+                element_m = shape.mass(density * area,
+                                       0.0 if shear is None else density * inertia)
+                element_k = shape.stiffness()
+                for e in range(elements):
+                    dofs = _element_dofs(e, plane)
+                    mass.append((dofs, element_m))
+                    stiffness.append((dofs, element_k))
+                    if hub_radius is not None:
+                        speed.append((dofs, shape.geometric(
+                            _tension(density * area, tip_mass, hub_radius, length, e * step))))
+            load = _flapwise_point(position, elements, step, modulus * flap,
+                                   None if shear is None else shear * area)
+    except (OverflowError, FloatingPointError, ZeroDivisionError):
+        mass = None
+    if mass is None or not all(np.isfinite(matrix).all() for _, matrix in mass + stiffness
+                               + speed) or not np.isfinite(load).all() \
+            or tip_mass > TIP_MASS_RATIO * density * area * length:
+        raise ValueError(f"{owner}: length = {length:g} m, youngs_modulus = {modulus:g} Pa, "
+                         f"density = {density:g} kg/m³, tip_mass = {tip_mass:g} kg and "
+                         f"hub_radius = {hub_radius} m give mass or stiffness entries that a "
+                         "float cannot resolve (beyond its range, or a tip mass more than "
+                         f"{TIP_MASS_RATIO:g} times the beam's): check their units")
     tip = size - 4
     mass_matrix = _assemble(mass, size)
     if tip_mass:
@@ -144,10 +170,8 @@ def cantilever_beam(*, length: float, youngs_modulus: float, density: float,
     return Substructure(
         mass_matrix, _assemble(stiffness, size), damping_ratios=damping_ratios,
         stiffness_speed=None if hub_radius is None else _assemble(speed, size),
-        points={"shroud": shroud,
-                "load": _flapwise_point(position, elements, step, modulus * flap,
-                                        None if shear is None else shear * area)},
-        load="load", excitation_scale=excitation_scale)
+        points={"shroud": shroud, "load": load}, load="load",
+        excitation_scale=excitation_scale)
 
 
 def _section(owner, width, thickness, area, second_moments):

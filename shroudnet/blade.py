@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact_laws import check_real
+from contact_laws import check_array, check_real
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -76,10 +76,12 @@ class FrequencyTable:
     frequencies: tuple[float, ...]
 
     def __post_init__(self):
-        speeds = tuple(check_real("FrequencyTable", "speeds_rpm", s, low=0.0, unit="rpm")
-                       for s in self.speeds_rpm)
-        freqs = tuple(check_real("FrequencyTable", "frequencies", f, low=0.0, low_open=True,
-                                 unit="Hz") for f in self.frequencies)
+        speeds = tuple(float(s) for s in check_array(
+            "FrequencyTable", "speeds_rpm", self.speeds_rpm, shape=(None,), low=0.0,
+            unit="rpm"))
+        freqs = tuple(float(f) for f in check_array(
+            "FrequencyTable", "frequencies", self.frequencies, shape=(None,), low=0.0,
+            low_open=True, unit="Hz"))
         if len(speeds) < 2 or len(speeds) != len(freqs):
             raise ValueError("FrequencyTable needs at least two speeds_rpm and as many "
                              f"frequencies, got {len(speeds)} and {len(freqs)}")

@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from .checked_records import check_record
+
 #: Labels besides "p1" … "pN".
 QUASI_PERIODIC = "quasi-periodic"
 CHAOTIC = "chaotic"
@@ -49,6 +51,12 @@ class Classification:
     lyapunov: float = math.nan
     lyapunov_error: float = math.nan
     reason: str = ""
+
+    #: Fields that may hold NaN or ±inf (see ``checked_records``).
+    NON_FINITE = ("tolerance", "mismatch", "zero_one", "broadband", "lyapunov", "lyapunov_error")
+
+    def __post_init__(self):
+        check_record(self)
 
     def __str__(self) -> str:
         exponent = "" if math.isnan(self.lyapunov) else (

@@ -31,15 +31,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact_laws import check_int, check_real
+from contact_laws import check_callable, check_instance, check_int, check_real
 
+from .checked_records import check_record
 from .linear_response import frequency_response
-from .methods import EVENT_TOLERANCE, Accuracy, Adaptive
-from .orbits import (ORBIT_TOLERANCE, UNIT_CIRCLE, ConvergenceError, PeriodicOrbit,
-                     least_squares, orbit_at, periodic_orbit, state_weights)
+from .methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
+from .orbits import (ORBIT_TOLERANCE, SMALLEST_TOLERANCE, UNIT_CIRCLE, ConvergenceError,
+                     PeriodicOrbit, least_squares, orbit_at, periodic_orbit, state_weights)
 from .parametric import checked_scene_at
 from .scene import Scene
-from .simulate import integrate
+from .simulate import MAX_PERIODS, integrate
 from .simulation import SimulationError
 from .stability import TANGENT_METHOD, stroboscopic_step
 
@@ -132,6 +133,9 @@ class Bifurcation:
     index: int
     bracket: tuple[float, float]
 
+    def __post_init__(self):
+        check_record(self)
+
 
 @dataclass(frozen=True)
 class Branch:
@@ -148,6 +152,9 @@ class Branch:
     periods: int
     name: str
     ended: str
+
+    def __post_init__(self):
+        check_record(self)
 
     def __len__(self) -> int:
         return len(self.orbits)
@@ -279,10 +286,17 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
     stop = check_real("continuation", "stop", stop)
     if start == stop:
         raise ValueError(f"continuation: start and stop are both {start}: give a range")
-    if not callable(scene_at):
-        raise TypeError(f"continuation.scene_at must be a callable value -> Scene, got "
-                        f"{scene_at!r}")
-    periods = check_int("continuation", "periods", periods, low=1)
+    check_callable("continuation", "scene_at", scene_at, expected="a callable value -> Scene")
+    periods = check_int("continuation", "periods", periods, low=1, high=MAX_PERIODS)
+    transient = check_int("continuation", "transient", transient, low=0, high=MAX_PERIODS)
+    check_instance("continuation", "method", method, (Adaptive, Accuracy),
+                   expected="Adaptive(...) or Accuracy(...)")
+    check_real("continuation", "tolerance", tolerance, low=SMALLEST_TOLERANCE, high=1e-3)
+    check_event_tolerance("continuation", event_tolerance)
+    check_instance("continuation", "parameter", parameter, str, expected="a name (str)")
+    if progress is not None:
+        check_callable("continuation", "progress", progress,
+                       expected="None or a callable progress(points, p)")
     max_points = check_int("continuation", "max_points", max_points, low=2)
     max_step = check_real("continuation", "max_step", max_step, low=SMALLEST_STEP,
                           high=1.0)
@@ -293,7 +307,13 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         raise ValueError(f"continuation.from_bifurcation must be a 'period-doubling' "
                          f"Bifurcation of a branch, got {from_bifurcation!r}")
     span = abs(stop - start)
-    checked_scene_at("continuation", scene_at, start, start + 1e-3 * span)
+    try:
+        checked_scene_at("continuation", scene_at, start, start + 1e-3 * span)
+    except (ValueError, TypeError) as error:
+        if "scene_at" in str(error):
+            raise
+        raise type(error)(f"continuation: scene_at refused the range start = {start:g} … "
+                          f"stop = {stop:g}: {error}") from error
     solver = Solver(scene_at=scene_at, span=span,
                     low=min(start, stop), high=max(start, stop), method=method,
                     tolerance=tolerance, event_tolerance=event_tolerance)

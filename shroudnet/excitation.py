@@ -19,12 +19,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact_laws import check_int, check_real
+from contact_laws import check_array, check_int, check_real
 
 #: Largest engine order accepted: l counts the vanes, struts or burners a blade passes per
 #: revolution, a few hundred at most in any turbomachine; beyond 1000 the excitation
 #: frequency l Ω/2π is taken for a mistake (10⁶ at 6000 rpm would be 10⁸ Hz).
 ENGINE_ORDER_MAX = 1000
+
+
+def _count(owner: str, n_blades: object) -> int:
+    """The number of blades a pattern is asked for: an int ≥ 1."""
+    return check_int(owner, "n_blades", n_blades, low=1)
 
 
 @dataclass(frozen=True)
@@ -33,6 +38,7 @@ class AntiPhase:
 
     def phases(self, n_blades: int) -> np.ndarray:
         """φ_i = π i [rad] for the blades by position."""
+        n_blades = _count("AntiPhase.phases", n_blades)
         return math.pi * np.arange(n_blades, dtype=float)
 
 
@@ -56,6 +62,7 @@ class TravellingWave:
 
     def phases(self, n_blades: int) -> np.ndarray:
         """φ_i = 2π ND i / N [rad] for the N = ``n_blades`` blades by position."""
+        n_blades = _count("TravellingWave.phases", n_blades)
         nd = self.nodal_diameter
         if nd >= n_blades:
             raise ValueError(f"TravellingWave.nodal_diameter must be in [0, N − 1] = "
@@ -90,12 +97,16 @@ class EngineOrderWave:
     @staticmethod
     def nodal_diameter(n_blades: int, engine_order: int) -> int:
         """ND = l mod N."""
-        return engine_order % n_blades
+        n_blades = _count("EngineOrderWave.nodal_diameter", n_blades)
+        return check_int("EngineOrderWave.nodal_diameter", "engine_order", engine_order,
+                         low=1) % n_blades
 
     def wave(self, n_blades: int, engine_order: int) -> TravellingWave | ExplicitPhases:
         """The pattern this stands for on ``n_blades`` blades (or sectors) in a row: the
         ``TravellingWave`` of ND = l mod N where they are the whole disc, else the
         ``ExplicitPhases`` 2π l i / N (reduced to [0, 2π))."""
+        n_blades = _count("EngineOrderWave.wave", n_blades)
+        engine_order = check_int("EngineOrderWave.wave", "engine_order", engine_order, low=1)
         disc = n_blades if self.blades_on_disc is None else self.blades_on_disc
         if disc == n_blades:
             return TravellingWave(self.nodal_diameter(n_blades, engine_order))
@@ -118,7 +129,8 @@ class ExplicitPhases:
     values: tuple[float, ...]
 
     def __post_init__(self):
-        if isinstance(self.values, str) or not isinstance(self.values, Sequence | np.ndarray):
+        if isinstance(self.values, str) or getattr(self.values, "ndim", 1) == 0 \
+                or not isinstance(self.values, Sequence | np.ndarray):
             raise TypeError("ExplicitPhases.values must be a sequence of phases (φ1, φ2, …) "
                             f"[rad], one per blade, got {type(self.values).__name__} "
                             f"{self.values!r}")
@@ -128,6 +140,7 @@ class ExplicitPhases:
 
     def phases(self, n_blades: int) -> np.ndarray:
         """The given φ_i [rad]; raises unless there is one per blade."""
+        n_blades = _count("ExplicitPhases.phases", n_blades)
         if len(self.values) != n_blades:
             raise ValueError(f"ExplicitPhases has {len(self.values)} phases for "
                              f"{n_blades} blades")
@@ -166,14 +179,14 @@ class Excitation:
         object.__setattr__(self, "engine_order",
                            check_int("Excitation", "engine_order", self.engine_order, low=1,
                                      high=ENGINE_ORDER_MAX))
-        if isinstance(self.amplitudes, str | bytes) \
+        if isinstance(self.amplitudes, str | bytes) or getattr(self.amplitudes, "ndim", 1) == 0 \
                 or not isinstance(self.amplitudes, Sequence | np.ndarray):
             raise TypeError("Excitation.amplitudes must be a sequence (q0, q1, …) [N]: the "
                             "mean force q0, then the amplitude of each harmonic (one "
                             "harmonic of 50 N without mean force is (0.0, 50.0)); got "
                             f"{type(self.amplitudes).__name__} {self.amplitudes!r}")
-        amplitudes = tuple(check_real("Excitation", "amplitudes", q, unit="N")
-                           for q in self.amplitudes)
+        amplitudes = tuple(float(q) for q in check_array(
+            "Excitation", "amplitudes", self.amplitudes, shape=(None,), unit="N"))
         if not amplitudes:
             raise ValueError("Excitation.amplitudes needs at least q0 (the mean force)")
         object.__setattr__(self, "amplitudes", amplitudes)
@@ -193,6 +206,7 @@ class Excitation:
 
     def blade_phases(self, n_blades: int) -> np.ndarray:
         """φ_i [rad] of the fundamental for ``n_blades`` blades by position."""
+        n_blades = _count("Excitation.blade_phases", n_blades)
         if isinstance(self.phases, EngineOrderWave):
             return self.phases.phases(n_blades, self.engine_order)
         return self.phases.phases(n_blades)
@@ -203,6 +217,8 @@ class Excitation:
 
     def frequency(self, speed_rpm: float) -> float:
         """f_e = l Ω/60 [Hz] at ``speed_rpm`` [rev/min]."""
+        speed_rpm = check_real("Excitation.frequency", "speed_rpm", speed_rpm, low=0.0,
+                               unit="rpm")
         return self.engine_order * speed_rpm / 60.0
 
 

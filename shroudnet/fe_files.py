@@ -14,6 +14,7 @@ Units are the file's: give SI (kg, N/m) or know what the frequencies mean.
 
 from __future__ import annotations
 
+import os
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -77,6 +78,9 @@ def read_matrices(path, mass: str = "M", stiffness: str = "K", damping: str | No
     array([[ 2., -1.],
            [-1.,  1.]])
     """
+    if not isinstance(path, str | os.PathLike):
+        raise TypeError(f"read_matrices.path must be a file name (str or Path), got "
+                        f"{type(path).__name__} {path!r:.80}")
     path = Path(path)
     if path.suffix.lower() not in EXTENSIONS:
         raise ValueError(f"read_matrices reads {' and '.join(EXTENSIONS)} files, got "
@@ -88,6 +92,9 @@ def read_matrices(path, mass: str = "M", stiffness: str = "K", damping: str | No
              "stiffness_speed": stiffness_speed}
     matrices = {}
     for field, name in names.items():
+        if name is None and field in ("mass", "stiffness"):
+            raise TypeError(f"read_matrices.{field} must be the name of a matrix in the file, "
+                            "got None")
         if name is None:
             continue
         if not isinstance(name, str):

@@ -112,7 +112,8 @@ class Interface:
         one, several = self.tangent_direction, self.tangent_directions
         if several is None:
             return None if one is None else (one,)
-        if isinstance(several, (str, bytes)) or not hasattr(several, "__len__"):
+        if isinstance(several, (str, bytes)) or not hasattr(several, "__len__") \
+                or getattr(several, "ndim", 1) == 0:
             raise TypeError("Interface.tangent_directions must be a sequence of one or two "
                             f"unit vectors, got {several!r}")
         if one is not None and (len(several) != 1 or _unit("tangent_direction", one)

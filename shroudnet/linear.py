@@ -58,8 +58,9 @@ import numpy as np
 import scipy.linalg
 from scipy.optimize import brentq
 
-from contact_laws import check_int
+from contact_laws import check_array, check_instance, check_int, check_sequence
 
+from .checked_records import check_record
 from .engine.clusters import cluster_labels
 from .scene import Scene, edge_matrix
 
@@ -83,6 +84,9 @@ class LinearModes:
     sectors: int | None
     speed_rpm: float
     scene: Scene | None = None
+
+    def __post_init__(self):
+        check_record(self)
 
     def node_shapes(self, node: Hashable) -> np.ndarray:
         """The mode shapes in ``node``'s own degrees of freedom q_i (n_i × modes; column k
@@ -109,6 +113,9 @@ class LinearModes:
         if self.nodal_diameters is None:
             raise ValueError("these modes are not sorted by nodal diameter: the group has "
                              "no sectors (give linear_modes(..., sectors=N))")
+        largest = int(self.nodal_diameters.max(initial=0))
+        nodal_diameter = check_int("LinearModes.of_diameter", "nodal_diameter", nodal_diameter,
+                                   low=0, high=largest, high_label="N // 2")
         return self.frequencies[self.nodal_diameters == nodal_diameter]
 
     def families(self) -> np.ndarray:
@@ -162,8 +169,10 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
     >>> [int(nd) for nd in modes.nodal_diameters]
     [0, 1, 1, 2, 2, 3]
     """
-    if contacts not in CONTACTS:
-        raise ValueError(f"linear_modes: contacts must be one of {CONTACTS}, got {contacts!r}")
+    check_instance("linear_modes", "scene", scene, Scene, expected="a shroudnet.Scene")
+    if not isinstance(contacts, str) or contacts not in CONTACTS:
+        kind = ValueError if isinstance(contacts, str) else TypeError
+        raise kind(f"linear_modes: contacts must be one of {CONTACTS}, got {contacts!r}")
     a = scene.arrays
     if sectors is None:
         sectors = scene.group.graph.graph.get("sectors")
@@ -329,6 +338,12 @@ class GroupCampbell:
     crossings: tuple[tuple[int, int, float, float], ...]
     contacts: str
 
+    #: Fields that may hold NaN or ±inf (see ``checked_records``).
+    NON_FINITE = ("frequencies",)
+
+    def __post_init__(self):
+        check_record(self)
+
     def line(self, engine_order: int) -> np.ndarray:
         """The excitation frequency l Ω/60 [Hz] of an engine order at each speed."""
         return engine_order * self.speeds_rpm / 60.0
@@ -340,11 +355,15 @@ def group_campbell(scene: Scene, speeds_rpm: Sequence[float],
     """The Campbell diagram of the group: ``linear_modes`` at each of the increasing
     ``speeds_rpm``, with the crossings of the engine-order lines located by Brent's method
     on the modes each order excites."""
-    speeds = np.asarray(speeds_rpm, dtype=float)
-    if speeds.ndim != 1 or len(speeds) < 2 or np.any(np.diff(speeds) <= 0):
+    check_instance("group_campbell", "scene", scene, Scene, expected="a shroudnet.Scene")
+    speeds = check_array("group_campbell", "speeds_rpm", speeds_rpm, shape=(None,), low=0.0,
+                         low_open=True, unit="rpm")
+    if len(speeds) < 2 or np.any(np.diff(speeds) <= 0):
         raise ValueError("group_campbell needs at least two increasing speeds_rpm")
     orders = tuple(check_int("group_campbell", "engine_orders", order, low=1)
-                   for order in engine_orders)
+                   for order in check_sequence("group_campbell", "engine_orders",
+                                               engine_orders, expected="a sequence of ints",
+                                               min_length=1))
 
     def modes_at(speed):
         return linear_modes(replace(scene, speed_rpm=float(speed)), contacts,

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .checked_records import check_record
 from .linear import CONTACTS, interface_limit
 from .scene import Scene
 
@@ -51,6 +52,9 @@ class FrequencyResponse:
     response: np.ndarray
     contacts: str
     scene: Scene
+
+    def __post_init__(self):
+        check_record(self)
 
     def dofs(self, node: Hashable) -> np.ndarray:
         """``node``'s own degrees of freedom q_i (frequencies × n_i, complex) [m]."""
@@ -105,9 +109,11 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
     (3,)
     """
     if not isinstance(scene, Scene):
-        raise TypeError(f"frequency_response needs a shroudnet.Scene, got {scene!r}")
-    if contacts not in CONTACTS:
-        raise ValueError(f"frequency_response: contacts must be one of {CONTACTS}, got "
+        raise TypeError(f"frequency_response needs a shroudnet.Scene (scene=), got "
+                        f"{scene!r:.80}")
+    if not isinstance(contacts, str) or contacts not in CONTACTS:
+        raise (ValueError if isinstance(contacts, str) else TypeError)(
+            f"frequency_response: contacts must be one of {CONTACTS}, got "
                          f"{contacts!r}")
     frequencies = _checked_frequencies(frequencies)
     a = scene.arrays

@@ -29,8 +29,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from contact_laws import check_int, check_real
+from contact_laws import check_array, check_instance, check_int, check_real, check_sequence
 
+from .checked_records import check_record
 from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
 from .group import BladeGroup
 from .methods import TRANSIENT, Adaptive
@@ -38,6 +39,9 @@ from .scene import Scene
 from .simulation import SimulationError
 from .substructure import Substructure
 from .sweep import sweep
+
+#: The most mistuned groups one study may draw: each runs at every speed.
+MAX_SAMPLES = 1_000_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,6 +59,12 @@ class MistuningStudy:
     peaks: np.ndarray
     blades: tuple[Hashable, ...]
     sectors: int
+
+    #: Fields that may hold NaN or ±inf (see ``checked_records``).
+    NON_FINITE = ("peaks",)
+
+    def __post_init__(self):
+        check_record(self)
 
     @property
     def tuned_peak(self) -> float:
@@ -213,26 +223,32 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
     -------
     MistuningStudy
     """
+    check_instance("mistuning_study", "scene", scene, Scene, expected="a shroudnet.Scene")
     spread = check_real("mistuning_study", "spread", spread, low=0.0, high=0.3)
-    samples = check_int("mistuning_study", "samples", samples, low=1)
-    speeds = tuple(check_real("mistuning_study", "speeds_rpm", s, low=0.0, low_open=True,
-                              unit="rpm") for s in speeds_rpm)
+    samples = check_int("mistuning_study", "samples", samples, low=1, high=MAX_SAMPLES)
+    seed = check_int("mistuning_study", "seed", seed, low=0)
+    speeds = tuple(float(s) for s in check_array(
+        "mistuning_study", "speeds_rpm", speeds_rpm, shape=(None,), low=0.0, low_open=True,
+        unit="rpm"))
     if not speeds:
         raise ValueError("mistuning_study needs at least one speed in speeds_rpm")
     names = scene.blades
     sectors = scene.group.graph.graph.get("sectors") or len(names)
     per_sector = len(names) // sectors
+    if blades is not None:
+        blades = check_sequence("mistuning_study", "blades", blades,
+                                expected="a sequence of blade names, or None for every blade")
     if blades is None:
         disc = scene.group.graph.graph.get("sectors") and per_sector > 1
         blades = [n for n in names if not disc or str(n).startswith("blade")]
-    unknown = [b for b in blades if b not in names]
+    unknown = [b for b in blades if not isinstance(b, Hashable) or b not in names]
     if unknown or not blades:
         raise ValueError(f"mistuning_study: blades must name moving nodes of the group; "
                          f"unknown: {unknown}" if unknown else "mistuning_study: no blades")
     if patterns is None:
         patterns = np.random.default_rng(seed).normal(0.0, spread, size=(samples, sectors))
-    patterns = np.asarray(patterns, dtype=float)
-    if patterns.shape != (samples, sectors) or not np.all(patterns > -1.0):
+    patterns = check_array("mistuning_study", "patterns", patterns, shape=(samples, sectors))
+    if not np.all(patterns > -1.0):
         raise ValueError(f"mistuning_study: patterns must be {samples} × {sectors} "
                          f"deviations ε > −1, got shape {patterns.shape}")
     mistuned = np.array([names.index(b) for b in blades])

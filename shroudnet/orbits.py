@@ -12,16 +12,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact_laws import check_int, check_real
+from contact_laws import check_instance, check_int, check_real
 
+from .checked_records import check_record
 from .engine.codes import EventKind
-from .methods import EVENT_TOLERANCE, Accuracy, Adaptive
+from .methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
 from .scene import Scene
 from .analysis import hysteresis_loop
 from .cycle import (EnergyPerCycle, Harmonics, energy_per_cycle, equivalent_damping,
                     harmonics, kinetic_peak)
 from .extremes import orbit_extremes, state_at
-from .simulate import simulate
+from .simulate import MAX_PERIODS, initial_state, simulate
 from .simulation import EventLog, Simulation, SimulationError
 from .stability import TANGENT_METHOD, StroboscopicStep, stroboscopic_step
 
@@ -84,6 +85,9 @@ class PeriodicOrbit:
     kinetic_peak: float
     singular: int
     history: Simulation | None = None
+
+    def __post_init__(self):
+        check_record(self)
 
     @property
     def stable(self) -> bool:
@@ -166,6 +170,11 @@ class PeriodicOrbit:
                          for e, law in enumerate(self.scene.arrays.friction_laws)])
 
 
+#: The smallest residual Newton is asked for, relative to the state scale: a few times the
+#: resolution of a float, below which the residual is rounding.
+SMALLEST_TOLERANCE = 1e-14
+
+
 def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
                    method: Adaptive | Accuracy = TANGENT_METHOD, transient: int = 100,
                    tolerance: float = ORBIT_TOLERANCE,
@@ -190,7 +199,7 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
     transient : int
         Periods run from rest for the default guess, ≥ 0.
     tolerance : float
-        The residual max |φ(y) − y| / scale to reach, in (0, 1e-3]. The scale is the
+        The residual max |φ(y) − y| / scale to reach, in [1e-14, 1e-3]. The scale is the
         largest of the guess's max |x|, its max |ẋ| / (l Ω) and the static deflection.
     event_tolerance : float
         As ``simulate``.
@@ -207,9 +216,16 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
     SimulationError
         As ``simulate``.
     """
-    periods = check_int("periodic_orbit", "periods", periods, low=1)
-    transient = check_int("periodic_orbit", "transient", transient, low=0)
-    check_real("periodic_orbit", "tolerance", tolerance, low=0.0, low_open=True, high=1e-3)
+    check_instance("periodic_orbit", "scene", scene, Scene, expected="a shroudnet.Scene")
+    periods = check_int("periodic_orbit", "periods", periods, low=1, high=MAX_PERIODS)
+    transient = check_int("periodic_orbit", "transient", transient, low=0, high=MAX_PERIODS)
+    check_real("periodic_orbit", "tolerance", tolerance, low=SMALLEST_TOLERANCE, high=1e-3)
+    check_instance("periodic_orbit", "method", method, (Adaptive, Accuracy),
+                   expected="Adaptive(...) or Accuracy(...)")
+    check_event_tolerance("periodic_orbit", event_tolerance)
+    samples_per_period = check_int("periodic_orbit", "samples_per_period", samples_per_period,
+                                   low=1)
+    check_instance("periodic_orbit", "history", history, bool, expected="True or False")
     starts = start_states(scene, periods, guess, transient, method, event_tolerance)
     for attempt, y in enumerate(starts):
         weights = state_weights(scene, y)
@@ -237,17 +253,7 @@ def start_states(scene, periods, guess, transient, method, event_tolerance) -> l
     ``periods`` periods (near-returns lie near an orbit), closest first."""
     n = scene.arrays.n_blades
     if guess is not None:
-        parts = [np.asarray(part, dtype=float) for part in guess] \
-            if isinstance(guess, tuple | list) and len(guess) == 2 else [np.asarray(guess)]
-        y = np.concatenate([part.ravel() for part in parts]) if all(
-            part.shape == (n,) for part in parts) and len(parts) == 2 else None
-        if y is None:
-            shapes = " and ".join(str(np.shape(part)) for part in parts)
-            raise ValueError(f"periodic_orbit.guess must be (x0, v0), two arrays of "
-                             f"{n} values (one per blade), got shape {shapes}")
-        if not np.all(np.isfinite(y)):
-            raise ValueError("periodic_orbit.guess must be finite")
-        return [y]
+        return [np.concatenate(initial_state(guess, n, "periodic_orbit", "guess"))]
     if transient == 0:
         return [np.zeros(2 * n)]
     run = simulate(scene, transient + periods, method=method, samples_per_period=1,

@@ -24,7 +24,7 @@ import scipy.linalg
 import scipy.sparse
 import scipy.sparse.linalg
 
-from contact_laws import check_int, check_real
+from contact_laws import check_array, check_int, check_real, check_sequence
 
 from .substructure import (Substructure, check_definite, check_symmetric, damping_ratios,
                            is_point_load, point_matrices, square_matrix)
@@ -177,9 +177,8 @@ def _full_model(owner, mass, stiffness, stiffness_speed):
 
 
 def _indices(owner: str, boundary, total: int) -> np.ndarray:
-    if isinstance(boundary, str) or np.ndim(boundary) != 1:
-        raise TypeError(f"{owner}.boundary must be a sequence of DOF indices, got "
-                        f"{type(boundary).__name__}")
+    boundary = check_sequence(owner, "boundary", boundary,
+                              expected="a sequence of DOF indices")
     indices = np.array([check_int(owner, "boundary", index, low=0, high=total - 1,
                                   high_label="N − 1") for index in boundary], dtype=int)
     values, counts = np.unique(indices, return_counts=True)
@@ -236,7 +235,7 @@ def _project(owner, basis, mass, stiffness, stiffness_speed, ratios, points, loa
     total = basis.shape[0]
     points = point_matrices(f"{owner}.points", {} if points is None else points, total)
     if load is not None and not is_point_load(load):
-        load = np.asarray(load, dtype=float) if np.ndim(load) == 1 else load
+        load = check_array(owner, "load", load, shape=(total,))
         if np.shape(load) != (total,) or not np.isfinite(load).all():
             raise ValueError(f"{owner}.load must be a finite vector of {total} generalised "
                              "forces, a point name or (point name, direction), got shape "

@@ -17,6 +17,7 @@ import numpy as np
 
 from contact_laws import FrictionLaw, NormalLaw, check_real
 
+from .checked_records import check_record
 from .excitation import EngineOrderWave, Excitation, ExplicitPhases
 from .group import BLADE_POINT, BladeGroup
 from .motion import Motion
@@ -68,6 +69,12 @@ class SceneArrays:
     structure_stiffness: np.ndarray | None = None  # K̃, couplings included, all coordinates
     structure_damping: np.ndarray | None = None    # C̃
     layout: Layout | None = None            # where each node's coordinates and points are
+
+    #: Fields that may hold NaN or ±inf (see ``checked_records``).
+    NON_FINITE = ("tangential_stiffness",)
+
+    def __post_init__(self):
+        check_record(self)
 
     @property
     def is_structure(self) -> bool:
@@ -150,6 +157,15 @@ class SceneArrays:
         if self.n_couplings == 0 and np.all(self.stiffness > 0.0):
             return float((load / self.stiffness).max())
         return float(np.abs(np.linalg.lstsq(stiffness, load, rcond=None)[0]).max())
+
+
+def _check_label(label, what: str) -> None:
+    """A blade or response is named by a hashable label or a position: refuse an array, a
+    list or a float NaN, which no label equals, naming what was asked for."""
+    if not isinstance(label, Hashable) or isinstance(label, bool) or (
+            isinstance(label, float) and label != label):
+        raise TypeError(f"{what} must be a name or a 0-based position (an int), got "
+                        f"{type(label).__name__} {label!r:.80}")
 
 
 def edge_matrix(own, left, right, values) -> np.ndarray:
@@ -244,6 +260,7 @@ class Scene:
 
     def blade_position(self, blade: Hashable | int) -> int:
         """The 0-based position of a blade given by name or by position."""
+        _check_label(blade, "blade")
         names = self.blades
         if blade in names:
             return names.index(blade)
@@ -276,6 +293,7 @@ class Scene:
         """The position in ``responses`` of ``target``: a blade's name or position; with
         substructures a node (of one point of one component), (node, point) (a point of one
         component), (node, point, component), or a position."""
+        _check_label(target, "blade (a response)")
         if not self.arrays.is_structure:
             return self.blade_position(target)
         labels = self.responses

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 from collections.abc import Sequence
 
 from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, FrictionLaw,
-                          LinearSpring, NormalLaw, Stribeck, check_real)
+                          LinearSpring, NormalLaw, Stribeck, check_int, check_real)
 
 from .beam import cantilever_beam
 from .blade import Blade, Southwell
@@ -18,6 +20,45 @@ from .interface import Interface
 from .motion import ConstantVelocity
 from .scene import Scene
 from .substructure import Substructure
+
+#: The most sectors or blades a named scene is built with.
+MAX_NODES = 100_000
+
+
+def _same(value, default) -> bool:
+    """Whether ``value`` is the parameter's default (arrays and odd types: only itself)."""
+    if value is default:
+        return True
+    try:
+        return type(value) is type(default) and bool(value == default)
+    except (TypeError, ValueError):
+        return False
+
+
+def _named_arguments(factory):
+    """Make the errors raised while ``factory`` builds its scene name the arguments the
+    caller changed: "three_blade_paper with q1 = None: Excitation.amplitudes must be a real
+    number ...". A number too large for the arithmetic (``OverflowError``) becomes a
+    ``ValueError`` so named."""
+    signature = inspect.signature(factory)
+
+    @functools.wraps(factory)
+    def build(*args, **kwargs):
+        try:
+            return factory(*args, **kwargs)
+        except (ValueError, TypeError, OverflowError, ZeroDivisionError) as error:
+            try:
+                bound = signature.bind(*args, **kwargs)
+            except TypeError:
+                raise error from None
+            changed = ", ".join(f"{name} = {value!r:.60}" for name, value in
+                                bound.arguments.items()
+                                if not _same(value, signature.parameters[name].default))
+            kind = TypeError if isinstance(error, TypeError) else ValueError
+            raise kind(f"{factory.__name__}" + (f" with {changed}" if changed else "")
+                       + f": {error}") from error
+    return build
+
 
 #: The paper's §3 data: blade material and geometry, shroud mass and damping, friction.
 PAPER = {
@@ -37,6 +78,7 @@ PAPER = {
 PAPER_SOUTHWELL_COEFFICIENT = 0.76
 
 
+@_named_arguments
 def cantilever_frequency(*, young_modulus: float, density: float, length: float, width: float,
                          thickness: float, tip_mass: float) -> float:
     """First bending frequency [Hz] of a clamped rectangular beam with a tip mass.
@@ -44,6 +86,11 @@ def cantilever_frequency(*, young_modulus: float, density: float, length: float,
     f0 = (1/2π) sqrt(k / (m_tip + (33/140) ρ b h L)), with the static tip stiffness
     k = 3 E I / L³, I = b h³/12, and Rayleigh's effective mass 33/140 of the beam.
     """
+    young_modulus, density, length, width, thickness = (
+        check_real("cantilever_frequency", name, value, low=0.0, low_open=True)
+        for name, value in (("young_modulus", young_modulus), ("density", density),
+                            ("length", length), ("width", width), ("thickness", thickness)))
+    tip_mass = check_real("cantilever_frequency", "tip_mass", tip_mass, low=0.0, unit="kg")
     inertia = width * thickness**3 / 12.0
     stiffness = 3.0 * young_modulus * inertia / length**3
     effective_mass = tip_mass + 33.0 / 140.0 * density * width * thickness * length
@@ -67,6 +114,7 @@ def paper_frequency_model() -> Southwell:
     return Southwell(f0=f0, coefficient=PAPER_SOUTHWELL_COEFFICIENT)
 
 
+@_named_arguments
 def three_blade_paper(*, gamma1: float | None = None, speed_rpm: float = 6000.0,
                       q1: float = 50.0, gap: float | Sequence[float] = 2e-5,
                       alpha: float = math.pi / 3,
@@ -144,6 +192,7 @@ BLADED_DISC = {
 }
 
 
+@_named_arguments
 def bladed_disc_24(*, speed_rpm: float = 3000.0, engine_order: int = 6, q1: float = 10.0,
                    gap: float = -2e-5, alpha: float = math.pi / 3,
                    contact_stiffness: float = 3e5,
@@ -163,6 +212,7 @@ def bladed_disc_24(*, speed_rpm: float = 3000.0, engine_order: int = 6, q1: floa
     first family's ND-6 mode stiffened by the closed contacts (its frequency lies between
     the open and the stuck limits of ``linear_modes``).
     """
+    check_int("bladed_disc_24", "sectors", sectors, low=3, high=MAX_NODES)
     p = BLADED_DISC
     disc = Blade(mass=p["disc_mass"], damping=p["disc_damping"],
                  stiffness=p["disc_stiffness"], excitation_scale=0.0)
@@ -181,6 +231,7 @@ def bladed_disc_24(*, speed_rpm: float = 3000.0, engine_order: int = 6, q1: floa
     return Scene(group=group, excitation=excitation, speed_rpm=speed_rpm)
 
 
+@_named_arguments
 def block_on_belt(*, belt_speed: float = 0.1, normal_force: float = 10.0, mass: float = 1.0,
                   stiffness: float = 1e4, damping: float = 0.0,
                   friction: FrictionLaw = Stribeck(mu_static=0.4, mu_kinetic=0.25,
@@ -206,6 +257,7 @@ def block_on_belt(*, belt_speed: float = 0.1, normal_force: float = 10.0, mass: 
     return Scene(group=group, excitation=NO_EXCITATION, speed_rpm=60.0 / period)
 
 
+@_named_arguments
 def modal_blade(*, damping_ratio: float = 0.003) -> Substructure:
     """A blade given by three modes, as an FE modal analysis prints them: first flap
     (180 Hz at rest), edgewise (450 Hz) and second flap (1050 Hz), each stiffening with
@@ -219,6 +271,7 @@ def modal_blade(*, damping_ratio: float = 0.003) -> Substructure:
         load="load")
 
 
+@_named_arguments
 def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e-6,
                  face: float = 0.6, contact_stiffness: float = 1e5,
                  friction: FrictionLaw | None = Coulomb(mu=0.3), q1: float = 1.0,
@@ -239,6 +292,7 @@ def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e
                        tangent_direction=(-normal[1], normal[0]))
     blade = modal_blade(damping_ratio=damping_ratio)
     group = BladeGroup()
+    blades = check_int("modal_packet", "blades", blades, low=1, high=MAX_NODES)
     names = [f"blade{k}" for k in range(1, blades + 1)]
     for name in names:
         group.add_blade(name, blade)
@@ -249,6 +303,7 @@ def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e
                                        phases=EngineOrderWave(blades_on_disc or blades)))
 
 
+@_named_arguments
 def beam_pair(*, elements: int = 2, gap: float = -2e-6, face: float = 0.5,
               contact_stiffness: float = 1e5, friction: FrictionLaw | None = Coulomb(mu=0.4),
               q1: float = 2.0, blade: Substructure | None = None,

@@ -11,6 +11,7 @@ import numpy as np
 
 from contact_laws import check_int
 
+from .checked_records import check_record
 from .classification import Classification
 from .methods import SimulationSettings
 from .scene import Scene
@@ -28,6 +29,9 @@ class EventLog:
     interface: np.ndarray   # interface index (order of ``BladeGroup.interfaces``)
     kind: np.ndarray        # ``EventKind`` values
     counts: dict            # events of each kind by name, complete even if the log is not
+
+    def __post_init__(self):
+        check_record(self)
 
     @property
     def truncated(self) -> bool:
@@ -59,6 +63,9 @@ class EnergyLedger:
     stored_change: float
     residual: float
 
+    def __post_init__(self):
+        check_record(self)
+
 
 @dataclass(frozen=True, eq=False)
 class Simulation:
@@ -88,6 +95,7 @@ class Simulation:
     def __post_init__(self):
         if not isinstance(self.settings, SimulationSettings):
             object.__setattr__(self, "settings", SimulationSettings.from_dict(self.settings))
+        check_record(self)
 
     @property
     def periods(self) -> int:
@@ -206,6 +214,13 @@ class SweepPoint:
     #: velocity crosses zero (``extremes.sampled_peaks``; empty: failed, or not kept)
     peak: np.ndarray = field(default_factory=lambda: np.empty(0))
 
+    #: Fields that may hold NaN or ±inf (see ``checked_records``).
+    NON_FINITE = ("poincare", "energy_density", "friction_loss_per_cycle", "peak",
+                  "final_state")
+
+    def __post_init__(self):
+        check_record(self)
+
     @property
     def worst_blade(self) -> int | None:
         """The position of the blade with the largest peak (None where none is kept)."""
@@ -235,6 +250,9 @@ class SweepFailure:
     value: float
     message: str        # the ``SimulationError``'s message (time and interface)
 
+    def __post_init__(self):
+        check_record(self)
+
     def __str__(self) -> str:
         return f"{self.parameter} = {self.value:g} (point {self.index}) failed: {self.message}"
 
@@ -251,6 +269,9 @@ class Sweep:
     blade: Hashable | int
     points: tuple[SweepPoint, ...]
     settings: dict
+
+    def __post_init__(self):
+        check_record(self)
 
     @property
     def values(self) -> np.ndarray:

@@ -10,11 +10,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact_laws import check_int
+from contact_laws import check_instance, check_int
 
+from .checked_records import check_record
 from .methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive
 from .scene import Scene
-from .simulate import integrate
+from .simulate import MAX_PERIODS, integrate
 from .simulation import SimulationError
 
 #: The default accuracy of the tangent flow: the trajectory to rtol 1e-10, so that the
@@ -62,7 +63,8 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
         switching surface) or several interfaces switch at the same instant: the map is
         not differentiable there.
     """
-    periods = check_int("monodromy", "periods", periods, low=1)
+    check_instance("monodromy", "scene", scene, Scene, expected="a shroudnet.Scene")
+    periods = check_int("monodromy", "periods", periods, low=1, high=MAX_PERIODS)
     step = stroboscopic_step(scene, periods, initial, method=method,
                              event_tolerance=event_tolerance)
     if step.singular:
@@ -133,6 +135,12 @@ class LyapunovExponents:
     transient: int
     singular_switches: int
 
+    #: Fields that may hold NaN or ±inf (see ``checked_records``).
+    NON_FINITE = ("per_period", "per_second", "error")
+
+    def __post_init__(self):
+        check_record(self)
+
     @property
     def largest(self) -> float:
         """λ_max per period."""
@@ -171,9 +179,11 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
     seed : int
         Seed of the random initial tangent vectors.
     """
+    check_instance("lyapunov", "scene", scene, Scene, expected="a shroudnet.Scene")
     n = scene.arrays.n_blades
-    periods = check_int("lyapunov", "periods", periods, low=LYAPUNOV_BLOCKS)
-    transient = check_int("lyapunov", "transient", transient, low=0)
+    periods = check_int("lyapunov", "periods", periods, low=LYAPUNOV_BLOCKS, high=MAX_PERIODS)
+    transient = check_int("lyapunov", "transient", transient, low=0, high=MAX_PERIODS)
+    seed = check_int("lyapunov", "seed", seed, low=0)
     exponents = check_int("lyapunov", "exponents", exponents, low=1, high=2 * n)
     if transient > 0:
         before = integrate(scene, transient, method=method, samples_per_period=1,

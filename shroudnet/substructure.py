@@ -374,6 +374,10 @@ class Substructure:
 
     def _check_modal(self, mass) -> None:
         owner = "Substructure"
+        if isinstance(self.modal_frequencies, str | bytes | np.ndarray) \
+                or not isinstance(self.modal_frequencies, tuple | list):
+            raise TypeError(f"{owner}.modal_frequencies must be a sequence of frequency models, "
+                            f"got {type(self.modal_frequencies).__name__}")
         models = tuple(self.modal_frequencies)
         n = mass.shape[0]
         if len(models) != n:
