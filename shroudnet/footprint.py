@@ -22,6 +22,9 @@ The matrices grow as N² and outweigh the rest from a few thousand blades on: a 
 10,000 blades needs 4.5 GiB of them, one of a million blades 44,700 GiB. Below that the
 record dominates, as S times the blades and interfaces. The energy ledger that follows a run
 builds one N × N matrix, less than the run's own matrices, once they are freed.
+
+``check_footprint`` refuses a run whose matrices, vectors and tangent exceed the machine's
+memory, since no choice of periods can save it; the record is ``simulate``'s check.
 """
 
 from __future__ import annotations
@@ -110,26 +113,31 @@ def machine_memory() -> int | None:
 
 def check_footprint(scene, samples: int, event_capacity: int, *,
                     tangent_columns: int | None = None, memory: int | None = None) -> None:
-    """Refuse, before any work, a run of ``scene`` that could not fit in ``memory`` bytes
-    (default ``machine_memory()``; nothing is refused where it is unknown): a ValueError of
-    one line with the blades, interfaces and samples, the GiB the run needs, and the GiB
-    the machine has."""
+    """Refuse, before any work, a run of ``scene`` whose size alone could not fit in
+    ``memory`` bytes (default ``machine_memory()``; nothing is refused where it is unknown):
+    a ValueError of one line with the blades, interfaces and samples, the GiB the whole run
+    needs, and the GiB the machine has.
+
+    What the blades and interfaces set (the matrices, the vectors and the tangent flow) is
+    checked here, since fewer periods cannot shrink it; the record, which ``samples`` set, is
+    ``simulate``'s own check against the memory available as the run starts.
+    """
     if memory is None:
         memory = machine_memory()
     if memory is None:
         return
     need = scene_footprint(scene, samples, event_capacity, tangent_columns=tangent_columns)
-    if need.total <= memory:
+    if need.total - need.record <= memory:
         return
     a = scene.arrays
     nodes = f"{a.n_blades:,} coordinates" if a.is_structure else f"{a.n_blades:,} blades"
-    largest = max(("its record", need.record), ("the stick-cluster matrices", need.matrices),
+    largest = max(("the stick-cluster matrices", need.matrices),
                   ("the tangent flow", need.tangent), key=lambda part: part[1])
     raise ValueError(
         f"a run of {nodes} and {a.n_interfaces:,} interfaces over {samples:,} samples would "
-        f"need {_gib(need.total)} GiB ({_gib(largest[1])} GiB of it {largest[0]}), more "
-        f"than the {_gib(memory)} GiB of memory this machine has; simulate fewer blades, or "
-        "fewer periods or samples per period")
+        f"need {_gib(need.total)} GiB ({_gib(largest[1])} GiB of it {largest[0]}, whatever "
+        f"the periods), more than the {_gib(memory)} GiB of memory this machine has; "
+        "simulate fewer blades")
 
 
 def _gib(size: int) -> str:
