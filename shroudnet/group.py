@@ -14,12 +14,14 @@ calls). An edge between points of nodes (``connect`` with (node, point) ends) al
 carries ``left_point`` and ``right_point``, the point names at its left and right ends
 (None at a fixed or prescribed node, or where the node's only point is meant).
 
-A graph built or grown with networkx itself (``group.graph = graph``) is read the same way;
-its edges must carry ``left`` and an ``index`` of their own, distinct within each kind.
+A graph built with networkx itself and assigned (``group.graph = graph``) is read the same
+way, and counted once by the next ``connect``; its edges must carry ``left`` and an
+``index`` of their own, distinct within each kind. An edge added through networkx to a
+group's graph after that is not counted: two edges that share an index are refused when read.
 
 Building is linear in the size of the group: ``connect`` numbers an edge from a count it
 keeps, and ``chain`` and ``ring`` check each distinct blade once and add their nodes and
-edges in bulk (a ring of 100,000 blades in under a second, where counting every edge on each
+edges in bulk (a ring of 100,000 blades in 0.6 s of CPU, where counting every edge on each
 ``connect`` took 53 s for 10,000).
 """
 

@@ -103,6 +103,19 @@ def test_a_graph_built_with_networkx_is_read_and_grown_by_its_own_count():
     assert group.fixed == ["ground"]
 
 
+def test_an_edge_slipped_into_the_graph_behind_connect_is_refused_when_read():
+    group = BladeGroup.chain(3, BLADE, SHROUD)
+    group.add_blade("d", BLADE)
+    group.graph.add_edge("blade3", "d", interface=SHROUD, left="blade3", index=2)
+    group.connect("d", "blade1", SHROUD)  # counts 2 interfaces: gives index 2 again
+    with pytest.raises(ValueError, match=r"share the index 2; each interface needs its own"):
+        group.interfaces  # noqa: B018
+    group.graph = group.graph.copy()  # an assigned graph is counted afresh
+    group.graph.remove_edge("d", "blade1")
+    group.connect("d", "blade1", SHROUD)
+    assert [left for left, _, _ in group.interfaces] == ["blade1", "blade2", "blade3", "d"]
+
+
 def test_a_scene_copies_the_group_with_its_numbering():
     group = BladeGroup.ring(5, BLADE, SHROUD)
     scene = Scene(group=group, excitation=Excitation(engine_order=1, amplitudes=(0.0, 1.0),
