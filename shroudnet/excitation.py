@@ -191,13 +191,16 @@ class Excitation:
             raise ValueError("Excitation.amplitudes needs at least q0 (the mean force)")
         object.__setattr__(self, "amplitudes", amplitudes)
         if not isinstance(self.phases, PhasePattern):
-            if isinstance(self.phases, str | bytes) \
+            if isinstance(self.phases, str | bytes) or getattr(self.phases, "ndim", 1) == 0 \
                     or not isinstance(self.phases, Sequence | np.ndarray):
                 hint = (" (the paper's pattern, φ_{i+1} − φ_i = π, is AntiPhase())"
                         if isinstance(self.phases, str) else "")
                 raise TypeError(f"Excitation.phases must be {_PATTERNS}, got "
                                 f"{type(self.phases).__name__} {self.phases!r}{hint}")
-            object.__setattr__(self, "phases", ExplicitPhases(tuple(self.phases)))
+            try:
+                object.__setattr__(self, "phases", ExplicitPhases(tuple(self.phases)))
+            except (TypeError, ValueError) as error:
+                raise type(error)(f"Excitation.phases: {error}") from None
 
     @property
     def n_harmonics(self) -> int:

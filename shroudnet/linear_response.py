@@ -147,6 +147,11 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
                              scene=scene)
 
 
+#: The largest frequency [Hz] a response is computed at: (2π f)² times a mass stays far
+#: inside a float's range (1.8e308).
+LARGEST_FREQUENCY = 1e150
+
+
 def _checked_frequencies(frequencies) -> np.ndarray:
     try:
         values = np.array(frequencies, dtype=float)  # a copy: the record keeps it
@@ -156,6 +161,8 @@ def _checked_frequencies(frequencies) -> np.ndarray:
     if values.ndim != 1 or len(values) == 0:
         raise ValueError("frequency_response: frequencies must be a non-empty list of "
                          f"frequencies [Hz], got shape {values.shape}")
-    if not np.all(np.isfinite(values)) or np.any(values <= 0.0):
-        raise ValueError("frequency_response: frequencies must be finite and > 0 [Hz]")
+    if not np.all(np.isfinite(values)) or np.any(values <= 0.0) \
+            or np.any(values > LARGEST_FREQUENCY):
+        raise ValueError("frequency_response: frequencies must be finite and > 0 [Hz], at "
+                         f"most {LARGEST_FREQUENCY:g} (ω² must stay within a float)")
     return values

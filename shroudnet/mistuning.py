@@ -254,6 +254,10 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
     mistuned = np.array([names.index(b) for b in blades])
     factors = np.ones((samples + 1, len(names)))
     factors[:samples, mistuned] = 1.0 + patterns[:, mistuned // per_sector]
+    if np.all(factors == 1.0):
+        raise ValueError(f"mistuning_study: the patterns (spread = {spread:g}) leave every "
+                         "blade as tuned, to a float's precision: give a spread, or patterns, "
+                         "of at least 1e-12")
     scenes = MistunedScenes(scene, factors, speeds, tuple(blades))
     result = sweep(scenes, range((samples + 1) * len(speeds)), parameter="sample×speed",
                    transient=transient, record=record, samples_per_period=samples_per_period,
