@@ -29,6 +29,11 @@ STABLE_STEP = 2.8
 #: blade group is below 1e10 J by far.
 LARGEST_ENERGY = 1e150
 
+#: The most blades for which the fixed step is checked against the exact largest natural
+#: frequency (one symmetric eigenvalue problem of that size); a larger scene, or one with
+#: substructures (whose mass matrix is not diagonal), is checked with the adaptive bound.
+EXACT_LIMIT = 2000
+
 
 def fastest_rate(matrix: np.ndarray, mass: np.ndarray) -> tuple[float, int]:
     """An upper bound of the largest eigenvalue of M⁻¹ A for a non-negative-definite A
@@ -65,7 +70,7 @@ def check_scales(scene, periods: int, method, initial) -> None:
                                ("damping", damping, "N·s/m")):
         if not np.isfinite(matrix).all():
             raise ValueError(f"the scene's {name} matrix overflows (an entry is inf): its "
-                             f"{name}es add up beyond the largest float, 1.8e308 {unit}")
+                             f"entries add up beyond the largest float, 1.8e308 {unit}")
     if isinstance(method, FixedStep):
         smallest, which = period / method.steps_per_period, (
             f"the fixed step T_e/{method.steps_per_period} (FixedStep.steps_per_period)")
@@ -73,7 +78,15 @@ def check_scales(scene, periods: int, method, initial) -> None:
         smallest, which = SMALLEST_STEP * period, (
             f"the smallest step, {SMALLEST_STEP:g} excitation periods")
     omega_squared, row = fastest_rate(stiffness, mass)
-    omega = math.sqrt(omega_squared)
+    if isinstance(method, FixedStep) and np.isfinite(omega_squared):
+        # A bound is not enough where the step itself is at stake: the exact largest
+        # eigenvalue of M⁻¹K, for blades (diagonal M), small enough to take it.
+        if a.is_structure or len(mass) > EXACT_LIMIT:
+            omega_squared = 0.0
+        elif len(mass):
+            scaled = stiffness / np.sqrt(np.outer(mass, mass))
+            omega_squared = float(np.linalg.eigvalsh(scaled)[-1])
+    omega = math.sqrt(max(omega_squared, 0.0))
     if omega * smallest > STABLE_STEP:
         raise ValueError(
             f"{_stiffest(scene, row)} makes a natural frequency √(k/m) of up to {omega:.3g} "
@@ -81,6 +94,11 @@ def check_scales(scene, periods: int, method, initial) -> None:
             f"below {which} = {smallest:.3g} s {where}: the run cannot follow the motion. "
             "Check the units of the stiffness, mass and speed.")
     rate, row = fastest_rate(damping, mass)
+    if isinstance(method, FixedStep) and np.isfinite(rate):
+        if a.is_structure or len(mass) > EXACT_LIMIT:
+            rate = 0.0
+        elif len(mass):
+            rate = float(np.linalg.eigvalsh(damping / np.sqrt(np.outer(mass, mass)))[-1])
     if rate * smallest > STABLE_STEP:
         raise ValueError(
             f"{_most_damped(scene, row)} makes a damping rate c/m of up to {rate:.3g} 1/s, "

@@ -421,3 +421,66 @@ def _refused_by_name_or_finite(door, name, argument, arguments, value, args, cal
 def test_report_cases():
     """Prints how many doors the property walked and how many calls it generated."""
     print(f"\n{len(WALKED)} public doors walked, {CASES['generated']} bad-value calls made")
+
+
+# -- the cases that were seen to fail, each with the words it now gives ---------------------
+
+def _coupled(stiffness=1e5, coupling=1e300):
+    group = BladeGroup.chain(3, Blade(mass=0.1, damping=1.0, stiffness=stiffness),
+                             shroudnet.Coupling(stiffness=coupling))
+    return Scene(group=group, speed_rpm=6000.0, excitation=Excitation(
+        engine_order=2, amplitudes=(0.0, 50.0), phases=AntiPhase()))
+
+
+SEEN = [
+    (lambda: shroudnet.FrequencyTable(speeds_rpm=5, frequencies=6), TypeError,
+     r"FrequencyTable\.speeds_rpm must be a sequence of numbers, got int 5"),
+    (lambda: Excitation(engine_order=2, amplitudes=np.array(50.0), phases=AntiPhase()),
+     TypeError, r"Excitation\.amplitudes must be a sequence"),
+    (lambda: shroudnet.simulate(paper(), 5, zeno=None), TypeError,
+     r"simulate\.zeno must be a ZenoGuard"),
+    (lambda: shroudnet.simulate(paper(), 5, initial=(np.zeros(3),)), TypeError,
+     r"simulate\.initial must be a pair \(x0, v0\)"),
+    (lambda: shroudnet.simulate(paper(), 5, initial=(np.zeros(3),) * 3), TypeError,
+     r"simulate\.initial must be a pair \(x0, v0\)"),
+    (lambda: shroudnet.periodic_orbit("scene"), TypeError,
+     r"periodic_orbit\.scene must be a shroudnet\.Scene, got str 'scene'"),
+    (lambda: shroudnet.linear_modes("scene"), TypeError,
+     r"linear_modes\.scene must be a shroudnet\.Scene, got str 'scene'"),
+    (lambda: shroudnet.TravellingWave(1).phases(0), ValueError,
+     r"TravellingWave\.phases\.n_blades must be an int >= 1, got 0"),
+    (lambda: shroudnet.continuation(scene_at, 6000.0, 6010.0, progress=5), TypeError,
+     r"continuation\.progress must be None or a callable"),
+    (lambda: shroudnet.classify(run(), 0, 1, tolerance=math.nan), ValueError,
+     r"classify\.tolerance must be a number in \(0, 0\.1\], got NaN"),
+    (lambda: shroudnet.classify(run(), 0, 1, tolerance=-1), ValueError,
+     r"classify\.tolerance must be in \(0, 0\.1\], got -1"),
+    (lambda: shroudnet.classify(run(), 0, 1, tolerance=10), ValueError,
+     r"classify\.tolerance must be in \(0, 0\.1\], got 10"),
+    (lambda: shroudnet.classify(run(), 0, 1, max_period=0), ValueError,
+     r"classify\.max_period must be an int >= 1"),
+    (lambda: shroudnet.linear_modes(scenes.bladed_disc_24()).of_diameter(99), ValueError,
+     r"of_diameter\.nodal_diameter must be an int >= 0 and <= N // 2 = 12, got 99"),
+    (lambda: shroudnet.simulate(_coupled(), 1), ValueError,
+     r"the coupling stiffness 1e\+300 N/m between 'blade\d' and 'blade\d'.* below the "
+     r"smallest step"),
+    (lambda: shroudnet.simulate(scenes.three_blade_paper(damping=1e300), 1), ValueError,
+     r"its damping 1e\+300 N·s/m .* below the smallest step"),
+    (lambda: shroudnet.simulate(scenes.three_blade_paper(speed_rpm=1e-300), 1), ValueError,
+     r"below the smallest step.* at speed_rpm = 1e-300"),
+    (lambda: shroudnet.simulate(scenes.three_blade_paper(
+        mass=1e-300, frequency=shroudnet.ConstantFrequency(hz=1e150)), 1), ValueError,
+     r"on a mass of 1e-300 kg makes a natural frequency"),
+    (lambda: shroudnet.simulate(paper(), 1, initial=(np.full(3, 1e300), np.zeros(3))),
+     ValueError, r"initial: the initial displacements x0 carry an energy of inf J"),
+    (lambda: shroudnet.simulate(scenes.block_on_belt(belt_speed=1e300), 1), ValueError,
+     r"prescribed node 'belt': its motion .* 1e\+300 m/s"),
+    (lambda: shroudnet.simulate(scenes.three_blade_paper(q1=1e300), 1), ValueError,
+     r"Excitation\.amplitudes: a force of 1e\+300 N"),
+]
+
+
+@pytest.mark.parametrize("call, error, words", SEEN)
+def test_each_case_seen_is_refused_by_name(call, error, words):
+    with pytest.raises(error, match=words):
+        call()
