@@ -36,13 +36,15 @@ def check_real(owner: str, field: str, value: object, *, low: float = -math.inf,
 
 def check_int(owner: str, field: str, value: object, *, low: int | None = None,
               high: int | None = None, unit: str = "", high_label: str = "",
-              whole_floats: bool = False) -> int:
+              whole_floats: bool = False, most: int | None = None) -> int:
     """Return ``value`` as an int, or raise naming ``owner.field`` and the allowed range.
 
     Python and numpy integers are accepted, ``bool`` is not. With ``whole_floats`` a float
     of integral value (``3.0``, ``numpy.float64(3)``) is accepted too. A value of another
     type raises ``TypeError``; one outside ``[low, high]`` (either bound optional) raises
     ``ValueError``. ``high_label`` names the upper bound where it is derived (``"N − 1"``).
+    ``most`` is a limit of what can be computed rather than of what makes sense (the most
+    periods a run can span): beyond it the message says so on its own.
     """
     name = f"{owner}.{field}" if owner else field
     kind = "an int (or a whole float)" if whole_floats else "an int"
@@ -58,6 +60,9 @@ def check_int(owner: str, field: str, value: object, *, low: int | None = None,
     if (low is not None and number < low) or (high is not None and number > high):
         raise ValueError(f"{name} must be an int {' and '.join(bounds)}"
                          + (f" {unit}" if unit else "") + f", got {number}")
+    if most is not None and number > most:
+        raise ValueError(f"{name} must be at most {most:,}" + (f" {unit}" if unit else "")
+                         + f", the most that can be computed; got {number:,}")
     return number
 
 

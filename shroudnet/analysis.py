@@ -99,7 +99,7 @@ def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
     """
     phi = check_array("zero_one_test", "series", series, shape=(None,))
     n_frequencies = check_int("zero_one_test", "n_frequencies", n_frequencies, low=1,
-                              high=100_000)
+                              most=100_000)
     seed = check_int("zero_one_test", "seed", seed, low=0)
     n = len(phi)
     if n < 50:
@@ -252,7 +252,7 @@ def _repeat_settings(owner: str, tolerance, max_period) -> tuple[float, int]:
     and ``max_period`` (≥ 1), checked."""
     tolerance = check_real(owner, "tolerance", tolerance, low=0.0, low_open=True,
                            high=LARGEST_TOLERANCE)
-    return tolerance, check_int(owner, "max_period", max_period, low=1, high=100_000)
+    return tolerance, check_int(owner, "max_period", max_period, low=1, most=100_000)
 
 
 def broadband_fraction(spectrum: Spectrum, lines: int = 20) -> float:

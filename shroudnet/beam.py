@@ -116,7 +116,7 @@ def cantilever_beam(*, length: float, youngs_modulus: float, density: float,
         raise ValueError(f"{owner}: the section (width = {width}, thickness = {thickness}, "
                          f"area = {area}, second_moments = {second_moments}) overflows a "
                          "float: check its units [m]") from None
-    elements = check_int(owner, "elements", elements, low=1, high=MAX_ELEMENTS)
+    elements = check_int(owner, "elements", elements, low=1, most=MAX_ELEMENTS)
     shear = None
     if shear_modulus is not None:
         shear = check_real(owner, "shear_modulus", shear_modulus, low=0.0, low_open=True,

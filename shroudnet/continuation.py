@@ -287,8 +287,8 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
     if start == stop:
         raise ValueError(f"continuation: start and stop are both {start}: give a range")
     check_callable("continuation", "scene_at", scene_at, expected="a callable value -> Scene")
-    periods = check_int("continuation", "periods", periods, low=1, high=MAX_PERIODS)
-    transient = check_int("continuation", "transient", transient, low=0, high=MAX_PERIODS)
+    periods = check_int("continuation", "periods", periods, low=1, most=MAX_PERIODS)
+    transient = check_int("continuation", "transient", transient, low=0, most=MAX_PERIODS)
     check_instance("continuation", "method", method, (Adaptive, Accuracy),
                    expected="Adaptive(...) or Accuracy(...)")
     check_real("continuation", "tolerance", tolerance, low=SMALLEST_TOLERANCE, high=1e-3)

@@ -225,7 +225,7 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
     """
     check_instance("mistuning_study", "scene", scene, Scene, expected="a shroudnet.Scene")
     spread = check_real("mistuning_study", "spread", spread, low=0.0, high=0.3)
-    samples = check_int("mistuning_study", "samples", samples, low=1, high=MAX_SAMPLES)
+    samples = check_int("mistuning_study", "samples", samples, low=1, most=MAX_SAMPLES)
     seed = check_int("mistuning_study", "seed", seed, low=0)
     speeds = tuple(float(s) for s in check_array(
         "mistuning_study", "speeds_rpm", speeds_rpm, shape=(None,), low=0.0, low_open=True,

@@ -217,8 +217,8 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
         As ``simulate``.
     """
     check_instance("periodic_orbit", "scene", scene, Scene, expected="a shroudnet.Scene")
-    periods = check_int("periodic_orbit", "periods", periods, low=1, high=MAX_PERIODS)
-    transient = check_int("periodic_orbit", "transient", transient, low=0, high=MAX_PERIODS)
+    periods = check_int("periodic_orbit", "periods", periods, low=1, most=MAX_PERIODS)
+    transient = check_int("periodic_orbit", "transient", transient, low=0, most=MAX_PERIODS)
     check_real("periodic_orbit", "tolerance", tolerance, low=SMALLEST_TOLERANCE, high=1e-3)
     check_instance("periodic_orbit", "method", method, (Adaptive, Accuracy),
                    expected="Adaptive(...) or Accuracy(...)")

@@ -212,7 +212,7 @@ def bladed_disc_24(*, speed_rpm: float = 3000.0, engine_order: int = 6, q1: floa
     first family's ND-6 mode stiffened by the closed contacts (its frequency lies between
     the open and the stuck limits of ``linear_modes``).
     """
-    check_int("bladed_disc_24", "sectors", sectors, low=3, high=MAX_NODES)
+    check_int("bladed_disc_24", "sectors", sectors, low=3, most=MAX_NODES)
     p = BLADED_DISC
     disc = Blade(mass=p["disc_mass"], damping=p["disc_damping"],
                  stiffness=p["disc_stiffness"], excitation_scale=0.0)
@@ -292,7 +292,7 @@ def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e
                        tangent_direction=(-normal[1], normal[0]))
     blade = modal_blade(damping_ratio=damping_ratio)
     group = BladeGroup()
-    blades = check_int("modal_packet", "blades", blades, low=1, high=MAX_NODES)
+    blades = check_int("modal_packet", "blades", blades, low=1, most=MAX_NODES)
     names = [f"blade{k}" for k in range(1, blades + 1)]
     for name in names:
         group.add_blade(name, blade)

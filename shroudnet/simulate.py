@@ -125,7 +125,7 @@ def integrate(scene: Scene, periods: int, *,
     Arguments as ``simulate``; raises what it raises.
     """
     check_instance("simulate", "scene", scene, Scene, expected="a shroudnet.Scene")
-    periods = check_int("simulate", "periods", periods, low=1, high=MAX_PERIODS)
+    periods = check_int("simulate", "periods", periods, low=1, most=MAX_PERIODS)
     check_instance("simulate", "method", method, (FixedStep, Adaptive, Accuracy),
                    expected="FixedStep(...), Adaptive(...) or Accuracy(...)")
     check_instance("simulate", "zeno", zeno, ZenoGuard, expected="a ZenoGuard(...)")
@@ -293,9 +293,9 @@ def _check_memory(scene, periods, samples_per_period, event_capacity):
                 else f"the {MEMORY_FALLBACK / 2**30:g} GiB allowed where the available memory "
                      "cannot be read")
         raise ValueError(f"periods = {periods} with samples_per_period = {samples_per_period} "
-                         f"and event_capacity = {event_capacity} would record "
-                         f"{periods * samples_per_period + 1:,} samples and need "
-                         f"{needed / 2**30:.3g} GiB, more than {what}. Run fewer periods, "
+                         f"would record {periods * samples_per_period + 1:,} samples and need "
+                         f"{needed / 2**30:.3g} GiB with event_capacity = {event_capacity:,} "
+                         f"events, more than {what}. Run fewer periods, "
                          "take fewer samples per period, or run in pieces, each starting from "
                          "the last state of the one before (initial=).")
 

@@ -64,7 +64,7 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
         not differentiable there.
     """
     check_instance("monodromy", "scene", scene, Scene, expected="a shroudnet.Scene")
-    periods = check_int("monodromy", "periods", periods, low=1, high=MAX_PERIODS)
+    periods = check_int("monodromy", "periods", periods, low=1, most=MAX_PERIODS)
     step = stroboscopic_step(scene, periods, initial, method=method,
                              event_tolerance=event_tolerance)
     if step.singular:
@@ -181,8 +181,8 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
     """
     check_instance("lyapunov", "scene", scene, Scene, expected="a shroudnet.Scene")
     n = scene.arrays.n_blades
-    periods = check_int("lyapunov", "periods", periods, low=LYAPUNOV_BLOCKS, high=MAX_PERIODS)
-    transient = check_int("lyapunov", "transient", transient, low=0, high=MAX_PERIODS)
+    periods = check_int("lyapunov", "periods", periods, low=LYAPUNOV_BLOCKS, most=MAX_PERIODS)
+    transient = check_int("lyapunov", "transient", transient, low=0, most=MAX_PERIODS)
     seed = check_int("lyapunov", "seed", seed, low=0)
     exponents = check_int("lyapunov", "exponents", exponents, low=1, high=2 * n)
     if transient > 0:
