@@ -133,6 +133,9 @@ class Bifurcation:
     index: int
     bracket: tuple[float, float]
 
+    #: Fields that may hold NaN or ±inf (see ``checked_records``).
+    NON_FINITE = ("multiplier",)
+
     def __post_init__(self):
         check_record(self)
 

@@ -83,9 +83,8 @@ def read_matrices(path, mass: str = "M", stiffness: str = "K", damping: str | No
                         f"{type(path).__name__} {path!r:.80}")
     path = Path(path)
     if path.suffix.lower() not in EXTENSIONS:
-        raise ValueError(f"read_matrices.path must name a {' or '.join(EXTENSIONS)} file "
-                         f"(read_matrices reads {' and '.join(EXTENSIONS)} files), got "
-                         f"{path.name!r}")
+        raise ValueError(f"read_matrices.path: read_matrices reads {' and '.join(EXTENSIONS)} "
+                         f"files, got {path.name!r}")
     if not path.is_file():
         raise FileNotFoundError(f"read_matrices: no file {str(path)!r}")
     arrays = _read_npz(path) if path.suffix.lower() == ".npz" else _read_mat(path)

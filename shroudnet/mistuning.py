@@ -247,8 +247,8 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
                          f"unknown: {unknown}" if unknown else "mistuning_study: no blades")
     if patterns is None:
         patterns = np.random.default_rng(seed).normal(0.0, spread, size=(samples, sectors))
-    patterns = check_array("mistuning_study", "patterns", patterns, shape=(samples, sectors))
-    if not np.all(patterns > -1.0):
+    patterns = check_array("mistuning_study", "patterns", patterns, shape=(None, None))
+    if patterns.shape != (samples, sectors) or not np.all(patterns > -1.0):
         raise ValueError(f"mistuning_study: patterns must be {samples} × {sectors} "
                          f"deviations ε > −1, got shape {patterns.shape}")
     mistuned = np.array([names.index(b) for b in blades])

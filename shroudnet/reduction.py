@@ -235,7 +235,10 @@ def _project(owner, basis, mass, stiffness, stiffness_speed, ratios, points, loa
     total = basis.shape[0]
     points = point_matrices(f"{owner}.points", {} if points is None else points, total)
     if load is not None and not is_point_load(load):
-        load = check_array(owner, "load", load, shape=(total,))
+        try:
+            load = check_array(owner, "load", load, shape=(None,))
+        except ValueError:
+            load = np.full(np.shape(load), np.nan)  # said below, with the size expected
         if np.shape(load) != (total,) or not np.isfinite(load).all():
             raise ValueError(f"{owner}.load must be a finite vector of {total} generalised "
                              "forces, a point name or (point name, direction), got shape "

@@ -306,18 +306,19 @@ def initial_state(initial, n: int, owner: str = "simulate",
     [m, m/s]; anything else raises naming ``owner.field``."""
     if initial is None:
         return np.zeros(n), np.zeros(n)
-    if isinstance(initial, str | bytes | np.ndarray) or not isinstance(initial, tuple | list) \
-            or len(initial) != 2:
-        raise TypeError(f"{owner}.{field} must be a pair (x0, v0) of {n} displacements [m] "
-                        f"and {n} velocities [m/s], or None for rest; got "
-                        f"{type(initial).__name__} {initial!r:.200}")
+    pair = (f"{owner}.{field} must be (x0, v0), a pair of {n} displacements [m] and {n} "
+            "velocities [m/s], or None for rest")
+    if not isinstance(initial, tuple | list | np.ndarray):
+        raise TypeError(f"{pair}; got {type(initial).__name__} {initial!r:.200}")
+    if isinstance(initial, np.ndarray) or len(initial) != 2:
+        raise ValueError(f"{pair}; got {type(initial).__name__} {initial!r:.200}")
     state = []
     for name, values in zip(("x0", "v0"), initial):
         try:
             state.append(check_array(owner, f"{field} {name}", values, shape=(n,)))
         except ValueError:
-            raise ValueError(f"{owner}.{field} {name} must hold {n} finite numbers, got "
-                             f"{values!r:.200}") from None
+            raise ValueError(f"{owner}.{field} must be (x0, v0): {field} {name} must hold {n} "
+                             f"finite numbers, got {values!r:.200}") from None
     return tuple(state)
 
 
