@@ -11,6 +11,7 @@ Normal laws: ``LinearSpring`` (the paper's eqs. 2–3), ``Hertz``, ``KelvinVoigt
 
 from ._checks import check_array as check_array
 from ._checks import check_callable as check_callable
+from ._checks import check_calls_with as check_calls_with
 from ._checks import check_choice as check_choice
 from ._checks import check_instance as check_instance
 from ._checks import check_int as check_int
@@ -39,6 +40,7 @@ BUILT_IN_FRICTION = (Coulomb, ExponentialFriction, Stribeck)
 __all__ = [
     "check_array",
     "check_callable",
+    "check_calls_with",
     "check_choice",
     "check_instance",
     "check_int",

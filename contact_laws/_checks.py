@@ -4,6 +4,7 @@ wrong value)."""
 
 from __future__ import annotations
 
+import inspect
 import math
 from numbers import Integral, Real
 
@@ -152,6 +153,24 @@ def check_callable(owner: str, field: str, value: object, *, expected: str = "a 
     and what is ``expected`` (``"a function speed -> Scene"``)."""
     if not callable(value) or isinstance(value, type):
         raise TypeError(f"{_name(owner, field)} must be {expected}, got {_shown(value)}")
+    return value
+
+
+def check_calls_with(owner: str, field: str, value: object, arguments: int, *,
+                     expected: str) -> object:
+    """Return ``value`` if it is a callable that takes ``arguments`` positional arguments
+    (as far as its signature tells), or raise ``TypeError`` naming ``owner.field`` and what
+    is ``expected`` ("a callable progress(done, total)")."""
+    check_callable(owner, field, value, expected=expected)
+    try:
+        signature = inspect.signature(value)
+    except (TypeError, ValueError):  # a builtin without one: taken on trust
+        return value
+    try:
+        signature.bind(*range(arguments))
+    except TypeError:
+        raise TypeError(f"{_name(owner, field)} must be {expected}, got {_shown(value)}, "
+                        f"which does not take {arguments} arguments") from None
     return value
 
 

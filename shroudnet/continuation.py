@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact_laws import check_callable, check_instance, check_int, check_real
+from contact_laws import check_callable, check_calls_with, check_instance, check_int, check_real
 
 from .checked_records import check_record
 from .linear_response import frequency_response
@@ -298,8 +298,8 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
     check_event_tolerance("continuation", event_tolerance)
     check_instance("continuation", "parameter", parameter, str, expected="a name (str)")
     if progress is not None:
-        check_callable("continuation", "progress", progress,
-                       expected="None or a callable progress(points, p)")
+        check_calls_with("continuation", "progress", progress, 2,
+                         expected="None or a callable progress(points, p)")
     max_points = check_int("continuation", "max_points", max_points, low=2)
     max_step = check_real("continuation", "max_step", max_step, low=SMALLEST_STEP,
                           high=1.0)

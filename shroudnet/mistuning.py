@@ -29,7 +29,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from contact_laws import check_array, check_instance, check_int, check_real, check_sequence
+from contact_laws import (check_array, check_calls_with, check_instance, check_int, check_real,
+                          check_sequence)
 
 from .checked_records import check_record
 from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
@@ -38,6 +39,7 @@ from .methods import TRANSIENT, Adaptive
 from .scene import Scene
 from .simulation import SimulationError
 from .substructure import Substructure
+from .reporting import ProgressReporter
 from .sweep import sweep
 
 #: The most mistuned groups one study may draw: each runs at every speed.
@@ -227,6 +229,10 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
     spread = check_real("mistuning_study", "spread", spread, low=0.0, high=0.3)
     samples = check_int("mistuning_study", "samples", samples, low=1, most=MAX_SAMPLES)
     seed = check_int("mistuning_study", "seed", seed, low=0)
+    if callable(progress) and not isinstance(progress, ProgressReporter):
+        check_calls_with("mistuning_study", "progress", progress, 2,
+                         expected='"auto", a bool, None, a ProgressReporter or a callable '
+                                  'progress(done, total)')
     speeds = tuple(float(s) for s in check_array(
         "mistuning_study", "speeds_rpm", speeds_rpm, shape=(None,), low=0.0, low_open=True,
         unit="rpm"))

@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from .engine.controller import SMALLEST_STEP
+from .simulation import SimulationError
 
 #: The largest step, in units of 1/ω, that an explicit Runge–Kutta step stays stable at
 #: on an undamped oscillator of angular frequency ω (classical RK4: 2√2; Dormand–Prince
@@ -48,6 +49,15 @@ def fastest_rate(matrix: np.ndarray, mass: np.ndarray) -> tuple[float, int]:
 
 
 def check_scales(scene, periods: int, method, initial) -> None:
+    """Refuse, before any work, a run whose numbers a float cannot carry (see
+    ``scale_limits``); the ``SimulationError`` says the run cannot start at t = 0 s."""
+    try:
+        scale_limits(scene, periods, method, initial)
+    except SimulationError as error:
+        raise SimulationError(f"the run cannot start (t = 0 s): {error}") from None
+
+
+def scale_limits(scene, periods: int, method, initial) -> None:
     """Refuse, before any work, a run whose numbers a float cannot carry.
 
     Checks, in this order: the stiffness and damping matrices are finite; the largest
@@ -56,7 +66,8 @@ def check_scales(scene, periods: int, method, initial) -> None:
     periods; with ``FixedStep``, the fixed step); the initial state's energy, the energy
     the excitation can put into the blades (q²/k) and the prescribed motions' (m v²) stay
     below ``LARGEST_ENERGY``. ``initial`` is (x0, v0) by blade position, already checked
-    finite. Raises ``ValueError`` naming the quantity and its value.
+    finite. Raises ``SimulationError`` naming the quantity and its value: the scene is
+    valid, but no run of it can be carried out (so a sweep takes it for a failed point).
     """
     from .methods import FixedStep
 
@@ -69,7 +80,7 @@ def check_scales(scene, periods: int, method, initial) -> None:
     for name, matrix, unit in (("stiffness", stiffness, "N/m"),
                                ("damping", damping, "N·s/m")):
         if not np.isfinite(matrix).all():
-            raise ValueError(f"the scene's {name} matrix overflows (an entry is inf): its "
+            raise SimulationError(f"the scene's {name} matrix overflows (an entry is inf): its "
                              f"entries add up beyond the largest float, 1.8e308 {unit}")
     if isinstance(method, FixedStep):
         smallest, which = period / method.steps_per_period, (
@@ -88,7 +99,7 @@ def check_scales(scene, periods: int, method, initial) -> None:
             omega_squared = float(np.linalg.eigvalsh(scaled)[-1])
     omega = math.sqrt(max(omega_squared, 0.0))
     if omega * smallest > STABLE_STEP:
-        raise ValueError(
+        raise SimulationError(
             f"{_stiffest(scene, row)} makes a natural frequency √(k/m) of up to {omega:.3g} "
             f"rad/s, whose stable step ({STABLE_STEP:g}/ω = {STABLE_STEP / omega:.3g} s) is "
             f"below {which} = {smallest:.3g} s {where}: the run cannot follow the motion. "
@@ -100,7 +111,7 @@ def check_scales(scene, periods: int, method, initial) -> None:
         elif len(mass):
             rate = float(np.linalg.eigvalsh(damping / np.sqrt(np.outer(mass, mass)))[-1])
     if rate * smallest > STABLE_STEP:
-        raise ValueError(
+        raise SimulationError(
             f"{_most_damped(scene, row)} makes a damping rate c/m of up to {rate:.3g} 1/s, "
             f"whose stable step ({STABLE_STEP / rate:.3g} s) is below {which} = "
             f"{smallest:.3g} s {where}: the run cannot follow the motion. Check the units "
@@ -112,8 +123,9 @@ def check_scales(scene, periods: int, method, initial) -> None:
     for name, energy in (("initial velocities v0", kinetic),
                          ("initial displacements x0", strain)):
         if not energy <= LARGEST_ENERGY:
-            raise ValueError(f"initial: the {name} carry an energy of {energy:.3g} J, more "
-                             f"than the {LARGEST_ENERGY:g} J a run can represent")
+            raise SimulationError(f"initial: the {name} carry an energy of {energy:.3g} J, more "
+                             f"than the {LARGEST_ENERGY:g} J a run can represent: its "
+                             "state would become non-finite")
     _check_forcing(scene, mass, stiffness)
     _check_motions(scene, mass, stiffness, periods * period)
 
@@ -129,11 +141,11 @@ def _check_forcing(scene, mass, stiffness) -> None:
         energy = load * load / resistance
     worst = int(np.nanargmax(np.where(np.isnan(energy), np.inf, energy)))
     if not energy[worst] <= LARGEST_ENERGY:
-        raise ValueError(
+        raise SimulationError(
             f"Excitation.amplitudes: a force of {load[worst]:.3g} N on "
             f"{scene.blades[worst] if worst < len(scene.blades) else worst!r} puts an "
             f"energy of order {energy[worst]:.3g} J into it (q²/(k + m ω_e²)), more than the "
-            f"{LARGEST_ENERGY:g} J a run can represent")
+            f"{LARGEST_ENERGY:g} J a run can represent: its state would become non-finite")
 
 
 def _check_motions(scene, mass, stiffness, duration) -> None:
@@ -149,11 +161,11 @@ def _check_motions(scene, mass, stiffness, duration) -> None:
                   + 0.5 * np.abs(np.diag(stiffness)).max() * np.abs(x).max() ** 2)
     if not energy <= LARGEST_ENERGY:
         names = [name for name, _ in scene.group.prescribed]
-        raise ValueError(
+        raise SimulationError(
             f"prescribed node {names[0] if len(names) == 1 else names!r}: its motion (up to "
             f"{np.abs(x).max():.3g} m, {np.abs(v).max():.3g} m/s) carries an energy of order "
             f"{energy:.3g} J against the blades it drives, more than the {LARGEST_ENERGY:g} "
-            "J a run can represent")
+            "J a run can represent: its state would become non-finite")
 
 
 def _stiffest(scene, row) -> str:

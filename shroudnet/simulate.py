@@ -65,10 +65,11 @@ def simulate(scene: Scene, periods: int, *,
     ValueError
         Before any work, on a bad argument, or when the record of the run (``output_bytes``)
         would need more than ``MEMORY_FRACTION`` (half) of the memory available as the run
-        starts (``available_memory``; 8 GiB where it cannot be read), or when the scene's
-        numbers cannot be run (``scales.check_scales``: a natural frequency or damping rate
-        whose stable step is below the smallest step, an energy beyond a float's range).
+        starts (``available_memory``; 8 GiB where it cannot be read).
     SimulationError
+        Before any work, when the scene's numbers cannot be run (``scales.check_scales``: a
+        natural frequency or damping rate whose stable step is below the smallest step, an
+        energy beyond a float's range), naming the quantity.
         On Zeno or chattering behaviour, a mode set with no consistent choice, a step size
         that collapses, or a non-finite state; the message names the time and the interface.
         A run never returns a non-finite value: one found in the record or the energy ledger
