@@ -342,8 +342,9 @@ class Scene:
     @cached_property
     def arrays(self) -> SceneArrays:
         """The scene lowered to flat arrays (computed once): by blade, or with
-        substructures by coordinate (``structural``)."""
-        if self.group.has_substructures:
+        substructures or elastic contacts by coordinate (``structural``)."""
+        if self.group.has_substructures or any(
+                interface.elastic for _, _, interface in self.group.interfaces):
             return SceneArrays(**lower(self))
         names = self.blades
         position = {name: i for i, name in enumerate(names)}
