@@ -56,12 +56,15 @@ them as a check of all three.
    mode     right-hand side of w      guards
    ======== ========================= ==================================================
    open     ẇ = ẋ_t (w stays = x_t)   closing: −δ
-   stick    ẇ = 0                     separation: δ;  breakaway: (μN)² − |f|²
+   stick    ẇ = 0                     separation: δ;  breakaway: μN − |f|
    slip     ẇ = f̂ λ                   separation: δ;  sticking: λ
    ======== ========================= ==================================================
 
    Closed modes use N = k_n δ, Ṅ = k_n ż, the smooth continuation of the normal law
-   across δ = 0, so that a step straddling a guard sees one smooth system. A guard that
+   across δ = 0, so that a step straddling a guard sees one smooth system. The breakaway
+   guard is not squared: (μN)² − |f|² would rise again as the continued N turns
+   negative, and a stuck element that breaks away just before it separates would be seen
+   to separate only. A guard that
    starts a segment at or below 0 (a rounding error on the far side of the switch just
    made) is raised by that much to start just above 0.
 
@@ -755,7 +758,7 @@ class _Oscillator:
                 x, _, w = self.split(y)
                 f = o.tangential_stiffness * (x[:d] - w)
                 limit = o.mu * o.normal_stiffness * (x[d] - o.gap)
-                return limit * limit - float(f @ f)
+                return limit - math.sqrt(float(f @ f))
             return [("separation", penetration), ("breakaway", breakaway)]
 
         def sticking(t, y):

@@ -153,9 +153,9 @@ class SceneArrays:
         whole excitation applied statically, interfaces open (the least-squares solution
         where a node is held by interfaces alone). Without couplings x_i = s_i Σ|q_n| / k_i."""
         load = np.abs(self.harmonic_amplitudes).sum(axis=0)
-        stiffness = self.stiffness_matrix()
         if self.n_couplings == 0 and np.all(self.stiffness > 0.0):
             return float((load / self.stiffness).max())
+        stiffness = self.stiffness_matrix()
         return float(np.abs(np.linalg.lstsq(stiffness, load, rcond=None)[0]).max())
 
 
@@ -360,8 +360,9 @@ class Scene:
     @cached_property
     def arrays(self) -> SceneArrays:
         """The scene lowered to flat arrays (computed once): by blade, or with
-        substructures by coordinate (``structural``)."""
-        if self.group.has_substructures:
+        substructures or elastic contacts by coordinate (``structural``)."""
+        if self.group.has_substructures or any(
+                interface.elastic for _, _, interface in self.group.interfaces):
             return SceneArrays(**lower(self))
         names = self.blades
         position = {name: i for i, name in enumerate(names)}

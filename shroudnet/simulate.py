@@ -15,6 +15,7 @@ from .engine.dynamics import interface_kinematics
 from .engine.controller import SMALLEST_STEP, first_step, smallest_step
 from .engine.generate import compiled, kernel_scene, load_kernel
 from .engine.records import Controls, Run, allocate, finish
+from .footprint import check_footprint
 from .methods import (EVENT_TOLERANCE, Accuracy, Adaptive, FixedStep, SimulationSettings,
                       ZenoGuard, check_event_tolerance)
 from .motion import motion_span
@@ -88,7 +89,7 @@ def simulate(scene: Scene, periods: int, *,
                                   event_tolerance=done.event_tolerance,
                                   zeno=replace(zeno, window=done.zeno_window))
     with np.errstate(over="ignore", invalid="ignore"):
-        ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy)
+        ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy, done.sliders)
     check_finished(out, ledger)
     return Simulation(scene=scene, settings=settings, t=out.t, x=out.x, v=out.v,
                       normal_force=out.normal, friction_force=out.friction, modes=out.modes,
@@ -101,13 +102,16 @@ def simulate(scene: Scene, periods: int, *,
 class Integration:
     """What ``integrate`` did: the kernel's ``records.Run``, the method with every knob as
     used (``Accuracy`` resolved, the default atol filled in), the event tolerance
-    [periods] and the Zeno window [periods] it used, and the seconds spent compiling."""
+    [periods] and the Zeno window [periods] it used, and the seconds spent compiling; the
+    sliders' positions w [m] of the elastic contacts at every sample (two columns each, in
+    interface order; none without elastic contacts), which the record by blade leaves out."""
 
     run: Run
     method: FixedStep | Adaptive
     event_tolerance: float
     zeno_window: float
     compile_seconds: float
+    sliders: np.ndarray
 
 
 def integrate(scene: Scene, periods: int, *,
@@ -140,6 +144,8 @@ def integrate(scene: Scene, periods: int, *,
                          f"{method.steps_per_period}, got {samples_per_period}")
     n = scene.arrays.n_blades  # coordinates, with substructures
     x0, v0 = initial_state(initial, n)
+    check_footprint(scene, periods * samples_per_period + 1, event_capacity,
+                    tangent_columns=None if tangent is None else np.shape(tangent)[1])
     _check_memory(scene, periods, samples_per_period, event_capacity)
     check_scales(scene, periods, method, (x0, v0))
     period = scene.excitation_period
@@ -154,6 +160,8 @@ def integrate(scene: Scene, periods: int, *,
     x_p, v_p = scene.arrays.prescribed_state(0.0)
     x0, v0 = np.concatenate([x0, x_p]), np.concatenate([v0, v_p])
     tangent0 = _with_prescribed(tangent0, n, len(x_p))
+    arrays = kernel_scene(scene)
+    x0, v0, tangent0 = _with_sliders(arrays, x0, v0, tangent0, n)
 
     kernel = load_kernel(scene, tangent=tangent is not None,
                          adaptive=not isinstance(method, FixedStep))
@@ -183,18 +191,20 @@ def integrate(scene: Scene, periods: int, *,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
         orthonormalise=orthonormalise,
         exponentials=not orthonormalise and scene.arrays.linear_phases)
-    arrays = kernel_scene(scene)
     state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
                                                       flow=tangent is not None)
     arguments = (state, arrays, work, switching, events, controls, output)
     driver, compile_seconds = compiled(kernel.run, arguments)
-    run = _blades_only(finish(driver(*arguments), output, events, state.tangent), n)
+    run = finish(driver(*arguments), output, events, state.tangent)
+    sliders = run.output.x[:, n:len(x0) - len(x_p)]
+    run = _blades_only(run, n)
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
                                             zeno.events, zeno_window))
     return Integration(run=run, method=method, event_tolerance=event_tolerance,
-                       zeno_window=zeno_window, compile_seconds=compile_seconds)
+                       zeno_window=zeno_window, compile_seconds=compile_seconds,
+                       sliders=sliders)
 
 
 def _check_motions(scene, duration):
@@ -216,6 +226,23 @@ def _with_prescribed(tangent, n, n_prescribed):
     rows = np.zeros((2 * (n + n_prescribed), tangent.shape[1]))
     rows[:n], rows[n + n_prescribed:2 * n + n_prescribed] = tangent[:n], tangent[n:]
     return rows
+
+
+def _with_sliders(arrays, x0, v0, tangent0, n):
+    """The start (x0, v0, tangent columns) in the integrator's coordinates: the elastic
+    contacts' sliders (``engine.sliders``) after the n free coordinates, each relaxed
+    (w = r_t: no friction force), at rest and without variation."""
+    index = getattr(arrays, "slider_index", np.zeros(0, dtype=np.int64))
+    sliders = 2 * int(np.sum(index >= 0))
+    if sliders == 0:
+        return x0, v0, tangent0
+    x0, v0 = (np.insert(values, [n] * sliders, 0.0) for values in (x0, v0))
+    for e in np.flatnonzero(index >= 0):
+        x0[index[e]] = arrays.tangent_rows[e] @ x0
+        x0[index[e] + 1] = arrays.second_tangent_rows[e] @ x0
+    nodes = tangent0.shape[0] // 2
+    tangent0 = np.insert(tangent0, [n] * sliders + [nodes + n] * sliders, 0.0, axis=0)
+    return x0, v0, tangent0
 
 
 def _blades_only(run: Run, n: int) -> Run:
@@ -391,10 +418,28 @@ def _stored(scene, t, x, v, modes):
     return kinetic + strain, contact
 
 
-def _ledger(scene, t, x, v, modes, work) -> dict[str, float]:
-    """The ``EnergyLedger`` fields of a run, by name."""
+def _elastic_energy(scene, t, x, sliders, modes):
+    """½ k_t |r_t − w|² [J] summed over the closed elastic contacts at time t, their
+    sliders at ``sliders`` (w₁, w₂ of each, in interface order)."""
+    a = scene.arrays
+    x = np.concatenate([x, a.prescribed_state(t)[0]])
+    energy = 0.0
+    for k, e in enumerate(np.flatnonzero(np.isfinite(a.tangential_stiffness))):
+        if modes[e] != Mode.OPEN:
+            stretch = np.array([a.tangent_rows[e] @ x, a.second_tangent_rows[e] @ x]) \
+                - sliders[2 * k:2 * k + 2]
+            energy += 0.5 * a.tangential_stiffness[e] * (stretch @ stretch)
+    return energy
+
+
+def _ledger(scene, t, x, v, modes, work, sliders) -> dict[str, float]:
+    """The ``EnergyLedger`` fields of a run, by name; ``sliders`` as
+    ``Integration.sliders``."""
     mechanical_0, contact_0 = _stored(scene, t[0], x[0], v[0], modes[0])
     mechanical_1, contact_1 = _stored(scene, t[-1], x[-1], v[-1], modes[-1])
+    if sliders.shape[1]:
+        mechanical_0 += _elastic_energy(scene, t[0], x[0], sliders[0], modes[0])
+        mechanical_1 += _elastic_energy(scene, t[-1], x[-1], sliders[-1], modes[-1])
     excitation, damping, friction, contact_work, lock = work[-1] - work[0]
     contact_stored = contact_1 - contact_0
     stored = mechanical_1 - mechanical_0 + contact_stored

@@ -104,12 +104,6 @@ def test_a_point_of_fewer_components_than_the_directions_is_refused():
         group.connect(("mass", "tip"), "ground", elastic(1e5))
 
 
-def test_the_time_domain_loop_refuses_an_elastic_contact_by_its_interface():
-    scene = point_mass_on_ground(elastic(1e5), amplitude=1.0)
-    with pytest.raises(ValueError, match=r"interface \('mass', 'ground'\).*rigid stick only"):
-        sn.simulate(scene, 1)
-
-
 def test_scene_files_carry_the_tangent_plane_and_the_tangential_stiffness(tmp_path):
     scene = point_mass_on_ground(elastic(2.5e5), amplitude=1.0)
     path = scenefile.save(tmp_path / "elastic.toml", scene)

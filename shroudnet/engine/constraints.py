@@ -96,7 +96,7 @@ def fill_constraints(s, modes, g):
     n_stuck = 0
     for e in range(len(modes)):
         g.stuck[e] = modes[e] == STICK
-        if g.stuck[e]:
+        if g.stuck[e] and s.slider_index[e] < 0:  # an elastic contact sticks by its spring
             g.stuck_interfaces[n_stuck] = e
             n_stuck += 1
     for i in range(n):

@@ -38,7 +38,7 @@ from types import ModuleType
 import numba
 import numpy as np
 
-from contact_laws import BUILT_IN_FRICTION, BUILT_IN_NORMAL
+from contact_laws import BUILT_IN_FRICTION, BUILT_IN_NORMAL, Coulomb
 from contact_laws import base as law_base
 
 from ..scene import Scene
@@ -106,8 +106,14 @@ def flags(arrays, tangent: bool = False) -> dict[str, bool]:
         "HAS_COUPLINGS": arrays.n_couplings > 0,
         "HAS_PRESCRIBED": arrays.n_prescribed > 0,
         "HAS_STRUCTURES": arrays.is_structure,
+        "HAS_SLIDERS": has_sliders(arrays),
         "HAS_TANGENT": tangent,
     }
+
+
+def has_sliders(arrays) -> bool:
+    """Whether a scene has elastic contacts (finite k_t), whose sliders the state carries."""
+    return bool(np.isfinite(arrays.tangential_stiffness).any())
 
 
 @functools.cache
@@ -153,11 +159,17 @@ def load_kernel(scene: Scene, tangent: bool = False, adaptive: bool = True) -> M
     if tangent and not adaptive:
         raise ValueError("the tangent flow is integrated by the adaptive method only")
     arrays = scene.arrays
+    if has_sliders(arrays) and (tangent or not adaptive):
+        raise ValueError("a scene with elastic contacts (Interface.tangential_stiffness) "
+                         "is integrated by the adaptive method, without its tangent flow: "
+                         "use method=Adaptive(...) or Accuracy(...); its periodic orbits, "
+                         "monodromy and Lyapunov exponents are not available")
     normal_classes, friction_classes = _law_classes(arrays)
     effects = flags(arrays, tangent)
     if built_in(normal_classes, friction_classes):
         effects = {flag: True for flag in effects} | {
-            "HAS_TANGENT": tangent, "HAS_STRUCTURES": arrays.is_structure}
+            "HAS_TANGENT": tangent, "HAS_STRUCTURES": arrays.is_structure,
+            "HAS_SLIDERS": has_sliders(arrays)}
     return _kernel(tuple(normal_classes), tuple(friction_classes), tuple(effects.items()),
                    adaptive)
 
@@ -270,15 +282,17 @@ def _cached(driver) -> bool:
 
 def kernel_scene(scene: Scene) -> KernelScene | StructureScene:
     """The scene's arrays with each law given as (index of its class, parameter row), and
-    its prescribed-motion nodes after the blades (``KernelScene``). Refuses a scene with
-    elastic contacts, which the loop does not take."""
+    its prescribed-motion nodes after the blades (``KernelScene``); with substructures or
+    elastic contacts, a ``StructureScene``, with the elastic contacts' sliders as
+    coordinates between the free and the prescribed ones."""
     a = scene.arrays
-    elastic = np.flatnonzero(np.isfinite(a.tangential_stiffness))
-    if len(elastic):
-        left, right, _ = scene.group.interfaces[elastic[0]]
-        raise ValueError(f"interface ({left!r}, {right!r}): the time-domain loop takes rigid "
-                         "stick only; an elastic contact (Interface.tangential_stiffness) "
-                         "has its linear limits in linear_modes and frequency_response")
+    for e in np.flatnonzero(np.isfinite(a.tangential_stiffness)):
+        if type(a.friction_laws[e]) is not Coulomb:
+            left, right, _ = scene.group.interfaces[e]
+            raise ValueError(
+                f"interface ({left!r}, {right!r}): an elastic contact "
+                "(Interface.tangential_stiffness) slips at the one coefficient of Coulomb "
+                f"friction; give friction=Coulomb(mu=...), not {a.friction_laws[e]!r}")
     normal_classes, friction_classes = _law_classes(a)
     normal_kind = np.array([normal_classes.index(type(law)) for law in a.normal_laws],
                            dtype=np.int64)
@@ -319,16 +333,39 @@ def kernel_scene(scene: Scene) -> KernelScene | StructureScene:
         motion_knots=np.array([len(t.knot_times) for t in terms], dtype=np.int64))
     if not a.is_structure:
         return KernelScene(**fields)
-    support = (a.normal_rows != 0.0) | (a.tangent_rows != 0.0)
-    pattern = (a.structure_stiffness != 0.0) | (a.structure_damping != 0.0)
+    free = len(a.mass)
+    elastic = np.isfinite(a.tangential_stiffness)
+    sliders = 2 * int(elastic.sum())
+    slider_index = np.full(len(elastic), -1, dtype=np.int64)
+    slider_index[elastic] = free + 2 * np.arange(sliders // 2)
+
+    def with_sliders(values, fill=0.0, axis=-1):
+        """``values`` with the sliders' entries inserted after the free coordinates."""
+        return np.insert(values, [free] * sliders, fill, axis=axis)
+
+    fields.update(can_stick=a.can_stick & ~elastic,  # a slider's guards are its own
+                  mass=with_sliders(fields["mass"], 1.0),
+                  damping=with_sliders(fields["damping"]),
+                  stiffness=with_sliders(fields["stiffness"]),
+                  amplitudes=with_sliders(fields["amplitudes"]),
+                  cos_phase=with_sliders(fields["cos_phase"], 1.0),
+                  sin_phase=with_sliders(fields["sin_phase"]))
+    normal_rows, tangent_rows, second_rows = (
+        with_sliders(rows) for rows in (a.normal_rows, a.tangent_rows, a.second_tangent_rows))
+    stiffness, damping = (with_sliders(with_sliders(matrix), axis=0)
+                          for matrix in (a.structure_stiffness, a.structure_damping))
+    support = (normal_rows != 0.0) | (tangent_rows != 0.0) | (second_rows != 0.0)
+    pattern = (stiffness != 0.0) | (damping != 0.0)
     rows, columns = np.nonzero(pattern)
     return StructureScene(
-        **fields, normal_rows=a.normal_rows, tangent_rows=a.tangent_rows,
+        **fields, normal_rows=normal_rows, tangent_rows=tangent_rows,
         normal_gap=a.normal_gap, support_start=_starts(support.sum(axis=1)),
         support_index=np.nonzero(support)[1].astype(np.int64),
         matrix_start=_starts(pattern.sum(axis=1)), matrix_column=columns.astype(np.int64),
-        stiffness_entry=a.structure_stiffness[rows, columns],
-        damping_entry=a.structure_damping[rows, columns])
+        stiffness_entry=stiffness[rows, columns], damping_entry=damping[rows, columns],
+        second_tangent_rows=second_rows,
+        tangential_stiffness=np.where(elastic, a.tangential_stiffness, np.inf),
+        slider_index=slider_index)
 
 
 def _starts(counts) -> np.ndarray:

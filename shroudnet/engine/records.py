@@ -45,9 +45,17 @@ KernelScene = namedtuple("KernelScene", [
 #: nonzero only at its coordinates ``support_index[support_start[e]:support_start[e +
 #: 1]]``, and pushes the coordinates by −(N_e n_e + f_e t_e). The per-blade ``damping``,
 #: ``stiffness``, the couplings' and the angles' fields are unused.
+#:
+#: An elastic contact (a Jenkins element: ``sliders``) has its slider's position w in the
+#: tangent plane as coordinates of the state, between the structure's free coordinates
+#: and the prescribed ones: ``slider_index[e]`` is its first (−1 where stick is rigid),
+#: one per tangent direction (the second's row in ``second_tangent_rows``, all zero for
+#: an interface of one direction); ``tangential_stiffness`` is k_t [N/m] (inf where
+#: rigid). A slider coordinate has mass 1 and no stiffness, damping, load or contact row.
 StructureScene = namedtuple("StructureScene", KernelScene._fields + (
     "normal_rows", "tangent_rows", "normal_gap", "support_start", "support_index",
     "matrix_start", "matrix_column", "stiffness_entry", "damping_entry",
+    "second_tangent_rows", "tangential_stiffness", "slider_index",
 ))
 
 #: What a run is asked for, in seconds: the first sample time, the sample spacing and the
@@ -134,13 +142,16 @@ Switching = namedtuple("Switching", [
 #: interface: penetration … motion_trial; Runge–Kutta stages (7 rows): stage_v, stage_a
 #: (per blade) and stage_p (the four powers), and the dense output's weight of each stage;
 #: the state's energy columns: e_new, e_sample; per prescribed-motion node: ``drive``, its
-#: acceleration at the stage being evaluated.
+#: acceleration at the stage being evaluated; per interface, an elastic contact's friction
+#: along its second tangent direction (``friction_second``) and its slider's speed λ
+#: (``slider_speed``, ``sliders``).
 Work = namedtuple("Work", [
     "q", "resultant", "scratch", "imbalance", "a_start", "a_end", "a_sample", "xt", "vt",
     "x_new", "v_new",
     "penetration", "rate", "slip", "normal", "friction", "force", "contact", "motion",
     "contact_trial", "motion_trial",
     "stage_v", "stage_a", "stage_p", "dense_weights", "e_new", "e_sample", "drive",
+    "friction_second", "slider_speed",
 ])
 
 #: The event log of one run: located switches (time, interface, kind) up to its capacity,
@@ -176,7 +187,8 @@ def new_work(n_blades, n_interfaces, n_prescribed):
                 np.empty(m), np.empty(m), np.empty(m), np.empty(m),
                 np.zeros((DP_STAGES, b)), np.zeros((DP_STAGES, b)),
                 np.zeros((DP_STAGES, N_POWERS)), np.zeros(DP_STAGES),
-                np.zeros(N_WORK), np.zeros(N_WORK), np.zeros(n_prescribed))
+                np.zeros(N_WORK), np.zeros(N_WORK), np.zeros(n_prescribed), np.zeros(m),
+                np.zeros(m))
 
 
 @njit_internal

@@ -18,12 +18,14 @@ from shroudnet.engine.dynamics import (cluster_accelerations, continued_mu, coup
                                        driven_accelerations, excitation_forces,
                                        interface_kinematics, prescribed_acceleration,
                                        resultant_forces, static_friction)
-from shroudnet.engine.structures import kinematics, structure_resultant
+from shroudnet.engine.sliders import (push_second_friction, slider_forces, slider_guards,
+                                     slider_rate)
+from shroudnet.engine.structures import _row_dot, kinematics, structure_resultant
 
 if TYPE_CHECKING:
     from .generated import (HAS_COUPLINGS, HAS_FRICTION, HAS_PRESCRIBED, HAS_REGULARISED,
-                            HAS_STICK, HAS_STRUCTURES, friction_coefficient, friction_slope,
-                            normal_force)
+                            HAS_SLIDERS, HAS_STICK, HAS_STRUCTURES, friction_coefficient,
+                            friction_slope, normal_force, normal_force_gradient)
 
 
 @njit_inlined
@@ -69,6 +71,9 @@ def law_forces(s, modes, w):
         w.normal[e] = normal
         if not HAS_FRICTION or s.friction_kind[e] < 0 or modes[e] == STICK:
             continue
+        if HAS_SLIDERS:
+            if s.slider_index[e] >= 0:  # an elastic contact's: ``sliders``
+                continue
         if HAS_REGULARISED and s.regularisation[e] > 0.0:
             w.friction[e] = normal * friction_coefficient(
                 s.friction_kind[e], s.friction_params[e], abs(w.slip[e])) \
@@ -142,24 +147,54 @@ def structure_derivative(t, x, v, modes, topology, s, w, acceleration):
     (``constraints.constrained_accelerations``)."""
     kinematics(x, v, s, w.penetration, w.rate, w.slip)
     law_forces(s, modes, w)
+    if HAS_SLIDERS:
+        slider_forces(x, modes, s, w)
     excitation_forces(t, s.amplitudes, s.cos_phase, s.sin_phase, s.excitation_frequency,
                       w.q)
     damping = structure_resultant(x, v, s, w)
+    if HAS_SLIDERS:
+        push_second_friction(s, w)
     friction = 0.0
     contact = 0.0
     for e in range(len(modes)):
-        friction += w.friction[e] * w.slip[e]
+        if not (HAS_SLIDERS and s.slider_index[e] >= 0):  # a slider's is f·ẇ, below
+            friction += w.friction[e] * w.slip[e]
         contact += w.normal[e] * w.rate[e]
     if HAS_PRESCRIBED:
         for p in range(len(w.drive)):
             w.drive[p] = prescribed_acceleration(t, s, p)[0]
     constrained_accelerations(s, topology, w.resultant, w.drive, acceleration, w.friction)
+    if HAS_SLIDERS:
+        friction += slider_rates(s, modes, v, w, acceleration)
     excitation = 0.0
     if HAS_PRESCRIBED:
         excitation = prescribed_power(s, topology, w.resultant, v, w.friction, len(w.drive))
     for i in range(len(x)):
         excitation += w.q[i] * v[i]
     return excitation, damping, friction, contact
+
+
+@njit_inlined
+def slider_rates(s, modes, v, w, acceleration):
+    """ẇ of every elastic contact (``sliders``) into its slider's acceleration slots, from
+    the accelerations of the structure: Ṅ = ∂N/∂δ δ̇ + ∂N/∂δ̇ δ̈ with δ̈ = n·ẍ. Returns the
+    power the sliders take out, Σ f·ẇ [W]."""
+    power = 0.0
+    for e in range(len(modes)):
+        k = s.slider_index[e]
+        if k < 0:
+            continue
+        normal_rate = 0.0
+        if modes[e] != OPEN:
+            slope, rate_slope = normal_force_gradient(s.normal_kind[e], s.normal_params[e],
+                                                      w.penetration[e], w.rate[e])
+            normal_rate = slope * w.rate[e] \
+                + rate_slope * _row_dot(s, s.normal_rows, e, acceleration, 0)
+        first, second = slider_rate(s, e, v, w, modes[e], normal_rate)
+        acceleration[k] = first
+        acceleration[k + 1] = second
+        power += w.friction[e] * first + w.friction_second[e] * second
+    return power
 
 
 @njit_step_merged
@@ -176,6 +211,8 @@ def evaluate_guards(t, x, v, modes, topology, s, w, acceleration):
                         w.friction)
     event_guards(modes, w.penetration, w.slip, w.normal, w.friction, s.static_mu, s.opens,
                  s.can_stick, w.contact, w.motion)
+    if HAS_SLIDERS:
+        slider_guards(modes, s, w, w.motion)
     return powers
 
 
@@ -194,6 +231,8 @@ def sample_forces(time, xt, vt, modes, topology, s, w):
         return
     kinematics(xt, vt, s, w.penetration, w.rate, w.slip)
     law_forces(s, modes, w)
+    if HAS_SLIDERS:
+        slider_forces(xt, modes, s, w)
 
 
 @njit_step_merged

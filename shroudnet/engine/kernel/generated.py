@@ -26,6 +26,9 @@ HAS_PRESCRIBED: bool = True
 #: The scene has substructures (``records.StructureScene``): its interfaces act along rows
 #: of the coordinates, and stuck ones are constraints (``constraints``), not clusters.
 HAS_STRUCTURES: bool = False
+#: The scene has elastic contacts (``sliders``): their sliders are coordinates of the
+#: state, integrated as first-order ones (a scene with substructures only).
+HAS_SLIDERS: bool = False
 #: The run integrates the tangent flow; otherwise its state holds a ``records.NoTangent``,
 #: whose fields are not to be read.
 HAS_TANGENT: bool = False

@@ -18,7 +18,7 @@ from shroudnet.engine.tangent import commit_tangent
 
 if TYPE_CHECKING:
     from .forces import evaluate_guards_apart, sample_forces
-    from .generated import ADAPTIVE, HAS_TANGENT
+    from .generated import ADAPTIVE, HAS_SLIDERS, HAS_TANGENT
     from .step import motion_inside, step_apart
     from .tangent import stepwise, tangent_step
 
@@ -30,10 +30,11 @@ def guards_inside(t, h, theta, state, topology, s, w):
 
     Contact and slip guards are functions of the state alone: without stuck interfaces
     no force is evaluated (``detect.kinematic_guards``). A breakaway margin needs the
-    static friction, so with stuck interfaces the forces are evaluated too.
+    static friction, and an elastic contact's guards its spring's force, so with stuck
+    interfaces or elastic contacts the forces are evaluated too.
     """
     motion_inside(t, h, theta, state, topology, s, w)
-    if len(topology.stuck_interfaces) > 0:
+    if HAS_SLIDERS or len(topology.stuck_interfaces) > 0:
         evaluate_guards_apart(t + theta * h, w.xt, w.vt, state.modes, topology, s, w,
                               w.a_sample)
         return

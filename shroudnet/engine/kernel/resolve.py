@@ -23,10 +23,11 @@ from shroudnet.engine.regroup import project_velocities, regroup, same_stuck
 from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches, piling_up,
                                       relative_acceleration)
 from shroudnet.engine.saltation import apply_saltation, apply_saltations, project_tangent
+from shroudnet.engine.sliders import initial_slider_modes, switch_slider
 
 if TYPE_CHECKING:
     from .forces import evaluate_guards_apart
-    from .generated import HAS_PRESCRIBED, HAS_STRUCTURES, HAS_TANGENT
+    from .generated import HAS_PRESCRIBED, HAS_SLIDERS, HAS_STRUCTURES, HAS_TANGENT
     from .tangent import crossed_gradients, crossings_coincide, guard_gradient
 
 
@@ -143,6 +144,12 @@ def resolve(t, state, topology, s, w, sw):
     for e in range(len(modes)):
         candidates[e] = False
     for e in range(len(modes)):
+        if HAS_SLIDERS:
+            if s.slider_index[e] >= 0:
+                switch_slider(state.x, modes, s, e,
+                              crossed(state.contact_before[e], w.contact[e]),
+                              crossed(state.motion_before[e], w.motion[e]), w.friction[e])
+                continue
         if crossed(state.contact_before[e], w.contact[e]):
             if modes[e] == OPEN:
                 modes[e] = SLIP_POSITIVE if w.slip[e] >= 0.0 else SLIP_NEGATIVE
@@ -222,6 +229,8 @@ def begin(state, s, w, sw, controls, out):
     The tangent's velocity rows are projected as the state's are (the derivative of the
     start's projection)."""
     initial_modes(state, s, w, sw.candidates)
+    if HAS_SLIDERS:
+        initial_slider_modes(state.modes, s)
     status, lost, topology, _ = settle(controls.t0, state, regroup(s, state.modes, sw), s, w,
                                        sw)
     state.energy[PROJECTION] += lost

@@ -13,11 +13,12 @@ from shroudnet.engine.advance import dense_motion, set_powers
 from shroudnet.engine.codes import N_POWERS, PROJECTION
 from shroudnet.engine.compiled import njit_step, njit_step_merged
 from shroudnet.engine.controller import accepted, scaled_error
+from shroudnet.engine.sliders import first_order_stage
 from shroudnet.engine.tableau import DP_A, DP_B, DP_C, DP_STAGES, stage_sum
 
 if TYPE_CHECKING:
     from .forces import derivative, evaluate_guards
-    from .generated import ADAPTIVE, HAS_TANGENT
+    from .generated import ADAPTIVE, HAS_SLIDERS, HAS_TANGENT
     from .tangent import stepwise, tangent_step
 
 
@@ -77,6 +78,8 @@ def dp5_step(t, h, state, topology, s, w, controls):
     for i in range(n):
         sv[0, i] = v[i]
         sa[0, i] = w.a_start[i]
+    if HAS_SLIDERS:
+        first_order_stage(s, sv, sa, 0)
     for j in range(1, last):
         for i in range(n):
             w.xt[i] = x[i] + h * stage_sum(DP_A[j], sv, j, i)
@@ -84,6 +87,8 @@ def dp5_step(t, h, state, topology, s, w, controls):
             sv[j, i] = w.vt[i]
         set_powers(sp[j], derivative(t + DP_C[j] * h, w.xt, w.vt, modes, topology, s, w,
                                      sa[j]))
+        if HAS_SLIDERS:
+            first_order_stage(s, sv, sa, j)
     for i in range(n):
         w.x_new[i] = x[i] + h * stage_sum(DP_B, sv, last, i)
         w.v_new[i] = v[i] + h * stage_sum(DP_B, sa, last, i)
@@ -95,6 +100,8 @@ def dp5_step(t, h, state, topology, s, w, controls):
                                          w.a_end))
     for i in range(n):
         sa[last, i] = w.a_end[i]
+    if HAS_SLIDERS:
+        first_order_stage(s, sv, sa, last)
     return scaled_error(h, x, v, w.x_new, w.v_new, sv, sa, controls)
 
 

@@ -1,0 +1,146 @@
+"""Elastic contacts in the time-domain loop: the Jenkins element's sliders in the state,
+against ``shroudnet.baseline_jenkins`` (plain solve_ivp on the element's equations, no
+code shared with the engine), its energy ledger, and its limits: rigid stick as k_t grows,
+and what the loop refuses."""
+
+import math
+from collections import Counter
+
+import numpy as np
+import pytest
+
+import shroudnet as sn
+from contact_laws import Coulomb, ExponentialFriction, LinearSpring
+from shroudnet.baseline_jenkins import JenkinsOscillator, run_oscillator
+from shroudnet.substructure import Substructure
+
+STIFFNESS = np.array([[100.0, 20.0, 5.0], [20.0, 150.0, 10.0], [5.0, 10.0, 80.0]])
+#: The oscillator's excitation [rad/s], and the speed that gives it at engine order 1.
+OMEGA = 7.0
+SPEED = OMEGA * 60.0 / (2.0 * math.pi)
+PERIODS = 3
+K_N, K_T, MU, GAP = 1000.0, 500.0, 0.4, -0.01
+
+
+def oscillator(dimension, load):
+    """A 1 kg mass on springs K, pressed 1 cm into a rigid ground (k_n = 1 kN/m), with a
+    Jenkins element (k_t = 500 N/m, μ = 0.4) in the ground's plane, forced by
+    22 N sin(7 t) along ``load``: it closes, sticks, slips and separates every cycle."""
+    keep = [0, 2] if dimension == 1 else [0, 1, 2]
+    stiffness = STIFFNESS[np.ix_(keep, keep)]
+    damping = 0.5 * np.eye(dimension + 1) + 1e-3 * stiffness
+    direction = np.asarray(load, dtype=float)[keep]
+    reference = JenkinsOscillator(
+        mass=1.0, stiffness=stiffness, normal_stiffness=K_N, tangential_stiffness=K_T, mu=MU,
+        force_static=0.0 * direction, force_cos=0.0 * direction, force_sin=22.0 * direction,
+        frequency=OMEGA, gap=GAP, damping=damping)
+    n = dimension + 1
+    body = Substructure(np.eye(n), stiffness, damping, points={"tip": np.eye(n)},
+                        load=direction)
+    group = sn.BladeGroup().add_blade("mass", body).add_fixed("ground")
+    frame = np.eye(n)
+    group.connect(("mass", "tip"), "ground", sn.Interface(
+        gap=GAP, normal=LinearSpring(stiffness=K_N), friction=Coulomb(mu=MU),
+        normal_direction=tuple(frame[-1]), tangent_directions=tuple(map(tuple, frame[:-1])),
+        tangential_stiffness=K_T))
+    scene = sn.Scene(group=group, excitation=sn.Excitation(
+        engine_order=1, amplitudes=(0.0, 22.0), phases=sn.AntiPhase()), speed_rpm=SPEED)
+    return scene, reference
+
+
+CASES = {"1-D": (1, (0.3, 0.2, 1.0)), "2-D": (2, (0.3, 0.2, 1.0)),
+         "2-D, closing into slip": (2, (1.5, -1.0, 1.0))}
+
+
+@pytest.fixture(scope="module", params=list(CASES), ids=list(CASES))
+def runs(request):
+    dimension, load = CASES[request.param]
+    scene, reference = oscillator(dimension, load)
+    sim = sn.simulate(scene, PERIODS, samples_per_period=100, method=sn.Adaptive(rtol=1e-10))
+    period = 2.0 * math.pi / OMEGA
+    ref = run_oscillator(reference, np.zeros(dimension + 1), np.zeros(dimension + 1),
+                         PERIODS * period, t_eval=np.minimum(sim.t, PERIODS * period),
+                         rtol=1e-12, atol=1e-14)
+    return scene, sim, ref
+
+
+def test_the_loop_moves_as_the_independent_jenkins_reference(runs):
+    scene, sim, ref = runs
+    x = sim.x @ scene.point_rows("mass", "tip").T
+    # Measured: 5e-10 (1-D, 2-D) and 1.8e-9 (closing into slip) of the largest motion.
+    assert np.abs(x - ref.x).max() <= 1e-8 * np.abs(ref.x).max()
+    # The sampled friction force, along the first tangent: 1e-8 of its largest.
+    assert np.abs(sim.friction_force[:, 0] - ref.forces[:, 0]).max() \
+        <= 1e-7 * np.abs(ref.forces).max()
+    # Every switch the reference makes, at the same instants (the loop, closing onto a
+    # limit that its friction outruns at once, sticks and breaks away in one instant).
+    kinds = Counter(ref.switch_kinds)
+    assert {k: sim.events.counts[k] for k in ("closing", "separation", "sticking")} == {
+        k: kinds[k] for k in ("closing", "separation", "sticking")}
+    modes = [segment[2] for segment in ref.segments]
+    into_slip = Counter(zip(modes[:-1], modes[1:]))[("open", "slip")]
+    assert sim.events.counts["breakaway"] == kinds["breakaway"] + into_slip
+    assert kinds["breakaway"] >= 4 and kinds["closing"] >= 4
+    times = np.asarray(sim.events.time)
+    period = 2.0 * math.pi / OMEGA
+    for t in ref.switch_times:
+        assert np.abs(times - t).min() <= 1e-7 * period
+
+
+def test_the_ledger_books_the_sliders_loss_and_the_springs_energy(runs):
+    scene, sim, ref = runs
+    excitation, damping, friction = ref.ledger[-1]
+    ledger = sim.energy
+    # Measured: each to 1e-9 of the excitation's work; the residual 1e-9 of it.
+    assert ledger.excitation_work == pytest.approx(excitation, rel=1e-7)
+    assert ledger.damping_loss == pytest.approx(damping, rel=1e-7)
+    assert ledger.friction_loss == pytest.approx(friction, rel=1e-7)
+    assert friction > 0.01 * excitation
+    assert abs(ledger.residual) <= 1e-8 * excitation
+    assert ledger.stored_change == pytest.approx(
+        float(ref.stored[-1] - ref.stored_start), rel=1e-6)
+
+
+def pair(k_t, amplitude=60.0):
+    """Two blades pressed together at 0.6 rad, forced apart in phase opposition so that
+    the contact slips for part of each cycle; rigid stick where ``k_t`` is None."""
+    group = sn.BladeGroup().add_blade("a", sn.Blade(mass=0.1, damping=2.0, stiffness=1e5))
+    group.add_blade("b", sn.Blade(mass=0.3, damping=3.0, stiffness=2e5))
+    group.connect("a", "b", sn.Interface(
+        gap=-1e-4, angle=0.6, normal=LinearSpring(stiffness=3e5), friction=Coulomb(mu=0.3),
+        tangential_stiffness=k_t))
+    return sn.Scene(group=group, excitation=sn.Excitation(
+        engine_order=1, amplitudes=(0.0, amplitude), phases=sn.AntiPhase()), speed_rpm=6000.0)
+
+
+def test_elastic_stick_between_blades_tends_to_rigid_stick_as_k_t_grows():
+    """The same pair with k_t = 1e7, 1e8, 1e9 N/m against rigid stick: the motions
+    differ by the vibration of the stuck spring, started as each stick begins with the
+    relative velocity the slider leaves, so by v/ω_t ∝ 1/√k_t."""
+    def motion(k_t):
+        sim = sn.simulate(pair(k_t), 3, samples_per_period=50, method=sn.Adaptive(rtol=1e-10))
+        assert sim.events.counts["breakaway"] >= 2 and sim.events.counts["sticking"] >= 2
+        return sim.x
+
+    rigid = motion(None)
+    scale = np.abs(rigid).max()
+    gaps = np.array([np.abs(motion(k) - rigid).max() / scale for k in (1e7, 1e8, 1e9)])
+    # Measured: 8.2e-2, 2.4e-2, 7.8e-3: ratios 3.40 and 3.08 against √10 = 3.16.
+    assert gaps[-1] < 1e-2
+    assert gaps[:-1] / gaps[1:] == pytest.approx(math.sqrt(10.0), rel=0.15)
+
+
+def test_what_the_loop_does_not_take_with_elastic_contacts_is_refused_by_name():
+    scene, _ = oscillator(1, (0.3, 0.2, 1.0))
+    with pytest.raises(ValueError, match="adaptive method, without its tangent flow"):
+        sn.simulate(scene, 1, method=sn.FixedStep(steps_per_period=100))
+    with pytest.raises(ValueError, match="periodic orbits, monodromy and Lyapunov"):
+        sn.periodic_orbit(scene)
+    group = sn.BladeGroup().add_blade("a", sn.Blade(mass=0.1, damping=2.0, stiffness=1e5))
+    group.add_fixed("g").connect("a", "g", sn.Interface(
+        gap=-1e-4, angle=0.6, normal=LinearSpring(stiffness=3e5),
+        friction=ExponentialFriction(mu_static=0.3, mu_kinetic=0.2, beta=1.0),
+        tangential_stiffness=1e6))
+    speeds = sn.Scene(group=group, excitation=pair(None).excitation, speed_rpm=6000.0)
+    with pytest.raises(ValueError, match=r"interface \('a', 'g'\).*Coulomb"):
+        sn.simulate(speeds, 1)
