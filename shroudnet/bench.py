@@ -52,6 +52,7 @@ from .continuation import continuation
 from .group import BladeGroup
 from .methods import TRANSIENT, Adaptive, FixedStep
 from .orbits import periodic_orbit
+from .options import whole
 from .progress import progress_callback
 from .scene import Scene
 from .scenes import beam_pair, modal_packet, three_blade_paper
@@ -320,20 +321,6 @@ def beams_against_plain(periods: int, repeats: int) -> dict[str, tuple[float, fl
     return rows
 
 
-def whole(low: int):
-    """An argparse type: a whole number >= ``low``, so that a bad option stops the benchmark
-    before any of its work, not in the middle of it."""
-    def number(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"must be a whole number >= {low}, "
-                                             f"got {text!r}") from None
-        if value < low:
-            raise argparse.ArgumentTypeError(f"must be a whole number >= {low}, got {value}")
-        return value
-    number.__name__ = f"whole number >= {low}"
-    return number
 
 
 def options_parser(prog: str = "python -m shroudnet.bench",

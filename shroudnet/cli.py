@@ -47,6 +47,7 @@ from .group import BLADE_POINT
 from .linear import CONTACTS, linear_modes
 from .methods import TRANSIENT
 from .mistuning import mistuning_study
+from .options import whole
 from .parametric import same_scene
 from .progress import ProgressReporter, TerminalProgress
 from .simulate import simulate
@@ -178,7 +179,7 @@ def _parser() -> argparse.ArgumentParser:
         "writes the results (.npz, loads back with shroudnet.results.load) and the response "
         "figure (.png) of the [run] blade.")
     run.add_argument("scene", type=Path, help="scene file (TOML)")
-    run.add_argument("--periods", type=_whole(1),
+    run.add_argument("--periods", type=whole(1),
                      help="excitation periods (default: [run] periods)")
     run.add_argument("--output", "-o", type=Path, default=Path("."),
                      help="folder for SCENE.npz and SCENE.png (default: here)")
@@ -202,11 +203,11 @@ def _parser() -> argparse.ArgumentParser:
     sweep_.add_argument("--values", required=True, nargs="+", metavar="VALUE",
                         help="the values: numbers, or START:STOP:COUNT for COUNT evenly "
                         "spaced ones; negative ones too (--values -1e-5:2e-5:4)")
-    sweep_.add_argument("--transient", type=_whole(0),
+    sweep_.add_argument("--transient", type=whole(0),
                         help="periods before recording (default: [run] transient)")
-    sweep_.add_argument("--record", type=_whole(3), default=100,
+    sweep_.add_argument("--record", type=whole(3), default=100,
                         help="periods recorded per value, at least 3 (default 100)")
-    sweep_.add_argument("--workers", type=_whole(1),
+    sweep_.add_argument("--workers", type=whole(1),
                         help="worker processes (default: every core)")
     sweep_.add_argument("--output", "-o", type=Path,
                         help="folder for the points and the diagram "
@@ -238,13 +239,13 @@ def _parser() -> argparse.ArgumentParser:
                         help="where the branch starts")
     follow.add_argument("--to", dest="stop", required=True, type=float, metavar="B",
                         help="where it ends")
-    follow.add_argument("--periods", type=_whole(1), default=1,
+    follow.add_argument("--periods", type=whole(1), default=1,
                         help="orbits of this many excitation periods (default 1)")
     follow.add_argument("--max-step", type=float, default=LARGEST_STEP, metavar="S",
                         help="the largest arclength step, as a fraction of the range and "
                         f"of the orbit's size (default {LARGEST_STEP:g}); smaller draws "
                         "more points")
-    follow.add_argument("--max-points", type=_whole(2), default=1000,
+    follow.add_argument("--max-points", type=whole(2), default=1000,
                         help="the most orbits (default 1000)")
     follow.add_argument("--output", "-o", type=Path, default=Path("."),
                         help="folder for SCENE-continue-PATH.npz and .png (default: here)")
@@ -262,7 +263,7 @@ def _parser() -> argparse.ArgumentParser:
         "and the frequency-nodal-diameter (ZZENF) figure SCENE-modes.png is written with "
         "the engine orders at the scene's speed.")
     modes.add_argument("scene", type=Path, help="scene file (TOML)")
-    modes.add_argument("--families", type=_whole(1), default=3,
+    modes.add_argument("--families", type=whole(1), default=3,
                        help="mode families per nodal diameter shown (default 3)")
     modes.add_argument("--output", "-o", type=Path, default=Path("."),
                        help="folder for SCENE-modes.png (default: here)")
@@ -280,16 +281,16 @@ def _parser() -> argparse.ArgumentParser:
     mistuning.add_argument("scene", type=Path, help="scene file (TOML)")
     mistuning.add_argument("--spread", required=True, type=float,
                            help="standard deviation of the frequency deviations, e.g. 0.01")
-    mistuning.add_argument("--samples", required=True, type=_whole(1),
+    mistuning.add_argument("--samples", required=True, type=whole(1),
                            help="number of random patterns")
     mistuning.add_argument("--speeds", required=True, nargs="+", metavar="RPM",
                            help="the speeds [rev/min] the peak is sought over: numbers, or "
                            "START:STOP:COUNT")
-    mistuning.add_argument("--seed", type=_whole(0), default=0,
+    mistuning.add_argument("--seed", type=whole(0), default=0,
                            help="of the random patterns (default 0)")
-    mistuning.add_argument("--transient", type=_whole(0), default=TRANSIENT,
+    mistuning.add_argument("--transient", type=whole(0), default=TRANSIENT,
                            help=f"periods before the peak is read (default {TRANSIENT})")
-    mistuning.add_argument("--workers", type=_whole(1),
+    mistuning.add_argument("--workers", type=whole(1),
                            help="worker processes (default: every core)")
     mistuning.add_argument("--output", "-o", type=Path, default=Path("."),
                            help="folder for SCENE-mistuning.png (default: here)")
@@ -325,19 +326,6 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _whole(low: int):
-    """An argparse type: a whole number >= ``low``."""
-    def whole(text: str) -> int:
-        try:
-            number = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"must be a whole number >= {low}, "
-                                             f"got {text!r}") from None
-        if number < low:
-            raise argparse.ArgumentTypeError(f"must be a whole number >= {low}, got {number}")
-        return number
-    whole.__name__ = f"whole number >= {low}"
-    return whole
 
 
 def _laws_option(parser: argparse.ArgumentParser) -> None:

@@ -18,9 +18,8 @@ import pytest
 import shroudnet.bench
 from contact_laws import check_real
 from shroudnet import cli, continuation, scenefile, sweep
-from shroudnet.analysis import Classification
 from shroudnet.scenes import three_blade_paper
-from shroudnet.simulation import SweepPoint
+from tests.test_cli_errors import stand_in_point
 
 sweep_module = importlib.import_module("shroudnet.sweep")
 ROOT = Path(__file__).resolve().parents[1]
@@ -261,16 +260,6 @@ def test_what_a_scene_file_reader_meets_unnamed_is_told_as_the_files(tmp_path, c
 
 
 # ---- sweep: as strict as continuation, every argument checked first ----------------------
-
-def stand_in_point(value) -> SweepPoint:
-    """A computed point without a simulation."""
-    return SweepPoint(value=float(value), poincare=np.full((3, 2), float(value)),
-                      energy_density=1.0, friction_loss_per_cycle=0.0,
-                      classification=Classification(label="p1", period=1, n_points=3,
-                                                    tolerance=1e-5, mismatch=0.0,
-                                                    zero_one=math.nan, broadband=0.0),
-                      final_state=(np.zeros(3), np.zeros(3)))
-
 
 @pytest.fixture
 def stand_in_points(monkeypatch):
