@@ -22,7 +22,7 @@ PERIODS = 3
 K_N, K_T, MU, GAP = 1000.0, 500.0, 0.4, -0.01
 
 
-def oscillator(dimension, load):
+def oscillator(dimension, load, static=0.0):
     """A 1 kg mass on springs K, pressed 1 cm into a rigid ground (k_n = 1 kN/m), with a
     Jenkins element (k_t = 500 N/m, μ = 0.4) in the ground's plane, forced by
     22 N sin(7 t) along ``load``: it closes, sticks, slips and separates every cycle."""
@@ -32,7 +32,7 @@ def oscillator(dimension, load):
     direction = np.asarray(load, dtype=float)[keep]
     reference = JenkinsOscillator(
         mass=1.0, stiffness=stiffness, normal_stiffness=K_N, tangential_stiffness=K_T, mu=MU,
-        force_static=0.0 * direction, force_cos=0.0 * direction, force_sin=22.0 * direction,
+        force_static=static * direction, force_cos=0.0 * direction, force_sin=22.0 * direction,
         frequency=OMEGA, gap=GAP, damping=damping)
     n = dimension + 1
     body = Substructure(np.eye(n), stiffness, damping, points={"tip": np.eye(n)},
@@ -44,7 +44,7 @@ def oscillator(dimension, load):
         normal_direction=tuple(frame[-1]), tangent_directions=tuple(map(tuple, frame[:-1])),
         tangential_stiffness=K_T))
     scene = sn.Scene(group=group, excitation=sn.Excitation(
-        engine_order=1, amplitudes=(0.0, 22.0), phases=sn.AntiPhase()), speed_rpm=SPEED)
+        engine_order=1, amplitudes=(static, 22.0), phases=sn.AntiPhase()), speed_rpm=SPEED)
     return scene, reference
 
 
@@ -99,6 +99,23 @@ def test_the_ledger_books_the_sliders_loss_and_the_springs_energy(runs):
     assert abs(ledger.residual) <= 1e-8 * excitation
     assert ledger.stored_change == pytest.approx(
         float(ref.stored[-1] - ref.stored_start), rel=1e-6)
+
+
+def test_the_ledger_stores_the_stuck_springs_energy_where_a_run_ends_closed():
+    """Pressed onto the ground by a static 60 N, the mass stays down after its first
+    bounce: the run ends with its spring stretched, so the stored energy holds
+    ½ k_t |r_t − w|² ≠ 0."""
+    scene, reference = oscillator(1, (0.3, 0.2, 1.0), static=60.0)
+    sim = sn.simulate(scene, 2, samples_per_period=10, method=sn.Adaptive(rtol=1e-10))
+    period = 2.0 * math.pi / OMEGA
+    ref = run_oscillator(reference, np.zeros(2), np.zeros(2), 2 * period, rtol=1e-12,
+                         atol=1e-14, t_eval=np.minimum(sim.t, 2 * period))
+    assert sim.modes[-1, 0] != sn.Mode.OPEN and ref.modes[-1] != "open"
+    spring = 0.5 * K_T * float(np.sum((ref.x[-1, :1] - ref.slider[-1]) ** 2))
+    assert spring > 1e-3 * abs(ref.stored[-1] - ref.stored_start)
+    assert sim.energy.stored_change == pytest.approx(
+        float(ref.stored[-1] - ref.stored_start), rel=1e-7)
+    assert abs(sim.energy.residual) <= 1e-8 * abs(sim.energy.excitation_work)
 
 
 def pair(k_t, amplitude=60.0):

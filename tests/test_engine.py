@@ -291,7 +291,7 @@ def test_the_effect_flags_follow_the_law_classes():
     assert generate.flags(arrays) == {"HAS_CONTACT_EVENTS": True, "HAS_STICK": True,
                                       "HAS_FRICTION": True, "HAS_REGULARISED": False,
                                       "HAS_COUPLINGS": False, "HAS_PRESCRIBED": False,
-                                      "HAS_STRUCTURES": False,
+                                      "HAS_STRUCTURES": False, "HAS_SLIDERS": False,
                                       "HAS_TANGENT": False}
     assert generate.flags(arrays, tangent=True)["HAS_TANGENT"]
 
