@@ -313,7 +313,8 @@ def _parser() -> argparse.ArgumentParser:
         "cache", help="show where compiled integrators are kept and their size; --clear",
         description="Show the folder that keeps the compiled integrators (one shared by "
         "the built-in laws, and one per combination of law classes of your own) and how "
-        "much room they take. "
+        "much room they take: $SHROUDNET_CACHE, else ~/.cache/shroudnet; a file there, "
+        "or a folder that cannot be written, is refused. "
         "With --clear, delete them: the next run compiles again, once.")
     cache.add_argument("--clear", action="store_true", help="delete the compiled integrators")
     cache.set_defaults(command=_cache, name="cache")

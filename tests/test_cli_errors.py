@@ -5,6 +5,7 @@ Nothing here runs a simulation: where a command would reach one, ``simulate`` or
 ``steady_point`` is replaced by a stand-in.
 """
 
+import functools
 import importlib
 import math
 import os
@@ -298,6 +299,56 @@ def test_the_writable_check_asks_the_system(tmp_path, monkeypatch):
     monkeypatch.setattr(os, "access", lambda path, mode: False)
     with pytest.raises(cli.UsageError, match="cannot write in"):
         cli._check_folder(tmp_path / "new", "--output")
+
+
+# ---- the kernel cache folder (SHROUDNET_CACHE) --------------------------------------------
+
+@pytest.mark.parametrize("where, why", [
+    (lambda f: f, "is a file, not a folder"),
+    (lambda f: f / "kernels", "a_file is a file, not a folder"),
+])
+@pytest.mark.parametrize("clear", [[], ["--clear"]])
+def test_the_cache_command_refuses_a_cache_at_a_file(capsys, monkeypatch, a_file, where, why,
+                                                     clear):
+    monkeypatch.setenv("SHROUDNET_CACHE", str(where(a_file)))
+    assert cli.main(["cache", *clear]) == 2
+    error = one_error_line(capsys.readouterr().err, "cache")
+    assert error.startswith(f"SHROUDNET_CACHE={where(a_file)}: ") and why in error
+    assert a_file.read_text() == "not a folder"
+
+
+def test_the_cache_command_refuses_a_folder_it_cannot_write(tmp_path, capsys, monkeypatch):
+    """(``os.access`` answers as for a user without the right: root writes anywhere.)"""
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
+    monkeypatch.setattr(os, "access", lambda path, mode: False)
+    assert cli.main(["cache"]) == 2
+    assert one_error_line(capsys.readouterr().err, "cache") == (
+        f"SHROUDNET_CACHE={tmp_path}: cannot write in {tmp_path} (permission denied); set "
+        "SHROUDNET_CACHE to a folder that can be written")
+
+
+def test_the_cache_command_reports_a_folder_still_to_be_made(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path / "new" / "kernels"))
+    monkeypatch.setattr("shroudnet.engine.cache._engine_files", lambda: [])
+    assert cli.main(["cache"]) == 0
+    assert capsys.readouterr().out.startswith(f"cache    {tmp_path / 'new' / 'kernels'}: 0.0 MiB")
+
+
+def test_a_run_with_a_cache_at_a_file_is_one_error_line_before_any_compile(
+        tmp_path, capsys, monkeypatch, a_file):
+    generate = importlib.import_module("shroudnet.engine.generate")
+    monkeypatch.setattr(generate, "_kernel", functools.cache(generate._kernel.__wrapped__))
+    monkeypatch.setattr(generate, "_method_free",
+                        functools.cache(generate._method_free.__wrapped__))
+
+    def no_compile(*args, **kwargs):
+        raise AssertionError("a kernel was built in a cache folder that cannot hold it")
+    monkeypatch.setattr(generate, "_run_phases", no_compile)
+    monkeypatch.setenv("SHROUDNET_CACHE", str(a_file))
+    assert cli.main(["run", str(scene_file(tmp_path)), "-o", str(tmp_path / "out")]) == 2
+    assert one_error_line(capsys.readouterr().err, "run") == (
+        f"SHROUDNET_CACHE={a_file}: is a file, not a folder; set SHROUDNET_CACHE to a folder "
+        "that can be written")
 
 
 # ---- what simulate raises reaches the terminal as a line ---------------------------------

@@ -1,7 +1,9 @@
 """The engine's parts that do not depend on the laws, and the kernel generator."""
 
+import functools
 import importlib
 import math
+import os
 import re
 import sys
 import time
@@ -19,6 +21,7 @@ from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz,
                           LinearSpring, NormalLaw, Regularised, Stribeck, check_real)
 from shroudnet import Mode, Simulation, simulate
 from shroudnet.engine import codes, generate, locate, tableau
+from shroudnet.engine import cache
 from shroudnet.engine.cache import cache_size, clear_cache
 from shroudnet.engine.clusters import cluster_labels
 from shroudnet.engine.detect import crossed, depth, parabola_low, predicted_low
@@ -417,6 +420,74 @@ def test_the_cache_reports_its_size_and_clears(tmp_path, monkeypatch):
     assert cache_size() == (1000, 1)
     assert clear_cache() == 1000
     assert cache_size() == (0, 0) and not tmp_path.exists()
+
+
+@pytest.fixture
+def fresh_kernels(monkeypatch):
+    """Kernel builds that remember nothing of this process's kernels (and leave them be)."""
+    monkeypatch.setattr(generate, "_kernel", functools.cache(generate._kernel.__wrapped__))
+    monkeypatch.setattr(generate, "_method_free",
+                        functools.cache(generate._method_free.__wrapped__))
+
+
+@pytest.mark.parametrize("where, why", [
+    (lambda f: f, "is a file, not a folder"),
+    (lambda f: f / "kernels", "a_file is a file, not a folder"),
+])
+def test_a_cache_at_a_file_is_refused_before_any_kernel_is_built(
+        tmp_path, monkeypatch, fresh_kernels, where, why):
+    (tmp_path / "a_file").write_text("not a folder")
+    folder = where(tmp_path / "a_file")
+    monkeypatch.setenv("SHROUDNET_CACHE", str(folder))
+    monkeypatch.setattr(generate, "_run_phases", _no_compile)
+    with pytest.raises(ValueError, match=rf"^SHROUDNET_CACHE={re.escape(str(folder))}: "
+                                         rf".*{why}; set SHROUDNET_CACHE to a folder"):
+        simulate(three_blade_paper(), 1)
+
+
+def test_a_cache_folder_that_cannot_be_written_is_refused(tmp_path, monkeypatch,
+                                                          fresh_kernels):
+    """(``os.access`` answers as for a user without the right: root writes anywhere.)"""
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
+    monkeypatch.setattr(os, "access", lambda path, mode: False)
+    monkeypatch.setattr(generate, "_run_phases", _no_compile)
+    with pytest.raises(ValueError, match=rf"^SHROUDNET_CACHE={re.escape(str(tmp_path))}: "
+                                         r"cannot write in .*\(permission denied\)"):
+        simulate(three_blade_paper(), 1)
+    with pytest.raises(ValueError, match="cannot write in"):
+        cache_size()
+
+
+def test_a_write_the_system_refuses_is_told_as_the_cache_folders(tmp_path, monkeypatch):
+    """A read-only file system or a full disc passes ``os.access`` and fails the write."""
+    def refuse(*args, **kwargs):
+        raise OSError(30, "Read-only file system")
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
+    monkeypatch.setattr(cache.tempfile, "NamedTemporaryFile", refuse)
+    with pytest.raises(ValueError, match=r"SHROUDNET_CACHE=.*: cannot write there "
+                                         r"\(Read-only file system\)"):
+        cache.keep("kernel_x.py", "x = 1")
+
+
+def test_a_cache_folder_that_holds_the_kernel_serves_it_unwritable(tmp_path, monkeypatch):
+    monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
+    path = cache.keep("kernel_x.py", "x = 1")
+    monkeypatch.setattr(os, "access", lambda path, mode: False)
+    assert cache.keep("kernel_x.py", "x = 1") == path and path.read_text() == "x = 1"
+
+
+def test_an_unset_cache_names_its_default_and_the_variable(tmp_path, monkeypatch):
+    monkeypatch.delenv("SHROUDNET_CACHE", raising=False)
+    monkeypatch.setattr(Path, "home", lambda: tmp_path)
+    (tmp_path / ".cache").write_text("not a folder")
+    with pytest.raises(ValueError, match=r"^the kernel cache .*shroudnet \(SHROUDNET_CACHE "
+                                         r"is not set\): .*\.cache is a file, not a folder; "
+                                         r"set SHROUDNET_CACHE"):
+        cache.keep("kernel_x.py", "x = 1")
+
+
+def _no_compile(*args, **kwargs):
+    raise AssertionError("a kernel was built in a cache folder that cannot hold it")
 
 
 @pytest.mark.slow  # compiles a kernel in a cache of its own

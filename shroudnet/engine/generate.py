@@ -27,9 +27,7 @@ import functools
 import hashlib
 import importlib.util
 import inspect
-import os
 import sys
-import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -42,7 +40,7 @@ from contact_laws import BUILT_IN_FRICTION, BUILT_IN_NORMAL, Coulomb
 from contact_laws import base as law_base
 
 from ..scene import Scene
-from .cache import cache_folder
+from .cache import cache_folder, keep
 from .header import derivative_function, has_derivative, header, law_function
 from .kernel import PHASES
 from .records import KernelScene, StructureScene
@@ -205,13 +203,7 @@ def _method_free(normal_classes, friction_classes, effect_flags) -> ModuleType:
     key = _digest(source, *phases, engine,
                   *[law_sources(c, "normal") for c in normal_classes],
                   *[law_sources(c, "friction") for c in friction_classes])
-    folder = cache_folder()
-    folder.mkdir(parents=True, exist_ok=True)
-    path = folder / f"kernel_{key}.py"
-    if not path.exists():
-        with tempfile.NamedTemporaryFile("w", dir=folder, suffix=".tmp", delete=False) as f:
-            f.write(source)
-        os.replace(f.name, path)  # atomic: concurrent processes never see half a file
+    path = keep(f"kernel_{key}.py", source)
     spec = importlib.util.spec_from_file_location(f"shroudnet_kernel_{key}", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
