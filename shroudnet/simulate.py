@@ -89,7 +89,7 @@ def simulate(scene: Scene, periods: int, *,
                                   event_tolerance=done.event_tolerance,
                                   zeno=replace(zeno, window=done.zeno_window))
     with np.errstate(over="ignore", invalid="ignore"):
-        ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy, done.sliders)
+        ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy, done.stretches)
     check_finished(out, ledger)
     return Simulation(scene=scene, settings=settings, t=out.t, x=out.x, v=out.v,
                       normal_force=out.normal, friction_force=out.friction, modes=out.modes,
@@ -103,15 +103,16 @@ class Integration:
     """What ``integrate`` did: the kernel's ``records.Run``, the method with every knob as
     used (``Accuracy`` resolved, the default atol filled in), the event tolerance
     [periods] and the Zeno window [periods] it used, and the seconds spent compiling; the
-    sliders' positions w [m] of the elastic contacts at every sample (two columns each, in
-    interface order; none without elastic contacts), which the record by blade leaves out."""
+    stretches u = r_t − w [m] of the elastic contacts' springs at every sample (two columns
+    each, in interface order; none without elastic contacts), which the record by blade
+    leaves out."""
 
     run: Run
     method: FixedStep | Adaptive
     event_tolerance: float
     zeno_window: float
     compile_seconds: float
-    sliders: np.ndarray
+    stretches: np.ndarray
 
 
 def integrate(scene: Scene, periods: int, *,
@@ -196,7 +197,7 @@ def integrate(scene: Scene, periods: int, *,
     arguments = (state, arrays, work, switching, events, controls, output)
     driver, compile_seconds = compiled(kernel.run, arguments)
     run = finish(driver(*arguments), output, events, state.tangent)
-    sliders = run.output.x[:, n:len(x0) - len(x_p)]
+    stretches = run.output.x[:, n:len(x0) - len(x_p)]
     run = _blades_only(run, n)
     status = Status(run.status)
     if status != Status.FINISHED:
@@ -204,7 +205,7 @@ def integrate(scene: Scene, periods: int, *,
                                             zeno.events, zeno_window))
     return Integration(run=run, method=method, event_tolerance=event_tolerance,
                        zeno_window=zeno_window, compile_seconds=compile_seconds,
-                       sliders=sliders)
+                       stretches=stretches)
 
 
 def _check_motions(scene, duration):
@@ -230,16 +231,13 @@ def _with_prescribed(tangent, n, n_prescribed):
 
 def _with_sliders(arrays, x0, v0, tangent0, n):
     """The start (x0, v0, tangent columns) in the integrator's coordinates: the elastic
-    contacts' sliders (``engine.sliders``) after the n free coordinates, each relaxed
-    (w = r_t: no friction force), at rest and without variation."""
+    contacts' stretches u (``engine.sliders``) after the n free coordinates, each relaxed
+    (u = 0: no friction force), at rest and without variation."""
     index = getattr(arrays, "slider_index", np.zeros(0, dtype=np.int64))
     sliders = 2 * int(np.sum(index >= 0))
     if sliders == 0:
         return x0, v0, tangent0
     x0, v0 = (np.insert(values, [n] * sliders, 0.0) for values in (x0, v0))
-    for e in np.flatnonzero(index >= 0):
-        x0[index[e]] = arrays.tangent_rows[e] @ x0
-        x0[index[e] + 1] = arrays.second_tangent_rows[e] @ x0
     nodes = tangent0.shape[0] // 2
     tangent0 = np.insert(tangent0, [n] * sliders + [nodes + n] * sliders, 0.0, axis=0)
     return x0, v0, tangent0
@@ -418,28 +416,26 @@ def _stored(scene, t, x, v, modes):
     return kinetic + strain, contact
 
 
-def _elastic_energy(scene, t, x, sliders, modes):
-    """½ k_t |r_t − w|² [J] summed over the closed elastic contacts at time t, their
-    sliders at ``sliders`` (w₁, w₂ of each, in interface order)."""
-    a = scene.arrays
-    x = np.concatenate([x, a.prescribed_state(t)[0]])
+def _elastic_energy(scene, stretches, modes):
+    """½ k_t |u|² [J] summed over the closed elastic contacts, their springs' stretches
+    ``stretches`` (u₁, u₂ of each, in interface order)."""
+    stiffness = scene.arrays.tangential_stiffness
     energy = 0.0
-    for k, e in enumerate(np.flatnonzero(np.isfinite(a.tangential_stiffness))):
+    for k, e in enumerate(np.flatnonzero(np.isfinite(stiffness))):
         if modes[e] != Mode.OPEN:
-            stretch = np.array([a.tangent_rows[e] @ x, a.second_tangent_rows[e] @ x]) \
-                - sliders[2 * k:2 * k + 2]
-            energy += 0.5 * a.tangential_stiffness[e] * (stretch @ stretch)
+            stretch = stretches[2 * k:2 * k + 2]
+            energy += 0.5 * stiffness[e] * float(stretch @ stretch)
     return energy
 
 
-def _ledger(scene, t, x, v, modes, work, sliders) -> dict[str, float]:
-    """The ``EnergyLedger`` fields of a run, by name; ``sliders`` as
-    ``Integration.sliders``."""
+def _ledger(scene, t, x, v, modes, work, stretches) -> dict[str, float]:
+    """The ``EnergyLedger`` fields of a run, by name; ``stretches`` as
+    ``Integration.stretches``."""
     mechanical_0, contact_0 = _stored(scene, t[0], x[0], v[0], modes[0])
     mechanical_1, contact_1 = _stored(scene, t[-1], x[-1], v[-1], modes[-1])
-    if sliders.shape[1]:
-        mechanical_0 += _elastic_energy(scene, t[0], x[0], sliders[0], modes[0])
-        mechanical_1 += _elastic_energy(scene, t[-1], x[-1], sliders[-1], modes[-1])
+    if stretches.shape[1]:
+        mechanical_0 += _elastic_energy(scene, stretches[0], modes[0])
+        mechanical_1 += _elastic_energy(scene, stretches[-1], modes[-1])
     excitation, damping, friction, contact_work, lock = work[-1] - work[0]
     contact_stored = contact_1 - contact_0
     stored = mechanical_1 - mechanical_0 + contact_stored

@@ -157,10 +157,9 @@ def load_kernel(scene: Scene, tangent: bool = False, adaptive: bool = True) -> M
     if tangent and not adaptive:
         raise ValueError("the tangent flow is integrated by the adaptive method only")
     arrays = scene.arrays
-    if has_sliders(arrays) and (tangent or not adaptive):
+    if has_sliders(arrays) and tangent:
         raise ValueError("a scene with elastic contacts (Interface.tangential_stiffness) "
-                         "is integrated by the adaptive method, without its tangent flow: "
-                         "use method=Adaptive(...) or Accuracy(...); its periodic orbits, "
+                         "is integrated without its tangent flow: its periodic orbits, "
                          "monodromy and Lyapunov exponents are not available")
     normal_classes, friction_classes = _law_classes(arrays)
     effects = flags(arrays, tangent)

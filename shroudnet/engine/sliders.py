@@ -2,25 +2,30 @@
 
 Interface e's points move apart by r_t = (t₁·x, t₂·x) in its tangent plane (the rows
 ``tangent_rows`` and ``second_tangent_rows`` of a ``records.StructureScene``; t₂ = 0 for
-one direction). A slider at w, coordinates ``slider_index[e]`` and the next of the
-state (the second stays 0 for one direction), carries the friction force
+one direction). A slider at w ties them through a spring of stiffness k_t. The state
+carries the spring's stretch u = r_t − w [m], coordinates ``slider_index[e]`` and the
+next (the second stays 0 for one direction), and not w itself: the friction force
 
-    f = k_t (r_t − w)                                                  [N]
+    f = k_t u                                                          [N]
 
-which pushes the coordinates by −(f₁ t₁ + f₂ t₂). By the interface's mode (DESIGN §7):
+is then read off the state, never the difference of two nearly equal positions (a
+contact that closes straight into slip starts with u at the size of the integrator's
+error, far below r_t). It pushes the coordinates by −(f₁ t₁ + f₂ t₂). By the interface's
+mode (DESIGN §7):
 
-    open      f = 0,        ẇ = ṙ_t               (w follows: f = 0 as it closes)
-    stuck     |f| ≤ μ N,    ẇ = 0
-    slipping  |f| = μ N,    ẇ = f̂ λ,  λ = f̂·ṙ_t − μ Ṅ / k_t ≥ 0
+    open      u = 0,          u̇ = 0                 (w follows r_t: f = 0 as it closes)
+    stuck     |f| ≤ μ N,      u̇ = ṙ_t               (w frozen)
+    slipping  |f| = μ N,      u̇ = ṙ_t − û λ,  λ = û·ṙ_t − μ Ṅ / k_t ≥ 0
 
-λ keeps |f| = μN (d|f|/dt = f̂·k_t(ṙ_t − ẇ) = μṄ); Coulomb's one μ = μ_s. The guards
-are smooth: μN − |f| while stuck (breakaway), λ while slipping (sticking: the slider's
-loading stops outrunning the limit), and the contact's ±δ. The slider's coordinates
-are integrated as first-order ones: a Runge–Kutta stage takes ẇ as their velocity
-(``kernel.step.dp5_step``), which ``derivative`` leaves in their acceleration slots.
+with ẇ = û λ the slider's velocity while slipping; λ keeps |f| = μN
+(d|f|/dt = k_t û·u̇ = μṄ); Coulomb's one μ = μ_s. The guards are smooth: μN − |f| while
+stuck (breakaway), λ while slipping (sticking: the slider's loading stops outrunning the
+limit), and the contact's ±δ. The stretch is integrated as first-order coordinates: a
+Runge–Kutta stage takes u̇ as their velocity (``kernel.step.dp5_step``), which
+``derivative`` leaves in their acceleration slots.
 
 The power the sliders take out is Σ f·ẇ = Σ μ N λ ≥ 0 [W] (the friction column of the
-ledger); the contact stores ½ |f|² / k_t [J]. Nothing here depends on the laws: the
+ledger); the contact stores ½ k_t |u|² [J]. Nothing here depends on the laws: the
 kernel's forces give N and Ṅ (``kernel.forces.slider_rates``).
 """
 
@@ -40,7 +45,7 @@ def tangential_motion(s, e, values, first):
 
 @njit_inlined
 def slider_forces(x, modes, s, w):
-    """f = k_t (r_t − w) of every closed elastic contact into w.friction (t₁) and
+    """f = k_t u of every closed elastic contact into w.friction (t₁) and
     w.friction_second (t₂); 0 where open."""
     for e in range(len(modes)):
         k = s.slider_index[e]
@@ -50,9 +55,8 @@ def slider_forces(x, modes, s, w):
         w.friction_second[e] = 0.0
         if modes[e] == OPEN:
             continue
-        r1, r2 = tangential_motion(s, e, x, 0)
-        w.friction[e] = s.tangential_stiffness[e] * (r1 - x[k])
-        w.friction_second[e] = s.tangential_stiffness[e] * (r2 - x[k + 1])
+        w.friction[e] = s.tangential_stiffness[e] * x[k]
+        w.friction_second[e] = s.tangential_stiffness[e] * x[k + 1]
 
 
 @njit_inlined
@@ -90,37 +94,38 @@ def slider_guards(modes, s, w, motion):
 
 @njit_inlined
 def slider_rate(s, e, v, w, mode, normal_rate):
-    """(ẇ₁, ẇ₂) of elastic contact e in ``mode``, with Ṅ = ``normal_rate``; λ into
-    w.slider_speed[e] (the rate the slider would move at, were it slipping)."""
-    r1, r2 = tangential_motion(s, e, v, 0)
+    """(u̇₁, u̇₂, f·ẇ) of elastic contact e in ``mode``, with Ṅ = ``normal_rate``: the
+    stretch's rate and the power the slider takes out [W]; λ into w.slider_speed[e] (the
+    rate the slider would move at, were it slipping)."""
     if mode == OPEN:
         w.slider_speed[e] = 0.0
-        return r1, r2
+        return 0.0, 0.0, 0.0
+    r1, r2 = tangential_motion(s, e, v, 0)
     size = friction_size(w, e)
     if size == 0.0:
         w.slider_speed[e] = 0.0
-        return 0.0, 0.0
+        return r1, r2, 0.0
     d1, d2 = w.friction[e] / size, w.friction_second[e] / size
     speed = d1 * r1 + d2 * r2 - s.static_mu[e] * normal_rate / s.tangential_stiffness[e]
     w.slider_speed[e] = speed
     if mode == STICK:
-        return 0.0, 0.0
-    return d1 * speed, d2 * speed
+        return r1, r2, 0.0
+    return r1 - d1 * speed, r2 - d2 * speed, size * speed
 
 
 @njit_inlined
 def release_slider(x, s, e):
-    """w ← r_t: the slider of elastic contact e relaxed (f = 0), as it opens or closes."""
+    """u ← 0: the slider of elastic contact e relaxed (w = r_t, f = 0), as it opens or
+    closes."""
     k = s.slider_index[e]
-    r1, r2 = tangential_motion(s, e, x, 0)
-    x[k] = r1
-    x[k + 1] = r2
+    x[k] = 0.0
+    x[k + 1] = 0.0
 
 
 @njit_inlined
 def first_order_stage(s, velocities, accelerations, j):
     """Runge–Kutta stage j of the sliders, integrated as first-order coordinates: their
-    rate ẇ, which ``derivative`` left in the stage's accelerations, becomes the stage's
+    stretch's rate u̇, which ``derivative`` left in the stage's accelerations, becomes the stage's
     velocity, and their acceleration 0 (their velocity slots stay 0)."""
     for e in range(len(s.slider_index)):
         k = s.slider_index[e]
@@ -129,6 +134,33 @@ def first_order_stage(s, velocities, accelerations, j):
         for i in range(k, k + 2):
             velocities[j, i] = accelerations[j, i]
             accelerations[j, i] = 0.0
+
+
+@njit_inlined
+def first_order_rk4_stage(s, x, h, rate, xt, vt):
+    """A classical Runge–Kutta stage of the sliders, integrated as first-order coordinates
+    (``kernel.step.rk4_step``): u + h u̇ into ``xt``, with u̇ the rate ``derivative`` left
+    in ``rate``'s slots, and their velocity slots 0 in ``vt``."""
+    for e in range(len(s.slider_index)):
+        k = s.slider_index[e]
+        if k < 0:
+            continue
+        for i in range(k, k + 2):
+            xt[i] = x[i] + h * rate[i]
+            vt[i] = 0.0
+
+
+@njit_inlined
+def first_order_rk4_end(s, x, h, a1, a2, a3, a4, x_new, v_new):
+    """The end of a classical Runge–Kutta step of the sliders:
+    u + h (u̇₁ + 2 u̇₂ + 2 u̇₃ + u̇₄)/6 into ``x_new``, their velocity slots 0 in ``v_new``."""
+    for e in range(len(s.slider_index)):
+        k = s.slider_index[e]
+        if k < 0:
+            continue
+        for i in range(k, k + 2):
+            x_new[i] = x[i] + h / 6.0 * (a1[i] + 2.0 * a2[i] + 2.0 * a3[i] + a4[i])
+            v_new[i] = 0.0
 
 
 @njit_inlined
@@ -148,7 +180,7 @@ def switch_slider(x, modes, s, e, contact_crossed, motion_crossed, friction):
 
 @njit_inlined
 def initial_slider_modes(modes, s):
-    """Every closed elastic contact starts stuck, its slider relaxed (f = 0)."""
+    """Every closed elastic contact starts stuck, its slider relaxed (u = 0)."""
     for e in range(len(modes)):
         if s.slider_index[e] >= 0 and modes[e] != OPEN:
             modes[e] = STICK

@@ -176,9 +176,9 @@ def structure_derivative(t, x, v, modes, topology, s, w, acceleration):
 
 @njit_inlined
 def slider_rates(s, modes, v, w, acceleration):
-    """ẇ of every elastic contact (``sliders``) into its slider's acceleration slots, from
-    the accelerations of the structure: Ṅ = ∂N/∂δ δ̇ + ∂N/∂δ̇ δ̈ with δ̈ = n·ẍ. Returns the
-    power the sliders take out, Σ f·ẇ [W]."""
+    """u̇ of every elastic contact's stretch (``sliders``) into its acceleration slots,
+    from the accelerations of the structure: Ṅ = ∂N/∂δ δ̇ + ∂N/∂δ̇ δ̈ with δ̈ = n·ẍ.
+    Returns the power the sliders take out, Σ f·ẇ [W]."""
     power = 0.0
     for e in range(len(modes)):
         k = s.slider_index[e]
@@ -190,10 +190,10 @@ def slider_rates(s, modes, v, w, acceleration):
                                                       w.penetration[e], w.rate[e])
             normal_rate = slope * w.rate[e] \
                 + rate_slope * _row_dot(s, s.normal_rows, e, acceleration, 0)
-        first, second = slider_rate(s, e, v, w, modes[e], normal_rate)
+        first, second, loss = slider_rate(s, e, v, w, modes[e], normal_rate)
         acceleration[k] = first
         acceleration[k + 1] = second
-        power += w.friction[e] * first + w.friction_second[e] * second
+        power += loss
     return power
 
 

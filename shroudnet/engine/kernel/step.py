@@ -13,7 +13,7 @@ from shroudnet.engine.advance import dense_motion, set_powers
 from shroudnet.engine.codes import N_POWERS, PROJECTION
 from shroudnet.engine.compiled import njit_step, njit_step_merged
 from shroudnet.engine.controller import accepted, scaled_error
-from shroudnet.engine.sliders import first_order_stage
+from shroudnet.engine.sliders import first_order_rk4_end, first_order_rk4_stage, first_order_stage
 from shroudnet.engine.tableau import DP_A, DP_B, DP_C, DP_STAGES, stage_sum
 
 if TYPE_CHECKING:
@@ -29,7 +29,8 @@ def rk4_step(t, h, state, topology, s, w):
 
     The first stage is the acceleration and powers at the state, held in w.a_start and
     w.stage_p[0], so a step costs three evaluations of ``derivative`` (plus the guards at
-    its end).
+    its end). The sliders' stretches are first-order coordinates, whose rates
+    ``derivative`` leaves in their acceleration slots (``sliders.first_order_rk4_stage``).
     """
     x, v, energy, modes = state.x, state.v, state.energy, state.modes
     a1, a2, a3, a4 = w.a_start, w.stage_a[1], w.stage_a[2], w.stage_a[3]
@@ -37,14 +38,20 @@ def rk4_step(t, h, state, topology, s, w):
     for i in range(len(x)):
         xt[i] = x[i] + 0.5 * h * v[i]
         vt[i] = v[i] + 0.5 * h * a1[i]
+    if HAS_SLIDERS:
+        first_order_rk4_stage(s, x, 0.5 * h, a1, xt, vt)
     set_powers(p[1], derivative(t + 0.5 * h, xt, vt, modes, topology, s, w, a2))
     for i in range(len(x)):
         xt[i] = x[i] + 0.5 * h * (v[i] + 0.5 * h * a1[i])
         vt[i] = v[i] + 0.5 * h * a2[i]
+    if HAS_SLIDERS:
+        first_order_rk4_stage(s, x, 0.5 * h, a2, xt, vt)
     set_powers(p[2], derivative(t + 0.5 * h, xt, vt, modes, topology, s, w, a3))
     for i in range(len(x)):
         xt[i] = x[i] + h * (v[i] + 0.5 * h * a2[i])
         vt[i] = v[i] + h * a3[i]
+    if HAS_SLIDERS:
+        first_order_rk4_stage(s, x, h, a3, xt, vt)
     set_powers(p[3], derivative(t + h, xt, vt, modes, topology, s, w, a4))
     for i in range(len(x)):
         v2 = v[i] + 0.5 * h * a1[i]
@@ -52,6 +59,8 @@ def rk4_step(t, h, state, topology, s, w):
         v4 = v[i] + h * a3[i]
         w.x_new[i] = x[i] + h / 6.0 * (v[i] + 2.0 * v2 + 2.0 * v3 + v4)
         w.v_new[i] = v[i] + h / 6.0 * (a1[i] + 2.0 * a2[i] + 2.0 * a3[i] + a4[i])
+    if HAS_SLIDERS:
+        first_order_rk4_end(s, x, h, a1, a2, a3, a4, w.x_new, w.v_new)
     for k in range(N_POWERS):
         w.e_new[k] = energy[k] + h / 6.0 * (p[0, k] + 2.0 * p[1, k] + 2.0 * p[2, k] + p[3, k])
     w.e_new[PROJECTION] = energy[PROJECTION]
