@@ -275,7 +275,9 @@ def _checked_values(values) -> list[float]:
     checked = [check_real("sweep", f"values[{index}]", value)
                for index, value in enumerate(values)]
     if not checked:
-        raise ValueError("sweep needs at least one value")
+        raise ValueError(f"sweep.values must be a sequence of at least one number (a list, a "
+                         f"tuple or a 1-d array), got an empty {type(values).__name__} "
+                         f"{reprlib.repr(values)}")
     return checked
 
 

@@ -308,7 +308,9 @@ def test_a_scene_at_that_fails_while_checked_names_its_value(stand_in_points):
     (np.ones((2, 2)), TypeError, r"sweep\.values must be a sequence of numbers"),
     ("1, 2", TypeError, r"sweep\.values must be a sequence of numbers .*got str"),
     ({1.0, 2.0}, TypeError, r"sweep\.values must be a sequence of numbers .*got set"),
-    ([], ValueError, "sweep needs at least one value"),
+    ([], ValueError, r"sweep\.values must be a sequence of at least one number .*got an "
+                     r"empty list \[\]"),
+    (np.array([]), ValueError, r"sweep\.values must be a sequence of at least one number"),
     ([1.0, "2"], TypeError, r"sweep\.values\[1\] must be a real number, got str"),
     ([1.0, math.nan], ValueError, r"sweep\.values\[1\] must be a number in .*got NaN"),
     ([math.inf], ValueError, r"sweep\.values\[0\] must be in .*got inf"),

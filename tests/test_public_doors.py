@@ -255,16 +255,7 @@ VALID = {
 
 #: Doors whose refusal of a bad value is another module's work, now under way: name →
 #: (argument, why). Only these substitutions may break the property, and only as xfail.
-KNOWN: dict[tuple[str, str], str] = {
-    ("assemble", "*"): "engine.assembly checks none of its arguments (scene=None gives an "
-                       "AttributeError); the engine is another module's, its fix under way",
-    ("Assembly", "*"): "engine.assembly's record holds whatever it is given; the engine is "
-                       "another module's, its fix under way",
-    ("stick_clusters", "*"): "engine.clusters checks none of its arguments (stuck=True: "
-                             "'bool' object is not iterable); the engine is another module's",
-    ("sweep", "values"): "sweep's own check says 'sweep needs at least one value' without the "
-                         "argument's name; sweep is another module's, its checks under way",
-}
+KNOWN: dict[tuple[str, str], str] = {}
 
 #: Doors the property does not call with bad values, each with its reason.
 NOT_INPUT = {

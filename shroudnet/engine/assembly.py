@@ -8,12 +8,14 @@ themselves: it is how users and tests look at forces, accelerations and guards.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from dataclasses import dataclass
 
 import numpy as np
 
+from contact_laws import check_array, check_instance, check_real
 from contact_laws.base import ZERO_PLUS_SPEED
 
+from ..checked_records import check_record
 from ..scene import Scene, SceneArrays
 from .clusters import TWO_DRIVERS, cluster_labels
 from .codes import OPEN, SLIP_POSITIVE, STICK, Mode
@@ -55,8 +57,13 @@ def law_forces(arrays: SceneArrays, penetration, rate, slip_velocity, modes):
     return normal, friction
 
 
-class Assembly(NamedTuple):
-    """The forces and accelerations of a scene in a given state and set of modes."""
+@dataclass(frozen=True)
+class Assembly:
+    """The forces and accelerations of a scene in a given state and set of modes.
+
+    Each field is checked (``check_record``): an array, finite except the guards, which are
+    +inf where no event can come (``event_guards``).
+    """
 
     acceleration: np.ndarray     # ẍ_i [m/s²], by blade position
     normal_force: np.ndarray     # N_e [N], by interface
@@ -67,6 +74,11 @@ class Assembly(NamedTuple):
     contact_guard: np.ndarray    # see event_guards
     motion_guard: np.ndarray     # see event_guards
 
+    NON_FINITE = ("contact_guard", "motion_guard")
+
+    def __post_init__(self):
+        check_record(self)
+
 
 def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     """Assemble the dynamics of ``scene`` at time ``t`` [s] in state (x [m], ẋ [m/s]).
@@ -74,22 +86,22 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     ``modes`` gives each interface's ``Mode``. A stuck interface must have zero slip
     velocity (its nodes move together; a prescribed-motion node moves as its motion says
     at t); the result's ``motion_guard`` tells whether each static friction force is
-    admissible (|f| ≤ μ_s N).
+    admissible (|f| ≤ μ_s N). Every argument is checked first, by name.
     """
+    check_instance("assemble", "scene", scene, Scene, expected="a shroudnet.Scene")
+    t = check_real("assemble", "t", t, unit="s")
     a = scene.arrays
-    x, v = _state(x, a.n_blades, "x"), _state(v, a.n_blades, "v")
-    modes = np.asarray(modes, dtype=np.int64)
-    if modes.shape != (a.n_interfaces,) or not np.isin(modes, list(Mode)).all():
-        raise ValueError(f"modes must hold {a.n_interfaces} values of shroudnet.Mode, "
-                         f"got {modes}")
+    x = check_array("assemble", "x", x, shape=(a.n_blades,), unit="m")
+    v = check_array("assemble", "v", v, shape=(a.n_blades,), unit="m/s")
+    modes = _modes(modes, a.n_interfaces)
     stuck = modes == STICK
     if np.any(stuck & ~a.can_stick):
-        raise ValueError("modes: STICK on an interface that cannot stick (no exact friction "
-                         f"law, or α = π/2): {np.flatnonzero(stuck & ~a.can_stick)}")
+        raise ValueError("assemble.modes: STICK on an interface that cannot stick (no exact "
+                         f"friction law, or α = π/2): {np.flatnonzero(stuck & ~a.can_stick)}")
     n, m, p = a.n_blades, a.n_interfaces, a.n_prescribed
-    x_p, v_p = a.prescribed_state(float(t))
+    x_p, v_p = a.prescribed_state(t)
     x, v = np.concatenate([x, x_p]), np.concatenate([v, v_p])
-    drive = np.array([motion.acceleration_at(float(t)) for motion in a.motions], dtype=float)
+    drive = np.array([motion.acceleration_at(t) for motion in a.motions], dtype=float)
     none = np.zeros(p)
     mass = np.concatenate([a.mass, none])
     penetration, rate, slip_velocity = np.empty(m), np.empty(m), np.empty(m)
@@ -98,12 +110,12 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
     normal, friction = law_forces(a, penetration, rate, slip_velocity, modes)
     interface_force = normal * a.sin_angle + friction * a.cos_angle
     q = np.zeros(n + p)
-    excitation_forces(float(t), a.harmonic_amplitudes, np.cos(a.harmonic_phases),
+    excitation_forces(t, a.harmonic_amplitudes, np.cos(a.harmonic_phases),
                       np.sin(a.harmonic_phases), a.excitation_frequency, q[:n])
     labels, grounded, driver = cluster_labels(n + p, n, a.left, a.right, stuck)
     if np.any(driver == TWO_DRIVERS):
-        raise ValueError("modes: the stuck interfaces tie two prescribed motions together, "
-                         "or a prescribed motion to a fixed node")
+        raise ValueError("assemble.modes: the stuck interfaces tie two prescribed motions "
+                         "together, or a prescribed motion to a fixed node")
     resultant = np.empty(n + p)
     resultant_forces(x, v, q, np.concatenate([a.damping, none]),
                      np.concatenate([a.stiffness, none]), a.left, a.right, interface_force,
@@ -127,8 +139,12 @@ def assemble(scene: Scene, t: float, x, v, modes) -> Assembly:
                     contact, motion)
 
 
-def _state(values, n, name):
-    array = np.asarray(values, dtype=float)
-    if array.shape != (n,) or not np.isfinite(array).all():
-        raise ValueError(f"{name} must hold {n} finite numbers (one per blade), got {values}")
-    return np.ascontiguousarray(array)
+def _modes(modes, n_interfaces: int) -> np.ndarray:
+    """``modes`` as int64 codes, one ``Mode`` per interface, or raise naming
+    ``assemble.modes``."""
+    codes = check_array("assemble", "modes", modes, shape=(n_interfaces,))
+    if not np.isin(codes, [int(mode) for mode in Mode]).all():
+        names = ", ".join(f"{mode.name} = {int(mode)}" for mode in Mode)
+        raise ValueError(f"assemble.modes must hold {n_interfaces} values of shroudnet.Mode "
+                         f"({names}), got {modes!r:.80}")
+    return codes.astype(np.int64)

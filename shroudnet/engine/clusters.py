@@ -12,6 +12,8 @@ from collections.abc import Hashable, Iterable
 import networkx as nx
 import numpy as np
 
+from contact_laws import check_instance
+
 from .compiled import njit_entry, njit_inlined, njit_step_callable
 
 #: ``cluster_labels``' driver of a cluster whose stuck interfaces join motions that differ.
@@ -31,15 +33,48 @@ def stick_clusters(graph: nx.Graph, stuck: Iterable[tuple[Hashable, Hashable]]
         The group graph (``BladeGroup.graph``).
     stuck : iterable of (node, node)
         The stuck interfaces, each an edge of ``graph``.
+
+    Both arguments are checked first, by name (``TypeError`` for a wrong type, ``ValueError``
+    for a pair that is no edge of ``graph``).
     """
-    stuck = list(stuck)
-    for a, b in stuck:
-        if not graph.has_edge(a, b):
-            raise ValueError(f"stuck interface ({a!r}, {b!r}) is not an edge of the group")
+    check_instance("stick_clusters", "graph", graph, nx.Graph,
+                   expected="a networkx.Graph (BladeGroup.graph)")
+    stuck = _edges(graph, stuck)
     sub = nx.Graph()
     sub.add_nodes_from(graph)
     sub.add_edges_from(stuck)
     return [set(c) for c in nx.connected_components(sub)]
+
+
+def _edges(graph: nx.Graph, stuck) -> list[tuple[Hashable, Hashable]]:
+    """``stuck`` as a list of edges of ``graph``, or raise naming ``stick_clusters.stuck``."""
+    what = "an iterable of (node, node) pairs, each an edge of the group"
+    try:
+        edges = None if isinstance(stuck, str | bytes) else list(stuck)
+    except TypeError:  # not iterable (a number, a 0-d array)
+        edges = None
+    if edges is None:
+        raise TypeError(f"stick_clusters.stuck must be {what}, got {type(stuck).__name__} "
+                        f"{stuck!r:.80}")
+    for i, pair in enumerate(edges):
+        if not _pair(pair):
+            raise TypeError(f"stick_clusters.stuck[{i}] must be a (node, node) pair, got "
+                            f"{type(pair).__name__} {pair!r:.80}")
+        if not graph.has_edge(*pair):
+            raise ValueError(f"stick_clusters.stuck[{i}]: ({pair[0]!r}, {pair[1]!r}) is not "
+                             "an edge of the group")
+    return [tuple(pair) for pair in edges]
+
+
+def _pair(value) -> bool:
+    """Whether ``value`` is two things that could be nodes of a graph (hashable ones)."""
+    if not isinstance(value, tuple | list) or len(value) != 2:
+        return False
+    try:
+        hash(tuple(value))
+    except TypeError:
+        return False
+    return True
 
 
 @njit_inlined
