@@ -43,6 +43,7 @@ from .scene import Scene
 from .simulate import MAX_PERIODS, integrate
 from .simulation import SimulationError
 from .stability import TANGENT_METHOD, stroboscopic_step
+from .vertex import parabola_vertex
 
 #: Bifurcation kinds.
 KINDS = ("fold", "period-doubling", "torus", "grazing", "stick-slip")
@@ -104,13 +105,11 @@ SHIFT_POINTS = 3001
 
 def _parabola_top(grid, values) -> float:
     """The abscissa of the largest of ``values`` on the even ``grid``, refined by the
-    parabola through it and its neighbours."""
+    parabola through it and its neighbours (``vertex``)."""
     k = int(np.argmax(values))
     if k == 0 or k == len(values) - 1:
         return float(grid[k])
-    before, at, after = values[k - 1], values[k], values[k + 1]
-    curvature = before - 2.0 * at + after
-    shift = 0.5 * (before - after) / curvature if curvature < 0.0 else 0.0
+    shift, _ = parabola_vertex(values[k - 1], values[k], values[k + 1])
     return float(grid[k] + shift * (grid[1] - grid[0]))
 
 

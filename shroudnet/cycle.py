@@ -32,6 +32,8 @@ import numpy as np
 
 from contact_laws import check_int
 
+from .vertex import parabola_vertex
+
 
 @dataclass(frozen=True)
 class EnergyPerCycle:
@@ -84,22 +86,18 @@ def kinetic_peak(scene, run, state_at=None) -> float:
     mass = scene.arrays.mass[:run.v.shape[1]]
     kinetic = 0.5 * np.einsum("ij,j,ij->i", run.v[:-1], mass, run.v[:-1])
     k = int(np.argmax(kinetic))
-    before, at, after = kinetic[k - 1], kinetic[k], kinetic[(k + 1) % len(kinetic)]
-    spacing = run.t[1] - run.t[0]
-    curvature = before - 2.0 * at + after
-    shift = float(np.clip(0.5 * (before - after) / curvature, -0.5, 0.5)) \
-        if curvature < 0.0 else 0.0
+    shift, top = parabola_vertex(kinetic[k - 1], kinetic[k], kinetic[(k + 1) % len(kinetic)])
     if state_at is None:
-        return float(at - 0.25 * (before - after) * shift)
+        return float(top)
+    spacing = run.t[1] - run.t[0]
     time, width = run.t[k] + shift * spacing, 0.1 * spacing
     if time - width <= 0.0:
         time += run.t[-1] - run.t[0]  # the same instant one orbit on
     near = [0.5 * float(v @ (mass * v)) for _, v in
             (state_at(time + offset) for offset in (-width, 0.0, width))]
-    curvature = near[0] - 2.0 * near[1] + near[2]
-    if curvature >= 0.0:
+    if near[0] - 2.0 * near[1] + near[2] >= 0.0:
         return max(near)
-    return float(near[1] - (near[2] - near[0]) ** 2 / (8.0 * curvature))
+    return float(parabola_vertex(*near)[1])
 
 
 def equivalent_damping(energy: EnergyPerCycle, kinetic: float) -> float:

@@ -33,14 +33,14 @@ import math
 
 from .codes import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 from .compiled import njit_inlined
-from .structures import _row_dot
+from .structures import row_dot
 
 
 @njit_inlined
 def tangential_motion(s, e, values, first):
     """(t₁·y, t₂·y) of interface e over ``values[first:]`` (displacements or velocities)."""
-    return (_row_dot(s, s.tangent_rows, e, values, first),
-            _row_dot(s, s.second_tangent_rows, e, values, first))
+    return (row_dot(s, s.tangent_rows, e, values, first),
+            row_dot(s, s.second_tangent_rows, e, values, first))
 
 
 @njit_inlined

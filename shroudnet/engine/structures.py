@@ -17,7 +17,7 @@ from .dynamics import blade_kinematics, excitation_rate, prescribed_acceleration
 
 
 @njit_inlined
-def _row_dot(s, rows, e, values, first):
+def row_dot(s, rows, e, values, first):
     """Σ_i rows[e, i] values[first + i] over interface e's coordinates (its support)."""
     total = 0.0
     for k in range(s.support_start[e], s.support_start[e + 1]):
@@ -31,9 +31,9 @@ def structure_kinematics(x, v, s, penetration, rate, slip_velocity):
     """δ_e = n_e·x − Δ_e [m], δ̇_e = n_e·ẋ and the slip velocity t_e·ẋ [m/s] of every
     interface, into the last three arrays."""
     for e in range(len(penetration)):
-        penetration[e] = _row_dot(s, s.normal_rows, e, x, 0) - s.normal_gap[e]
-        rate[e] = _row_dot(s, s.normal_rows, e, v, 0)
-        slip_velocity[e] = _row_dot(s, s.tangent_rows, e, v, 0)
+        penetration[e] = row_dot(s, s.normal_rows, e, x, 0) - s.normal_gap[e]
+        rate[e] = row_dot(s, s.normal_rows, e, v, 0)
+        slip_velocity[e] = row_dot(s, s.tangent_rows, e, v, 0)
 
 
 #: (δ, δ̇, slip velocity) of every interface of a scene of blades or of substructures.
@@ -44,14 +44,14 @@ kinematics = by_scene("kinematics", blade_kinematics, structure_kinematics)
 def structure_contact_guard(e, x, v, modes, s):
     """Interface e's contact guard g (−δ while open, δ while closed) [m] and ġ [m/s]."""
     side = -1.0 if modes[e] == OPEN else 1.0
-    return (side * (_row_dot(s, s.normal_rows, e, x, 0) - s.normal_gap[e]),
-            side * _row_dot(s, s.normal_rows, e, v, 0))
+    return (side * (row_dot(s, s.normal_rows, e, x, 0) - s.normal_gap[e]),
+            side * row_dot(s, s.normal_rows, e, v, 0))
 
 
 @njit_inlined
 def structure_slip_acceleration(s, e, acceleration):
     """t_e·ẍ: the rate of change of interface e's slip velocity."""
-    return _row_dot(s, s.tangent_rows, e, acceleration, 0)
+    return row_dot(s, s.tangent_rows, e, acceleration, 0)
 
 
 @njit_inlined
@@ -105,12 +105,12 @@ def structure_linearised_acceleration(direction, s, modes, topology, g):
     for e in range(len(modes)):
         if modes[e] == OPEN:
             continue
-        normal = g.normal_u[e] * _row_dot(s, s.normal_rows, e, direction, 0) \
-            + g.normal_du[e] * _row_dot(s, s.normal_rows, e, direction, n)
+        normal = g.normal_u[e] * row_dot(s, s.normal_rows, e, direction, 0) \
+            + g.normal_du[e] * row_dot(s, s.normal_rows, e, direction, n)
         friction = 0.0
         if modes[e] != STICK:
             friction = g.force_u[e] * normal \
-                + g.force_du[e] * _row_dot(s, s.tangent_rows, e, direction, n)
+                + g.force_du[e] * row_dot(s, s.tangent_rows, e, direction, n)
         for k in range(s.support_start[e], s.support_start[e + 1]):
             i = s.support_index[k]
             change[i] -= normal * s.normal_rows[e, i] + friction * s.tangent_rows[e, i]

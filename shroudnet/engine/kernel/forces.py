@@ -20,7 +20,7 @@ from shroudnet.engine.dynamics import (cluster_accelerations, continued_mu, coup
                                        resultant_forces, static_friction)
 from shroudnet.engine.sliders import (push_second_friction, slider_forces, slider_guards,
                                      slider_rate)
-from shroudnet.engine.structures import _row_dot, kinematics, structure_resultant
+from shroudnet.engine.structures import kinematics, row_dot, structure_resultant
 
 if TYPE_CHECKING:
     from .generated import (HAS_COUPLINGS, HAS_FRICTION, HAS_PRESCRIBED, HAS_REGULARISED,
@@ -189,7 +189,7 @@ def slider_rates(s, modes, v, w, acceleration):
             slope, rate_slope = normal_force_gradient(s.normal_kind[e], s.normal_params[e],
                                                       w.penetration[e], w.rate[e])
             normal_rate = slope * w.rate[e] \
-                + rate_slope * _row_dot(s, s.normal_rows, e, acceleration, 0)
+                + rate_slope * row_dot(s, s.normal_rows, e, acceleration, 0)
         first, second, loss = slider_rate(s, e, v, w, modes[e], normal_rate)
         acceleration[k] = first
         acceleration[k + 1] = second
