@@ -25,6 +25,9 @@ builds one N × N matrix, less than the run's own matrices, once they are freed.
 
 ``check_footprint`` refuses a run whose matrices, vectors and tangent exceed the machine's
 memory, since no choice of periods can save it; the record is ``simulate``'s check.
+``check_group_size`` makes the same check from the counts of nodes and interfaces alone,
+before a group is built (a scene file's ``[group] count``), since building a group of a
+million blades takes a minute and gigabytes of its own.
 """
 
 from __future__ import annotations
@@ -122,22 +125,44 @@ def check_footprint(scene, samples: int, event_capacity: int, *,
     checked here, since fewer periods cannot shrink it; the record, which ``samples`` set, is
     ``simulate``'s own check against the memory available as the run starts.
     """
-    if memory is None:
-        memory = machine_memory()
-    if memory is None:
-        return
     need = scene_footprint(scene, samples, event_capacity, tangent_columns=tangent_columns)
-    if need.total - need.record <= memory:
+    excess = _excess(need, memory)
+    if excess is None:
         return
     a = scene.arrays
     nodes = f"{a.n_blades:,} coordinates" if a.is_structure else f"{a.n_blades:,} blades"
+    raise ValueError(f"a run of {nodes} and {a.n_interfaces:,} interfaces over {samples:,} "
+                     f"samples would need {excess}; simulate fewer blades")
+
+
+def check_group_size(nodes: int, interfaces: int, *, memory: int | None = None) -> None:
+    """Refuse a group of ``nodes`` nodes (blades and prescribed-motion nodes; with
+    substructures, each counts as at least one coordinate) and ``interfaces`` interfaces
+    whose run could not fit in ``memory`` bytes (default ``machine_memory()``; nothing is
+    refused where it is unknown), whatever its periods: ``check_footprint``'s check, made
+    from the counts before the group is built. A ValueError of one line with the GiB a run
+    would need at least, and the GiB the machine has; the caller names where the counts
+    come from."""
+    nodes = check_int("check_group_size", "nodes", nodes, low=0)
+    interfaces = check_int("check_group_size", "interfaces", interfaces, low=0)
+    excess = _excess(run_footprint(nodes, interfaces, 0, 0), memory)
+    if excess is not None:
+        raise ValueError(f"a run of {nodes:,} nodes and {interfaces:,} interfaces would need "
+                         f"at least {excess}")
+
+
+def _excess(need: Footprint, memory: int | None) -> str | None:
+    """None where what the blades and interfaces set (all of ``need`` but the record) fits
+    in ``memory`` bytes (default ``machine_memory()``, None: unknown, so it fits); else
+    the words "… GiB (… of it …), more than the … GiB of memory this machine has"."""
+    if memory is None:
+        memory = machine_memory()
+    if memory is None or need.total - need.record <= memory:
+        return None
     largest = max(("the stick-cluster matrices", need.matrices),
                   ("the tangent flow", need.tangent), key=lambda part: part[1])
-    raise ValueError(
-        f"a run of {nodes} and {a.n_interfaces:,} interfaces over {samples:,} samples would "
-        f"need {_gib(need.total)} GiB ({_gib(largest[1])} GiB of it {largest[0]}, whatever "
-        f"the periods), more than the {_gib(memory)} GiB of memory this machine has; "
-        "simulate fewer blades")
+    return (f"{_gib(need.total)} GiB ({_gib(largest[1])} GiB of it {largest[0]}, whatever "
+            f"the periods), more than the {_gib(memory)} GiB of memory this machine has")
 
 
 def _gib(size: int) -> str:

@@ -165,6 +165,7 @@ from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
 from .coupling import Coupling
 from .excitation import (NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation,
                          ExplicitPhases, TravellingWave)
+from .footprint import check_group_size
 from .group import BladeGroup
 from .interface import Interface
 from .methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive, FixedStep
@@ -228,10 +229,12 @@ def load(path: str | Path, *, laws: Laws = ()) -> SceneFile:
 
     ``laws``: law classes of one's own (or modules holding them) that the file may name as
     ``"module:Class"``, besides those of modules already imported. Nothing is imported.
+    A group too large for any run on this machine is refused before it is built
+    (``read``'s ``check_memory``).
     """
     path = Path(path)
     document = _parse(path, _text(path))
-    return read(document, source=str(path), laws=laws, folder=path.parent)
+    return read(document, source=str(path), laws=laws, folder=path.parent, check_memory=True)
 
 
 def _text(path: Path) -> str:
@@ -266,11 +269,15 @@ def _parse(path: Path, text: str) -> dict:
 
 
 def read(document: dict, *, source: str = "scene", laws: Laws = (),
-         folder: str | Path | None = None) -> SceneFile:
+         folder: str | Path | None = None, check_memory: bool = False) -> SceneFile:
     """Build the scene and run settings of a document (a parsed scene file).
 
     ``laws`` as for ``load``. ``folder``: where the relative paths of matrix files are
-    read from (default: the current folder).
+    read from (default: the current folder). With ``check_memory``, a group whose counts of
+    nodes and interfaces alone make a run too large for this machine's memory
+    (``footprint.check_group_size``) is refused, naming the key that gives them, before it
+    is built: a scene on its way to a run. Without it (a saved run's scene, read again on
+    another machine) the group is built whatever its size.
     """
     own = _own_laws(laws)
     try:
@@ -278,7 +285,7 @@ def read(document: dict, *, source: str = "scene", laws: Laws = (),
             raise _KeyError("the file", "must be a table of keys, got "
                                         f"{type(document).__name__}")
         document = _absolute_files(document, folder)
-        scene, run = _scene(document, own), _run(document.get("run", {}))
+        scene, run = _scene(document, own, check_memory), _run(document.get("run", {}))
         structure = scene.group.has_substructures
         if "blade" not in document.get("run", {}) and (len(scene.blades) == 1 or structure):
             run = dataclasses.replace(run, blade=0)  # the default, position 1, is not there
@@ -401,7 +408,7 @@ _TOP = {"speed_rpm": _NUMBER, "excitation": _TABLE, "blades": _TABLES, "fixed": 
         "sectors": _INTEGER, "group": _TABLE, "run": _TABLE}
 
 
-def _scene(document: dict, own: dict[str, type]) -> Scene:
+def _scene(document: dict, own: dict[str, type], fits: bool) -> Scene:
     _only(document, _TOP, "the file")
     if "group" in document and ("blades" in document or "interfaces" in document):
         raise _KeyError("group", "give either [group] or [[blades]] and [[interfaces]], "
@@ -409,8 +416,8 @@ def _scene(document: dict, own: dict[str, type]) -> Scene:
     for key in ("couplings", "prescribed"):
         if "group" in document and key in document:
             raise _KeyError(key, f"give {key} with [[blades]], not with [group]")
-    group = _shorthand(document["group"], own) if "group" in document \
-        else _explicit(document, own)
+    group = _shorthand(document["group"], own, fits) if "group" in document \
+        else _explicit(document, own, fits)
     if "sectors" in document:
         sectors = document["sectors"]
         if isinstance(sectors, bool) or not isinstance(sectors, int) or sectors < 1 \
@@ -425,11 +432,14 @@ def _scene(document: dict, own: dict[str, type]) -> Scene:
                                              speed_rpm=speed))
 
 
-def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
+def _explicit(document: dict, own: dict[str, type], fits: bool) -> BladeGroup:
     group = BladeGroup()
     blades = _list(document, "blades", "blades")
     if not blades:
         raise _KeyError("blades", "a group needs at least one blade")
+    if fits:
+        _fits("blades", len(blades) + len(_list(document, "prescribed", "prescribed")),
+              len(_list(document, "interfaces", "interfaces")))
     for i, entry in enumerate(blades):
         key = f"blades[{i}]"
         entry = _as_table(entry, key)
@@ -464,12 +474,12 @@ def _explicit(document: dict, own: dict[str, type]) -> BladeGroup:
     return group
 
 
-def _shorthand(table, own: dict[str, type]) -> BladeGroup:
+def _shorthand(table, own: dict[str, type], fits: bool) -> BladeGroup:
     table = _as_table(table, "group")
     shape = _choice(table.get("shape"), dict.fromkeys(("ring", "chain", "bladed_disc")),
                     "group.shape")
     if shape == "bladed_disc":
-        return _bladed_disc(table, own)
+        return _bladed_disc(table, own, fits)
     _only(table, {"shape": _TEXT, "count": _INTEGER, "blade": _TABLE, "interface": _TABLE},
           "group")
     count = table.get("count")
@@ -477,6 +487,8 @@ def _shorthand(table, own: dict[str, type]) -> BladeGroup:
                                                                           else 1):
         raise _KeyError("group.count", f"must be an integer >= {3 if shape == 'ring' else 1} "
                                        f"for a {shape}, got {count!r}")
+    if fits:
+        _fits("group.count", count, count if shape == "ring" else count - 1)
     blade = _blade(_table(table, "blade", "group.blade"), "group.blade")
     interface = _interface(_table(table, "interface", "group.interface"), "group.interface",
                            own)
@@ -484,13 +496,16 @@ def _shorthand(table, own: dict[str, type]) -> BladeGroup:
     return _build("group", lambda: build(count, blade, interface))
 
 
-def _bladed_disc(table, own: dict[str, type]) -> BladeGroup:
+def _bladed_disc(table, own: dict[str, type], fits: bool) -> BladeGroup:
     """``BladeGroup.bladed_disc`` from [group] with shape = "bladed_disc"."""
     _only(table, {"shape": _TEXT, "count": _INTEGER, "disc": _TABLE, "disc_coupling": _TABLE,
                   "blade": _TABLES, "blade_couplings": _TABLES, "interface": _TABLE}, "group")
     count = table.get("count")
     if isinstance(count, bool) or not isinstance(count, int) or count < 3:
         raise _KeyError("group.count", f"must be an integer >= 3 sectors, got {count!r}")
+    if fits:
+        _fits("group.count", count * (1 + len(_list(table, "blade", "group.blade"))),
+              count if "interface" in table else 0)
     disc = _blade(_table(table, "disc", "group.disc"), "group.disc")
     blade = [_blade(_as_table(entry, f"group.blade[{k}]"), f"group.blade[{k}]")
              for k, entry in enumerate(_list(table, "blade", "group.blade"))]
@@ -1064,6 +1079,17 @@ def _end(entry: dict, name: str, key: str):
     return tuple(value) if isinstance(value, list) else value
 
 
+def _fits(key: str, nodes: int, interfaces: int) -> None:
+    """Refuse, naming ``key``, a group whose counts of nodes (a lower bound with
+    substructures: each holds one coordinate at least) and interfaces alone make a run too
+    large for this machine's memory (``footprint.check_group_size``): told now, before a
+    minute and gigabytes are spent building a group that no run could take."""
+    try:
+        check_group_size(nodes, interfaces)
+    except ValueError as error:
+        raise _KeyError(key, f"{error}; give fewer blades") from None
+
+
 def _build(key: str, make):
     """Call ``make``; turn the errors of the objects' own checks into the key's error."""
     try:
@@ -1377,4 +1403,4 @@ class SceneAt:
 
     def __call__(self, value: float) -> Scene:
         return read(with_value(self.document, self.path, value),
-                    source=f"{self.path} = {value:g}", laws=self.laws).scene
+                    source=f"{self.path} = {value:g}", laws=self.laws, check_memory=True).scene

@@ -8,14 +8,16 @@ reads back equal from both kinds of file."""
 import dataclasses
 import math
 import re
+import time
+import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import contact_laws as cl
-from shroudnet import (AntiPhase, Blade, BladeGroup, Excitation, Interface, Scene, results,
-                       scenefile, simulate)
+from shroudnet import (AntiPhase, Blade, BladeGroup, Excitation, Interface, Scene, footprint,
+                       results, scenefile, simulate)
 from shroudnet.classification import Classification
 from shroudnet.continuation import Bifurcation, Branch
 from shroudnet.cycle import EnergyPerCycle
@@ -516,6 +518,89 @@ def test_any_value_anywhere_is_read_or_refused_as_bad_input(base):
                 pass
             count += 1
     assert count > 300
+
+
+# ---- a group no run could hold: refused from its counts, before it is built --------------
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples" / "scenes"
+
+
+def chain_document() -> dict:
+    document = group_document()
+    document["group"]["shape"] = "chain"
+    return document
+
+
+#: Documents of each way a file gives a group, and the key that gives its size.
+SIZED = {"ring": (group_document, "group.count"), "chain": (chain_document, "group.count"),
+         "bladed_disc": (lambda: tomllib.loads((EXAMPLES / "bladed_disc_24.toml").read_text()),
+                         "group.count"),
+         "blades": (paper_document, "blades"), "blades and prescribed": (belt_document, "blades")}
+
+
+@pytest.fixture
+def memory(monkeypatch):
+    """Set the machine's memory [bytes] that the checks see."""
+    def set_to(size):
+        monkeypatch.setattr(footprint, "machine_memory", lambda: size)
+    return set_to
+
+
+@pytest.mark.parametrize("form", SIZED)
+def test_the_counts_of_a_file_give_the_footprint_of_the_scene_it_builds(tmp_path, memory,
+                                                                         form):
+    """What the counts set (the stick-cluster matrices and the vectors) is what the built
+    scene's footprint says: a machine of exactly that memory loads the file, one byte
+    less refuses it, naming the key that gives the size."""
+    make, key = SIZED[form]
+    path = tmp_path / "scene.toml"
+    path.write_text(scenefile.dumps(make()))
+    need = footprint.scene_footprint(scenefile.read(make()).scene, 0, 0).total
+    memory(need)
+    assert scenefile.load(path).scene is not None
+    memory(need - 1)
+    with pytest.raises(scenefile.SceneFileError,
+                       match=rf"^{re.escape(str(path))}: {key}: a run of \d+ nodes and \d+ "
+                             r"interfaces would need at least .* GiB .*more than the .* GiB "
+                             r"of memory this machine has; give fewer blades$"):
+        scenefile.load(path)
+
+
+def test_a_scene_file_of_a_million_blades_is_refused_before_its_group_is_built(
+        tmp_path, memory, monkeypatch):
+    """Building a ring of a million blades took a minute and 1.8 GB before ``simulate``
+    refused it; its count alone says what the run would need."""
+    document = group_document()
+    document["group"]["count"] = 1_000_000
+    path = tmp_path / "million.toml"
+    path.write_text(scenefile.dumps(document))
+    memory(24 * 2**30)
+    for shape in ("ring", "chain", "bladed_disc"):
+        monkeypatch.setattr(BladeGroup, shape, _not_built)
+    start = time.perf_counter()
+    with pytest.raises(scenefile.SceneFileError) as refused:
+        scenefile.load(path)
+    print(f"\na million blades refused in {time.perf_counter() - start:.3f} s")
+    assert str(refused.value) == (
+        f"{path}: group.count: a run of 1,000,000 nodes and 1,000,000 interfaces would need "
+        "at least 44,704 GiB (44,703 GiB of it the stick-cluster matrices, whatever the "
+        "periods), more than the 24 GiB of memory this machine has; give fewer blades")
+
+
+def _not_built(*args, **kwargs):
+    raise AssertionError("the group was built before its size was checked")
+
+
+def test_a_sweep_point_is_checked_as_a_file_and_a_saved_run_loads_whatever_its_size(
+        simulation, memory):
+    """A sweep's scene is on its way to a run; a saved run's scene, read again on a
+    machine with less memory than the one that made it, is not, and loads."""
+    memory(1000)
+    with pytest.raises(scenefile.SceneFileError, match=r"speed_rpm = 5000: blades: a run of "
+                                                       r"3 nodes"):
+        scenefile.SceneAt(paper_document(), "speed_rpm")(5000.0)
+    assert results.load(simulation).scene.group.blades == paper_scene().group.blades
+    assert scenefile.read(paper_document()).scene is not None
 
 
 # ---- every law reads back equal from a scene file and a results file -----------------------

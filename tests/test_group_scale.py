@@ -293,6 +293,20 @@ def test_a_million_blades_are_refused_with_the_memory_they_would_need():
                               memory=46_000 * 2**30)
 
 
+def test_the_counts_alone_refuse_what_a_scene_of_them_would_be_refused():
+    """``check_group_size`` needs no scene: what the counts set, the same figures."""
+    with pytest.raises(ValueError) as refused:
+        footprint.check_group_size(10**6, 10**6, memory=24 * 2**30)
+    assert str(refused.value) == (
+        "a run of 1,000,000 nodes and 1,000,000 interfaces would need at least 44,704 GiB "
+        "(44,703 GiB of it the stick-cluster matrices, whatever the periods), more than the "
+        "24 GiB of memory this machine has")
+    fixed = footprint.run_footprint(10**6, 10**6, 0, 0).total
+    footprint.check_group_size(10**6, 10**6, memory=fixed)
+    with pytest.raises(ValueError, match=r"check_group_size\.nodes must be an int >= 0"):
+        footprint.check_group_size(-1, 0)
+
+
 def test_a_small_run_fits_and_the_memory_is_read_as_bytes():
     memory = footprint.machine_memory()
     assert memory is None or (isinstance(memory, int) and memory > 0)
