@@ -42,13 +42,16 @@ class Extremes:
     time_of_minimum: np.ndarray
 
 
-def orbit_extremes(scene, initial, t, x, v, switches, *, method,
-                   event_tolerance) -> Extremes:
+def orbit_extremes(scene, initial, t, x, v, switches, *, method, event_tolerance,
+                   responses=None) -> Extremes:
     """The ``Extremes`` of the orbit starting at ``initial`` (x0, ẋ0) at t = 0, from its
     samples ``t``, ``x``, ``ẋ`` over one whole orbit (first and last samples one orbit
     apart) and the times of its ``switches`` [s], each extremum refined by running the
-    orbit again to it with ``method`` and ``event_tolerance`` (module docstring)."""
+    orbit again to it with ``method`` and ``event_tolerance`` (module docstring); of the
+    responses whose positions ``responses`` lists (default: all of them)."""
     rows = scene.response_matrix
+    if responses is not None:
+        rows = rows[responses]
     r, rate = x @ rows.T, v @ rows.T
     best = {1.0: [], -1.0: []}  # per sign, (sign · extremum, time) of each response
     for j in range(r.shape[1]):

@@ -12,16 +12,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contact_laws import check_instance, check_int, check_real
+from contact_laws import check_choice, check_instance, check_int, check_real
 
 from .checked_records import check_record
 from .engine.codes import EventKind
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
 from .scene import Scene
 from .analysis import hysteresis_loop
+from .cyclic import CyclicSymmetry, cyclic_symmetry, first_sector, reduced_step, whole_period
 from .cycle import (EnergyPerCycle, Harmonics, energy_per_cycle, equivalent_damping,
                     harmonics, kinetic_peak)
 from .extremes import orbit_extremes, state_at
+from .linear import nodal_diameters
 from .simulate import MAX_PERIODS, initial_state, simulate
 from .simulation import EventLog, Simulation, SimulationError
 from .stability import TANGENT_METHOD, StroboscopicStep, stroboscopic_step
@@ -98,6 +100,27 @@ class PeriodicOrbit:
     def state(self) -> np.ndarray:
         """y = (x0, ẋ0) as one array."""
         return np.concatenate(self.initial)
+
+    @property
+    def wave_numbers(self) -> np.ndarray:
+        """The nodal diameter of each multiplier's eigenvector (``multipliers``' order), on
+        a ring or disc of sectors: the harmonic of the sector-to-sector DFT of its
+        displacements and velocities (the latter over l Ω) holding most of its square
+        (``linear.nodal_diameters``). A ValueError for a group without sectors."""
+        sectors = self.scene.group.graph.graph.get("sectors")
+        if sectors is None:
+            raise ValueError("PeriodicOrbit.wave_numbers: the group has no sectors (a ring "
+                             "or a disc of sectors has)")
+        values, vectors = np.linalg.eig(self.monodromy)
+        order = np.argsort(-np.abs(values), kind="stable")
+        vectors = vectors[:, order]
+        n = vectors.shape[0] // 2
+        per_sector = n // sectors
+        shapes = np.concatenate(
+            [vectors[:n].reshape(sectors, per_sector, -1),
+             vectors[n:].reshape(sectors, per_sector, -1)
+             / self.scene.arrays.excitation_frequency], axis=1)
+        return nodal_diameters(shapes.reshape(2 * n, -1), sectors)
 
     @property
     def event_sequence(self) -> tuple[tuple[int, str], ...]:
@@ -179,12 +202,19 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
                    method: Adaptive | Accuracy = TANGENT_METHOD, transient: int = 100,
                    tolerance: float = ORBIT_TOLERANCE,
                    event_tolerance: float = EVENT_TOLERANCE,
-                   samples_per_period: int = 100, history: bool = False) -> PeriodicOrbit:
+                   samples_per_period: int = 100, history: bool = False,
+                   symmetry: str | None = None) -> PeriodicOrbit:
     """The periodic orbit of ``periods`` excitation periods nearest ``guess``, by Newton.
 
     Each Newton step integrates the state with its tangent flow over ``periods`` periods
     (``stroboscopic_step``) and solves (M − I) Δy = −(φ(y) − y); a step that does not
     lower the residual is halved. The orbit may be unstable: Newton finds it all the same.
+
+    On a tuned ring forced in engine order l (``cyclic``), a period-1 orbit is solved as
+    the travelling wave it is, y(t + τ) = Sᵏ y(t) with τ = gcd(l, N) T_e / N: Newton on
+    the reduced map S⁻ᵏ φ_τ integrates τ, not T_e, and the monodromy M = S^{kN/g} A^{N/g}
+    still holds every perturbation's multiplier, those that break the symmetry included
+    (``PeriodicOrbit.wave_numbers`` names each one's nodal diameter).
 
     Parameters
     ----------
@@ -207,6 +237,11 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
         Samples of the orbit for ``peak``, ``mean_square`` and ``history``.
     history : bool
         Keep the orbit's ``Simulation`` (``PeriodicOrbit.history``).
+    symmetry : None, "cyclic" or "none"
+        "cyclic": solve the symmetric orbit of a tuned ring forced in engine order (a
+        ValueError says what breaks the symmetry where the scene has none, or where
+        ``periods`` > 1); "none": shoot over whole periods; None (default): "cyclic"
+        where the scene has the symmetry and ``periods`` is 1, else "none".
 
     Raises
     ------
@@ -226,21 +261,49 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
     samples_per_period = check_int("periodic_orbit", "samples_per_period", samples_per_period,
                                    low=1)
     check_instance("periodic_orbit", "history", history, bool, expected="True or False")
+    cyclic = symmetry_of(scene, periods, symmetry)
     starts = start_states(scene, periods, guess, transient, method, event_tolerance)
+
+    def step_at(z):
+        if cyclic is None:
+            return stroboscopic_step(scene, periods, np.split(z, 2), method=method,
+                                     event_tolerance=event_tolerance)
+        return reduced_step(scene, cyclic, np.split(z, 2), method=method,
+                            event_tolerance=event_tolerance)
+
     for attempt, y in enumerate(starts):
         weights = state_weights(scene, y)
         try:
-            solve = newton(lambda z: stroboscopic_step(scene, periods, np.split(z, 2),
-                                                       method=method,
-                                                       event_tolerance=event_tolerance),
-                           y, weights, tolerance)
+            solve = newton(step_at, y, weights, tolerance)
         except ConvergenceError:
             if attempt == len(starts) - 1:
                 raise
             continue
-        return orbit_at(scene, periods, solve.state, solve.step, solve.residual,
+        step = solve.step if cyclic is None else whole_period(cyclic, solve.step)
+        return orbit_at(scene, periods, solve.state, step, solve.residual,
                         1.0 / weights[0], solve.iterations, method, event_tolerance,
-                        samples_per_period, history)
+                        samples_per_period, history, cyclic)
+
+
+def symmetry_of(scene: Scene, periods: int, symmetry: str | None) -> CyclicSymmetry | None:
+    """The ``CyclicSymmetry`` ``periodic_orbit`` solves with (``symmetry`` as it takes it),
+    or None for whole periods."""
+    if symmetry is not None:
+        check_choice("periodic_orbit", "symmetry", symmetry, ("cyclic", "none"))
+    if symmetry == "none":
+        return None
+    if periods != 1:
+        if symmetry == "cyclic":
+            raise ValueError(f"periodic_orbit: symmetry='cyclic' solves period-1 orbits (a "
+                             f"travelling wave), got periods = {periods}")
+        return None
+    try:
+        return cyclic_symmetry(scene)
+    except ValueError as reason:
+        if symmetry == "cyclic":
+            raise ValueError(f"periodic_orbit: symmetry='cyclic' does not hold: "
+                             f"{reason}") from None
+        return None
 
 
 #: Starts taken from a transient: its closest returns after ``periods`` periods.
@@ -334,25 +397,32 @@ def least_squares(matrix, right):
 
 
 def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event_tolerance,
-             samples_per_period, history) -> PeriodicOrbit:
+             samples_per_period, history, cyclic=None) -> PeriodicOrbit:
     """The ``PeriodicOrbit`` through y, whose map was ``step``: its multipliers, and what
-    one sampled run of the orbit shows."""
+    one sampled run of the orbit shows. On a symmetric orbit (``cyclic``), every sector
+    repeats the first one's motion a sector-passing time later: the first sector's
+    extremes are every sector's."""
     multipliers = np.linalg.eigvals(step.jacobian).astype(complex)
     multipliers = multipliers[np.argsort(-np.abs(multipliers), kind="stable")]
     n = len(y) // 2
     initial = (y[:n].copy(), y[n:].copy())
     run = simulate(scene, periods, method=method, samples_per_period=samples_per_period,
                    event_tolerance=event_tolerance, initial=initial)
+    responses = None if cyclic is None else first_sector(scene, cyclic)
     found = orbit_extremes(scene, initial, run.t, run.x, run.v, run.events.time,
-                           method=run.settings.method, event_tolerance=event_tolerance)
+                           method=run.settings.method, event_tolerance=event_tolerance,
+                           responses=responses)
+    maximum, minimum = found.maximum, found.minimum
+    if cyclic is not None:
+        maximum, minimum = np.tile(maximum, cyclic.sectors), np.tile(minimum, cyclic.sectors)
     responses = scene.responses_of(run.x[:-1])
     return PeriodicOrbit(scene=scene, initial=initial, periods=periods,
                          multipliers=multipliers, monodromy=step.jacobian,
                          residual=float(residual), scale=float(scale),
                          iterations=iterations, events=run.events,
-                         peak=np.maximum(np.abs(found.maximum), np.abs(found.minimum)),
+                         peak=np.maximum(np.abs(maximum), np.abs(minimum)),
                          mean_square=np.mean(responses ** 2, axis=0),
-                         maximum=found.maximum, minimum=found.minimum,
+                         maximum=maximum, minimum=minimum,
                          mean=np.mean(responses, axis=0),
                          energy_per_cycle=energy_per_cycle(run, periods),
                          kinetic_peak=kinetic_peak(scene, run, lambda time: state_at(

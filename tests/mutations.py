@@ -319,10 +319,20 @@ MUTATIONS = (
              "ζ_eq divides the loss by 2π T_max: twice the damping a linear oscillator "
              "needs", (CYCLE,)),
     Mutation("kinetic-peak-sampled", "orbits",
-             "    if state_at is None:\n        return float(at - 0.25",
-             "    if True:\n        return float(at - 0.25",
+             "    if state_at is None:\n        return float(top)",
+             "    if True:\n        return float(top)",
              "T_max is read off the samples' parabola, not the orbit's exact states",
              (CYCLE,)),
+    Mutation("cyclic-monodromy-unshifted", "orbits",
+             "return self.shifted(power, self.steps * self.repeats)", "return power",
+             "a symmetric orbit's monodromy leaves out the shift S^{kN/g} the reduced maps "
+             "add up to over a period",
+             ("tests/test_cyclic.py",)),
+    Mutation("cyclic-shift-backwards", "orbits",
+             "end=symmetry.shifted(end, -symmetry.steps)",
+             "end=symmetry.shifted(end, symmetry.steps)",
+             "the reduced map shifts the state one way and its Jacobian the other",
+             ("tests/test_cyclic.py",)),
     # ---- continuation: the test functions of the smooth bifurcations ---------------------
     Mutation("kinks-not-crossed", "continuation",
              "                if sigma < KINK_STEP and crossing:",

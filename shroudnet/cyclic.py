@@ -1,0 +1,189 @@
+"""Cyclic symmetry: a tuned ring of N identical sectors forced in engine order l.
+
+The group's nodes are added sector by sector (``BladeGroup.ring``, ``bladed_disc``):
+node p = s m + j is slot j of sector s, and its image one sector on is
+P(p) = ((s + 1) mod N) m + j. The shift (S y)_p = y_{P(p)} maps the structure, every
+interface and coupling onto itself, and the engine-order forcing, φ_{P(p)} = φ_p + 2πl/N,
+onto itself one sector-passing time Δ = 2π/(NΩ) later: S Q(t) = Q(t + Δ). A tuned disc's
+steady state shares that symmetry, y(t + Δ) = S y(t), and, reduced modulo T_e, the
+smallest shift is
+
+    y(t + τ) = Sᵏ y(t),   τ = g T_e / N,   g = gcd(l, N),   k l ≡ g (mod N),
+
+so the orbit is a fixed point of the reduced map G(y) = S⁻ᵏ φ_τ(y), integrated over τ
+only. Its Jacobian A = S⁻ᵏ Φ_τ gives the whole monodromy: the tangent over each τ is
+Φ_τ moved round by the symmetry, so that
+
+    M = Φ_{T_e} = S^{kN/g} A^{N/g},
+
+whose eigenvalues are the multipliers of every perturbation, those that break the
+symmetry included (Wagg's and Vakakis's spatio-temporal symmetry; DESIGN §7).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .scene import Scene
+from .simulate import integrate
+from .stability import StroboscopicStep
+
+
+@dataclass(frozen=True)
+class CyclicSymmetry:
+    """The symmetry of a tuned ring forced in engine order (module docstring).
+
+    ``sectors``: N; ``engine_order``: l; ``image``: P(p) for every node position p;
+    ``steps``: k, the sectors the orbit moves on over ``fraction`` = τ / T_e = g/N.
+    """
+
+    sectors: int
+    engine_order: int
+    image: np.ndarray
+    steps: int
+    fraction: float
+
+    @property
+    def repeats(self) -> int:
+        """N/g: the reduced maps in one excitation period."""
+        return round(1.0 / self.fraction)
+
+    def positions(self, steps: int) -> np.ndarray:
+        """Pᵐ (m = ``steps``, taken mod N) as an index array: (Sᵐ y)_p = y[Pᵐ(p)]."""
+        index = np.arange(len(self.image))
+        for _ in range(steps % self.sectors):
+            index = self.image[index]
+        return index
+
+    def shifted(self, y: np.ndarray, steps: int) -> np.ndarray:
+        """Sᵐ y for a state y = (x, ẋ) (or a matrix whose rows are), m = ``steps``."""
+        index = self.positions(steps)
+        n = len(index)
+        return np.asarray(y)[np.concatenate([index, n + index])]
+
+    def monodromy(self, reduced: np.ndarray) -> np.ndarray:
+        """M = S^{kN/g} A^{N/g} from the reduced map's Jacobian A = ``reduced``."""
+        power = np.linalg.matrix_power(reduced, self.repeats)
+        return self.shifted(power, self.steps * self.repeats)
+
+
+def cyclic_symmetry(scene: Scene) -> CyclicSymmetry:
+    """The ``CyclicSymmetry`` of ``scene``; a ValueError saying what breaks it where the
+    scene is not a tuned ring of one-mass nodes forced by an engine-order wave."""
+    a = scene.arrays
+    sectors = scene.group.graph.graph.get("sectors")
+    if sectors is None:
+        raise ValueError("cyclic symmetry needs a ring or a disc of sectors "
+                         "(BladeGroup.ring, BladeGroup.bladed_disc); this group has none")
+    if a.is_structure:
+        raise ValueError("cyclic symmetry is solved for groups of Blades; this group has "
+                         "substructures or elastic contacts")
+    if a.n_prescribed:
+        raise ValueError("cyclic symmetry needs every node to move with its sector; this "
+                         "group has prescribed-motion nodes")
+    n = a.n_blades
+    per_sector = n // sectors
+    position = np.arange(n)
+    image = (position + per_sector) % n
+    _check_nodes(a, image)
+    _check_edges("interface", (a.left, a.right), image, _interface_rows(a))
+    _check_edges("coupling", (a.coupling_left, a.coupling_right), image,
+                 list(zip(a.coupling_stiffness, a.coupling_damping)))
+    engine_order = scene.excitation.engine_order
+    _check_forcing(a, image, engine_order, sectors)
+    share = math.gcd(engine_order, sectors)
+    steps = pow(engine_order // share, -1, sectors // share) if sectors > share else 0
+    return CyclicSymmetry(sectors=sectors, engine_order=engine_order, image=image,
+                          steps=steps, fraction=share / sectors)
+
+
+def _check_nodes(a, image) -> None:
+    """Every node is its image's twin: mass, damping, stiffness and forcing scale."""
+    for name in ("mass", "damping", "stiffness", "excitation_scale"):
+        values = getattr(a, name)
+        differs = np.flatnonzero(values[image] != values)
+        if len(differs):
+            p = int(differs[0])
+            raise ValueError(f"the ring is mistuned: node {p}'s {name} {values[p]:.6g} differs "
+                             f"from node {int(image[p])}'s {values[image[p]]:.6g}, one sector "
+                             "on; cyclic symmetry needs identical sectors")
+
+
+def _interface_rows(a) -> list[tuple]:
+    """Per interface, everything its forces depend on, to compare with its image."""
+    return list(zip(a.gap, a.sin_angle, a.cos_angle, a.normal_laws, a.friction_laws,
+                    a.opens, a.can_stick, a.regularisation, a.tangential_stiffness))
+
+
+def _check_edges(kind, ends, image, rows) -> None:
+    """Every edge (left, right) has an edge (P left, P right) with the same ``rows`` entry
+    (fixed ends, −1, stay fixed)."""
+    left, right = ends
+    moved = {(int(i), int(j)): e for e, (i, j) in enumerate(zip(left, right))}
+    for e, (i, j) in enumerate(zip(left, right)):
+        target = tuple(int(image[k]) if k >= 0 else -1 for k in (i, j))
+        twin = moved.get(target)
+        if twin is None or rows[twin] != rows[e]:
+            raise ValueError(f"the ring is not tuned: {kind} {e} between nodes {int(i)} and "
+                             f"{int(j)} has no identical {kind} between nodes {target[0]} and "
+                             f"{target[1]}, one sector on")
+
+
+def _check_forcing(a, image, engine_order, sectors) -> None:
+    """Each harmonic n is the same on a node and its image, its phase n·2πl/N later."""
+    step = 2.0 * math.pi * engine_order / sectors
+    for harmonic in range(1, a.harmonic_amplitudes.shape[0]):
+        amplitudes = a.harmonic_amplitudes[harmonic]
+        if np.any(amplitudes[image] != amplitudes):
+            raise ValueError("the forcing is not an engine-order wave: its amplitudes differ "
+                             "from sector to sector")
+        lag = a.harmonic_phases[harmonic, image] - a.harmonic_phases[harmonic] \
+            - harmonic * step
+        loaded = amplitudes != 0.0
+        if np.any(np.abs(np.angle(np.exp(1j * lag[loaded]))) > 1e-9):
+            raise ValueError(f"the forcing is not an engine-order wave of l = {engine_order} "
+                             f"on {sectors} sectors: neighbouring sectors' phases do not differ "
+                             f"by 2πl/N")
+    if np.any(a.harmonic_amplitudes[0][image] != a.harmonic_amplitudes[0]):
+        raise ValueError("the forcing is not an engine-order wave: its static part differs "
+                         "from sector to sector")
+
+
+def first_sector(scene: Scene, symmetry: CyclicSymmetry) -> np.ndarray:
+    """The positions of the responses (``Scene.responses``) of the first sector: on a
+    symmetric orbit the others repeat them, sector by sector."""
+    count = len(scene.responses)
+    if count % symmetry.sectors:
+        raise ValueError(f"the {count} responses are not one set per sector of "
+                         f"{symmetry.sectors}")
+    return np.arange(count // symmetry.sectors)
+
+
+def reduced_step(scene: Scene, symmetry: CyclicSymmetry, initial, *, method,
+                 event_tolerance: float) -> StroboscopicStep:
+    """G(y) = S⁻ᵏ φ_τ(y) and its Jacobian A = S⁻ᵏ Φ_τ from ``initial`` = (x0, v0), in one
+    run over τ with the 2N × 2N tangent flow (``stability.stroboscopic_step`` over τ);
+    ``singular`` counts the switches of the run over τ."""
+    n = scene.arrays.n_blades
+    run = integrate(scene, 1, method=method, samples_per_period=1,
+                    event_tolerance=event_tolerance, initial=initial, event_capacity=0,
+                    tangent=np.eye(2 * n),
+                    until=symmetry.fraction * scene.excitation_period).run
+    tangent = run.tangent
+    end = np.concatenate([run.output.x[-1], run.output.v[-1]])
+    return StroboscopicStep(scene=scene, end=symmetry.shifted(end, -symmetry.steps),
+                            jacobian=symmetry.shifted(tangent.matrix, -symmetry.steps),
+                            singular=int(tangent.singular[0]),
+                            singular_time=float(tangent.singular_time[0]),
+                            singular_interface=int(tangent.singular_interface[0]))
+
+
+def whole_period(symmetry: CyclicSymmetry, reduced: StroboscopicStep) -> StroboscopicStep:
+    """The step over one excitation period that the reduced one at a symmetric orbit
+    stands for: the monodromy M = S^{kN/g} A^{N/g}, and N/g times its singular switches."""
+    return dataclasses.replace(reduced, jacobian=symmetry.monodromy(reduced.jacobian),
+                               singular=reduced.singular * symmetry.repeats)

@@ -1,0 +1,154 @@
+"""Tuned rings and discs at the cost of one sector: the travelling-wave orbit as a fixed
+point of the reduced map S⁻ᵏ φ_τ, against the full shooting over T_e (which knows no
+symmetry), its monodromy S^{kN/g} A^{N/g} against the full one, the wave numbers of the
+multipliers against a linear ring's closed form, and the refusals."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import shroudnet as sn
+import shroudnet.orbits as orbits_module
+from contact_laws import LinearSpring
+from shroudnet.cyclic import cyclic_symmetry
+from shroudnet.scenes import bladed_disc_24, three_blade_paper
+
+PAPER = three_blade_paper()
+BLADE = PAPER.group.blade("blade1")
+SHROUD = PAPER.group.interfaces[0][2]
+#: Both solvers with this map, its switches located to this fraction of a period, and to
+#: this residual, so that their orbits may be compared to 1e-10 of the scale.
+EXACT = sn.Adaptive(rtol=1e-11)
+LOCATED = 1e-13
+TIGHT = 1e-12
+
+
+def ring(n, engine_order, speed_rpm=6000.0, blade=BLADE, shroud=SHROUD, phases=None):
+    """The paper's blade and shroud round a ring of ``n``, forced in ``engine_order``."""
+    group = sn.BladeGroup.ring(n, blade, shroud)
+    return sn.Scene(group=group, excitation=sn.Excitation(
+        engine_order=engine_order, amplitudes=(0.0, PAPER.excitation.amplitudes[1]),
+        phases=sn.EngineOrderWave() if phases is None else phases), speed_rpm=speed_rpm)
+
+
+def agreement(scene):
+    """(state gap over the scale, largest multiplier gap, the symmetric orbit): the
+    symmetric orbit against the full shooting started on it."""
+    settings = dict(tolerance=TIGHT, method=EXACT, event_tolerance=LOCATED)
+    symmetric = sn.periodic_orbit(scene, symmetry="cyclic", **settings)
+    full = sn.periodic_orbit(scene, symmetry="none", guess=symmetric.initial, **settings)
+    n = len(full.initial[0])
+    gap = np.abs(full.state - symmetric.state)
+    state = max(gap[:n].max(), gap[n:].max() / scene.arrays.excitation_frequency)
+    return (state / full.scale, np.abs(full.multipliers - symmetric.multipliers).max(),
+            symmetric)
+
+
+@pytest.mark.parametrize("engine_order", [1, 2, 3, 6], ids=[
+    "l=1 (τ = T/6)", "l=2 (g = 2)", "l=3 (ND = N/2)", "l=6 (ND = 0)"])
+def test_the_symmetric_orbit_is_the_full_shootings_on_a_ring_of_six(engine_order):
+    state, multipliers, orbit = agreement(ring(6, engine_order))
+    # Measured: states 4.6e-12, 7.3e-13, 0 and 0 of the scale (for ND = N/2 and 0 the
+    # symmetric orbit is already a fixed point of the full map to 1e-12), multipliers
+    # 7.6e-13, 1.2e-12, 8.4e-13 and 0.
+    assert state <= 1e-10
+    assert multipliers <= 1e-8
+    assert len(orbit.events.time) > 0 or engine_order == 6
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("engine_order, speed_rpm", [(5, 2000.0), (12, 3000.0)])
+def test_the_symmetric_orbit_is_the_full_shootings_on_the_24_sector_disc(engine_order,
+                                                                         speed_rpm):
+    """Three nodes a sector; l = 5 is coprime with 24 (τ = T_e/24: its shrouds close,
+    stick, slip and open), l = 12 the standing wave ND = N/2 (they close and open).
+    Measured: states 5.9e-12 and 0, multipliers 3.2e-11 and 5.0e-12."""
+    state, multipliers, orbit = agreement(bladed_disc_24(engine_order=engine_order,
+                                                         speed_rpm=speed_rpm))
+    assert state <= 1e-10
+    assert multipliers <= 1e-8
+    assert orbit.events.counts["closing"] == 24
+
+
+def test_the_24_blade_rings_reduced_map_gives_the_full_monodromy():
+    """l = 5 on 24 blades: the orbit solved over T_e/24 (measured: state 1.6e-12,
+    multipliers 1.6e-12; its largest, 1.156, has ND 2)."""
+    state, multipliers, orbit = agreement(ring(24, 5))
+    assert state <= 1e-10
+    assert multipliers <= 1e-8
+    assert not orbit.stable  # a wave of ND 5, unstable to perturbations of other NDs
+    assert orbit.wave_numbers[0] != 5
+
+
+@settings(max_examples=6)
+@given(n=st.integers(3, 6), order=st.integers(1, 12), speed=st.floats(4500.0, 7500.0),
+       gap=st.floats(-5e-6, 5e-6))
+def test_for_small_tuned_rings_the_symmetric_and_the_full_solver_agree(n, order, speed, gap):
+    shroud = sn.Interface(gap=gap, angle=SHROUD.angle, normal=SHROUD.normal,
+                          friction=SHROUD.friction)
+    state, multipliers, _ = agreement(ring(n, order, speed, shroud=shroud))
+    assert state <= 1e-9
+    assert multipliers <= 1e-7
+
+
+def test_the_wave_numbers_are_a_linear_rings_modes():
+    """A linear ring (blades coupled by springs, no contact): each multiplier is
+    e^{(−c/2m ± iω_p) T} with ω_p² = (k + 2k_c(1 − cos 2πp/N))/m − (c/2m)², its
+    eigenvector the travelling waves of diameter p: the multiplier's angle names its
+    wave number."""
+    n, m, c, k, k_c = 7, 0.1, 2.0, 1e5, 3e4
+    group = sn.BladeGroup.ring(n, sn.Blade(mass=m, damping=c, stiffness=k),
+                               sn.Coupling(stiffness=k_c))
+    scene = sn.Scene(group=group, excitation=sn.Excitation(
+        engine_order=2, amplitudes=(0.0, 1.0), phases=sn.EngineOrderWave()),
+        speed_rpm=3000.0)
+    orbit = sn.periodic_orbit(scene)
+    period = scene.excitation_period
+    decay = c / (2.0 * m)
+    for multiplier, p in zip(orbit.multipliers, orbit.wave_numbers):
+        omega = math.sqrt((k + 2.0 * k_c * (1.0 - math.cos(2.0 * math.pi * p / n))) / m
+                          - decay ** 2)
+        expected = np.exp((-decay + 1j * omega) * period)
+        assert min(abs(multiplier - expected), abs(multiplier - expected.conjugate())) \
+            <= 1e-8 * abs(expected)
+
+
+def test_a_tuned_ring_forced_in_engine_order_is_solved_symmetrically_by_default(
+        monkeypatch):
+    calls = []
+    reduced = orbits_module.reduced_step
+    monkeypatch.setattr(orbits_module, "reduced_step",
+                        lambda *args, **kwargs: calls.append(1) or reduced(*args, **kwargs))
+    sn.periodic_orbit(ring(6, 1), transient=20)
+    assert calls
+    calls.clear()
+    sn.periodic_orbit(ring(6, 1), periods=2, transient=20)  # period 2: whole periods
+    sn.periodic_orbit(PAPER, transient=20)  # no ring
+    assert not calls
+
+
+def test_what_breaks_the_symmetry_is_named():
+    heavier = dataclasses.replace(BLADE, mass=1.01 * BLADE.mass)
+    mistuned = sn.BladeGroup.ring(6, [BLADE] * 5 + [heavier], SHROUD)
+    scene = sn.Scene(group=mistuned, excitation=ring(6, 1).excitation, speed_rpm=6000.0)
+    with pytest.raises(ValueError, match="mistuned: node 4's mass"):
+        sn.periodic_orbit(scene, symmetry="cyclic")
+    with pytest.raises(ValueError, match="not an engine-order wave of l = 1 on 6 sectors"):
+        sn.periodic_orbit(ring(6, 1, phases=sn.AntiPhase()), symmetry="cyclic")
+    with pytest.raises(ValueError, match="needs a ring or a disc of sectors"):
+        sn.periodic_orbit(PAPER, symmetry="cyclic")
+    with pytest.raises(ValueError, match="period-1 orbits"):
+        sn.periodic_orbit(ring(6, 1), periods=2, symmetry="cyclic")
+    with pytest.raises(ValueError, match="symmetry must be one of 'cyclic', 'none'"):
+        sn.periodic_orbit(ring(6, 1), symmetry="yes")
+    open_shroud = sn.Interface(gap=1e-3, angle=SHROUD.angle,
+                               normal=LinearSpring(stiffness=1e5))
+    uneven = sn.BladeGroup.ring(6, BLADE, open_shroud)
+    uneven.connect("blade1", "blade3", sn.Coupling(stiffness=10.0))
+    with pytest.raises(ValueError, match="coupling 0 between nodes 0 and 2"):
+        cyclic_symmetry(sn.Scene(group=uneven, excitation=ring(6, 1).excitation,
+                                 speed_rpm=6000.0))
