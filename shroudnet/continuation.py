@@ -25,6 +25,7 @@ parameter's direction: the orbit's jump across the kink may point back along the
 
 from __future__ import annotations
 
+import cmath
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -34,10 +35,12 @@ import numpy as np
 from contact_laws import check_callable, check_calls_with, check_instance, check_int, check_real
 
 from .checked_records import check_record
+from .cyclic import CyclicSymmetry, cyclic_symmetry, reduced_step, whole_period
 from .linear_response import frequency_response
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
 from .orbits import (ORBIT_TOLERANCE, SMALLEST_TOLERANCE, UNIT_CIRCLE, ConvergenceError,
-                     PeriodicOrbit, least_squares, orbit_at, periodic_orbit, state_weights)
+                     PeriodicOrbit, least_squares, orbit_at, periodic_orbit, state_weights,
+                     symmetry_of)
 from .parametric import checked_scene_at
 from .scene import Scene
 from .simulate import MAX_PERIODS, integrate
@@ -46,7 +49,7 @@ from .stability import TANGENT_METHOD, stroboscopic_step
 from .vertex import parabola_vertex
 
 #: Bifurcation kinds.
-KINDS = ("fold", "period-doubling", "torus", "grazing", "stick-slip")
+KINDS = ("fold", "period-doubling", "torus", "symmetry-breaking", "grazing", "stick-slip")
 
 #: Arclength steps (scaled units, see the module's docstring): the largest by default,
 #: the first as a fraction of the largest, and the smallest before the branch is given up.
@@ -122,7 +125,10 @@ class Bifurcation:
     change for "grazing" and "stick-slip", with the change inside ``bracket``).
     ``orbit``: the orbit there; ``multiplier``: the critical Floquet multiplier (nan for
     a nonsmooth one); ``index``: the change lies between branch points ``index`` and
-    ``index + 1``.
+    ``index + 1``. On a branch of travelling waves (``continuation``'s ``symmetry``), a
+    real multiplier that leaves the unit circle through +1 without a fold of the
+    symmetric branch is a "symmetry-breaking" bifurcation: its eigenvector is a wave of
+    another diameter (``wave_number``), the motion a standing or localised one beyond.
     """
 
     kind: str
@@ -137,6 +143,17 @@ class Bifurcation:
 
     def __post_init__(self):
         check_record(self)
+
+    @property
+    def wave_number(self) -> int:
+        """The nodal diameter of the critical multiplier's eigenvector
+        (``PeriodicOrbit.wave_numbers``); a ValueError for a nonsmooth bifurcation or a
+        group without sectors."""
+        if cmath.isnan(self.multiplier):
+            raise ValueError(f"Bifurcation.wave_number: a {self.kind} bifurcation has no "
+                             "critical multiplier")
+        k = int(np.argmin(np.abs(self.orbit.multipliers - self.multiplier)))
+        return int(self.orbit.wave_numbers[k])
 
 
 @dataclass(frozen=True)
@@ -241,7 +258,8 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
                  tolerance: float = ORBIT_TOLERANCE,
                  event_tolerance: float = EVENT_TOLERANCE,
                  transient: int = 100, from_bifurcation: Bifurcation | None = None,
-                 parameter: str = "value", progress: Callable | None = None) -> Branch:
+                 parameter: str = "value", progress: Callable | None = None,
+                 symmetry: str | None = None) -> Branch:
     """The branch of periodic orbits of ``scene_at(p)`` from p = ``start`` towards ``stop``.
 
     Pseudo-arclength continuation (see the module's docstring): it follows the branch
@@ -269,11 +287,20 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         As ``periodic_orbit``.
     from_bifurcation : Bifurcation, optional
         A "period-doubling" point of another branch: continue the doubled branch (period
-        2k T_e) born there, away from it, within [start, stop].
+        2k T_e) born there, away from it, within [start, stop]; or a "symmetry-breaking"
+        one: continue the branch of non-symmetric orbits born there, with the full
+        solver.
     parameter : str
         The parameter's name, for the record and for plots.
     progress : callable, optional
         ``progress(points, p)`` after each point.
+    symmetry : None, "cyclic" or "none"
+        As ``periodic_orbit``: "cyclic" follows the travelling waves of a tuned ring
+        forced in engine order at the cost of the reduced map (a ValueError where the
+        scene at ``start``, or at any point, lacks the symmetry), and locates
+        "symmetry-breaking" bifurcations; None (default) does so where the scene at
+        ``start`` has the symmetry, ``periods`` is 1 and there is no
+        ``from_bifurcation``.
 
     Raises
     ------
@@ -304,10 +331,12 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
                           high=1.0)
     step = FIRST_STEP * max_step if step is None else check_real(
         "continuation", "step", step, low=SMALLEST_STEP, high=max_step)
-    if from_bifurcation is not None and (not isinstance(from_bifurcation, Bifurcation)
-                                         or from_bifurcation.kind != "period-doubling"):
-        raise ValueError(f"continuation.from_bifurcation must be a 'period-doubling' "
-                         f"Bifurcation of a branch, got {from_bifurcation!r}")
+    if from_bifurcation is not None and (
+            not isinstance(from_bifurcation, Bifurcation)
+            or from_bifurcation.kind not in ("period-doubling", "symmetry-breaking")):
+        raise ValueError(f"continuation.from_bifurcation must be a 'period-doubling' or a "
+                         f"'symmetry-breaking' Bifurcation of a branch, got "
+                         f"{from_bifurcation!r}")
     span = abs(stop - start)
     try:
         checked_scene_at("continuation", scene_at, start, start + 1e-3 * span)
@@ -316,19 +345,31 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
             raise
         raise type(error)(f"continuation: scene_at refused the range start = {start:g} … "
                           f"stop = {stop:g}: {error}") from error
+    cyclic = None if from_bifurcation is not None and symmetry is None else symmetry_of(
+        scene_at(start), periods, symmetry, "continuation")
+    if cyclic is not None and from_bifurcation is not None:
+        raise ValueError("continuation: a branch from a bifurcation is followed with the "
+                         "full solver: leave symmetry=None or give 'none'")
+    if cyclic is not None and symmetry is None and symmetry_of(
+            scene_at(start + 1e-3 * (stop - start)), periods, None) is None:
+        cyclic = None  # the parameter itself breaks the symmetry (a mistuning, say)
     solver = Solver(scene_at=scene_at, span=span,
                     low=min(start, stop), high=max(start, stop), method=method,
-                    tolerance=tolerance, event_tolerance=event_tolerance)
+                    tolerance=tolerance, event_tolerance=event_tolerance, cyclic=cyclic)
     if from_bifurcation is None:
         first = periodic_orbit(solver.scene_at(start), periods, guess, method=method,
                                transient=transient, tolerance=tolerance,
-                               event_tolerance=event_tolerance)
+                               event_tolerance=event_tolerance,
+                               symmetry="none" if cyclic is None else "cyclic")
         solver.weights = state_weights(first.scene, first.state)
         point = solver.point(first.state, start, periods)
         direction = np.zeros(len(point.u))
         direction[-1] = math.copysign(1.0, stop - start)
-    else:
+    elif from_bifurcation.kind == "period-doubling":
         point, direction = solver.doubled(from_bifurcation)
+        periods = point.periods
+    else:
+        point, direction = solver.broken(from_bifurcation)
         periods = point.periods
     point = point.with_tangent(solver.tangent(point, direction))
     return solver.follow(point, step, max_step, max_points, parameter, progress)
@@ -362,6 +403,7 @@ class Solver:
     method: object
     tolerance: float
     event_tolerance: float
+    cyclic: CyclicSymmetry | None = None
     weights: np.ndarray | None = None
 
     # ---- the map and its derivatives -------------------------------------------------------
@@ -373,15 +415,46 @@ class Solver:
         """The map with its Jacobian at (y, p), and ∂φ/∂p (by a forward difference unless
         ``rate`` is given)."""
         scene = self.scene_at(p)
-        step = stroboscopic_step(scene, periods, np.split(y, 2), method=self.method,
-                                 event_tolerance=self.event_tolerance)
+        if self.cyclic is None:
+            step = stroboscopic_step(scene, periods, np.split(y, 2), method=self.method,
+                                     event_tolerance=self.event_tolerance)
+        else:
+            step = reduced_step(scene, self.symmetric(scene, p), np.split(y, 2),
+                                method=self.method, event_tolerance=self.event_tolerance)
         if rate is None:
             h = PARAMETER_DIFFERENCE * max(abs(p), self.span)
-            run = integrate(self.scene_at(p + h), periods, method=self.method,
+            shifted = self.scene_at(p + h)
+            until = None if self.cyclic is None else \
+                self.cyclic.fraction * shifted.excitation_period
+            run = integrate(shifted, periods, method=self.method,
                             samples_per_period=1, event_tolerance=self.event_tolerance,
-                            initial=np.split(y, 2), event_capacity=0).run.output
-            rate = (np.concatenate([run.x[-1], run.v[-1]]) - step.end) / h
+                            initial=np.split(y, 2), event_capacity=0,
+                            until=until).run.output
+            end = np.concatenate([run.x[-1], run.v[-1]])
+            if self.cyclic is not None:
+                end = self.cyclic.shifted(end, -self.cyclic.steps)
+            rate = (end - step.end) / h
         return step, rate
+
+    def symmetric(self, scene, p) -> CyclicSymmetry:
+        """The branch's symmetry, checked to hold at p."""
+        try:
+            found = cyclic_symmetry(scene)
+        except ValueError as reason:
+            raise ValueError(f"the scene at p = {p:.9g} lacks the branch's cyclic "
+                             f"symmetry: {reason}") from None
+        if (found.sectors, found.engine_order) != (self.cyclic.sectors,
+                                                  self.cyclic.engine_order):
+            raise ValueError(f"the scene at p = {p:.9g} is a ring of {found.sectors} "
+                             f"forced in engine order {found.engine_order}, not the branch's "
+                             f"{self.cyclic.sectors} in {self.cyclic.engine_order}")
+        return found
+
+    def monodromy(self, point) -> np.ndarray:
+        """The monodromy of ``point``'s orbit over its whole period."""
+        if self.cyclic is None:
+            return point.step.jacobian
+        return self.cyclic.monodromy(point.step.jacobian)
 
     def jacobian(self, step, rate):
         """∂(W(φ − y))/∂u in the scaled coordinates: 2N × (2N + 1)."""
@@ -543,17 +616,21 @@ class Solver:
     def orbit(self, point, iterations):
         y = self.state(point.u)
         residual = np.abs(self.weights * (point.step.end - y)).max()
-        return orbit_at(point.step.scene, point.periods, y, point.step, residual,
+        step = point.step if self.cyclic is None else whole_period(self.cyclic, point.step)
+        return orbit_at(point.step.scene, point.periods, y, step, residual,
                         1.0 / self.weights[0], iterations, self.method,
-                        self.event_tolerance, 100, False)
+                        self.event_tolerance, 100, False, self.cyclic)
 
     def record(self, points, orbits, bifurcations, new):
         """Append ``new`` and what changed since the last point."""
         last, before = points[-1], orbits[-1]
         orbit = self.orbit(new, 0)
         index = len(points) - 1
-        for kind, test in smooth_changes(last, before, new, orbit):
-            bifurcations.append(self.locate(kind, test, last, new, index))
+        for kind, test in smooth_changes(last, before, new, orbit, self.monodromy,
+                                         symmetric=self.cyclic is not None):
+            found = self.locate(kind, test, last, new, index)
+            if found is not None:
+                bifurcations.append(found)
         if orbit.switches != before.switches:
             kind = "stick-slip" if _stick_phases(orbit) != _stick_phases(before) else "grazing"
             bifurcations.append(Bifurcation(kind, new.parameter, orbit, complex(math.nan), index,
@@ -561,14 +638,20 @@ class Solver:
         points.append(new)
         orbits.append(orbit)
 
-    def locate(self, kind, test, a, b, index) -> Bifurcation:
+    def locate(self, kind, test, a, b, index) -> Bifurcation | None:
         """The zero of ``test`` between points a and b: the Illinois (modified regula
         falsi) method on the arclength from a, to ``LOCATED`` of the arclength from a to
-        b."""
+        b; None where ``test`` has the same sign at both (multipliers that changed their
+        count without crossing the circle: two real ones that meet and leave the real
+        axis together, say)."""
         width = float(a.tangent @ (b.u - a.u))
         low, high = (0.0, test(a)), (width, test(b))
+        if low[1] * high[1] > 0.0:
+            return None
         best, best_value, kept = b, abs(high[1]), None
         for _ in range(LOCATING_STEPS):
+            if high[1] == low[1]:
+                break
             sigma = low[0] - low[1] * (high[0] - low[0]) / (high[1] - low[1])
             try:
                 trial = self.advance(a, sigma)[0]
@@ -614,6 +697,24 @@ class Solver:
         return point, point.u - base
 
 
+    def broken(self, bifurcation):
+        """The first point of the branch of non-symmetric orbits born at a
+        symmetry-breaking bifurcation (followed with the full solver), and the direction
+        away from it: along the critical multiplier's eigenvector."""
+        orbit = bifurcation.orbit
+        self.weights = state_weights(orbit.scene, orbit.state)
+        values, vectors = np.linalg.eig(orbit.monodromy)
+        k = np.argmin(np.abs(values - bifurcation.multiplier))
+        w = self.weights
+        away = np.append(w * np.real(vectors[:, k]), 0.0)
+        away /= np.linalg.norm(away)
+        base = np.append(w * orbit.state, bifurcation.parameter / self.span)
+        size = DOUBLED_OFFSET
+        point, _ = self.correct(base + size * away, away, away @ base + size, orbit.periods,
+                                reach=1.0)
+        return point, point.u - base
+
+
 def _stick_phases(orbit):
     return {switch: count for switch, count in orbit.switches.items()
             if switch[1] in ("sticking", "breakaway")}
@@ -626,46 +727,72 @@ def _real(multipliers):
 
 def critical(kind, multipliers):
     """The multiplier that crosses the unit circle at a bifurcation of ``kind``: the real
-    one nearest +1 (fold) or −1 (period doubling), or the complex one nearest the circle."""
+    one nearest +1 (fold, symmetry breaking) or −1 (period doubling), or the complex one
+    nearest the circle."""
     real = _real(multipliers)
     if kind == "torus":
         pool = multipliers[~real]
         return complex(pool[np.argmin(np.abs(np.abs(pool) - 1.0))])
-    target = 1.0 if kind == "fold" else -1.0
+    target = -1.0 if kind == "period-doubling" else 1.0
     pool = multipliers[real]
     return complex(pool[np.argmin(np.abs(pool - target))]) if len(pool) else complex(target)
 
 
 def _counts(multipliers):
-    """(real multipliers below −1, complex ones outside the unit circle)."""
+    """(real multipliers below −1, complex ones outside the unit circle, real ones above
+    +1)."""
     real = _real(multipliers)
     outside = np.abs(multipliers) > UNIT_CIRCLE
     return (int(np.sum(real & outside & (multipliers.real < 0))),
-            int(np.sum(~real & outside)))
+            int(np.sum(~real & outside)),
+            int(np.sum(real & outside & (multipliers.real > 0))))
 
 
-def smooth_changes(a, orbit_a, b, orbit_b):
-    """(kind, test function of a point) of each smooth bifurcation between a and b. The
-    test functions are continuous along the branch and change sign at the bifurcation:
-    the tangent's parameter component (fold), det(M + I) (period doubling) and
-    Π_{i<j} (μ_i μ_j − 1), the bialternate product (torus)."""
+def smooth_changes(a, orbit_a, b, orbit_b, monodromy, symmetric=False):
+    """(kind, test function of a point) of each smooth bifurcation between a and b, their
+    orbits' monodromy matrices M = ``monodromy(point)``. The test functions are
+    continuous along the branch and change sign at the bifurcation: the tangent's
+    parameter component (fold), det(M + I) (period doubling), Π_{i<j} (μ_i μ_j − 1), the
+    bialternate product (torus), and, on a ``symmetric`` branch, det(M − I) where a real
+    multiplier passes +1 without a fold (symmetry breaking)."""
     changes = []
-    if a.tangent[-1] * b.tangent[-1] < 0.0:
+    fold = a.tangent[-1] * b.tangent[-1] < 0.0
+    if fold:
         changes.append(("fold", lambda point: point.tangent[-1]))
-    (doubling_a, torus_a), (doubling_b, torus_b) = (_counts(orbit_a.multipliers),
-                                                    _counts(orbit_b.multipliers))
+    (doubling_a, torus_a, rising_a), (doubling_b, torus_b, rising_b) = (
+        _counts(orbit_a.multipliers), _counts(orbit_b.multipliers))
     if doubling_a != doubling_b:
-        changes.append(("period-doubling", _doubling_test))
+        changes.append(("period-doubling", _scaled(
+            lambda point: np.linalg.eigvals(monodromy(point)) + 1.0)))
     if torus_a != torus_b:
-        changes.append(("torus", _torus_test))
+        changes.append(("torus", _scaled(lambda point: _pair_factors(monodromy(point)))))
+    if symmetric and not fold and rising_a != rising_b:
+        changes.append(("symmetry-breaking", _scaled(
+            lambda point: np.linalg.eigvals(monodromy(point)) - 1.0)))
     return changes
 
 
-def _doubling_test(point):
-    return float(np.real(np.prod(np.linalg.eigvals(point.step.jacobian) + 1.0)))
-
-
-def _torus_test(point):
-    values = np.linalg.eigvals(point.step.jacobian)
+def _pair_factors(monodromy):
+    """μ_i μ_j − 1 over the pairs i < j of M's eigenvalues (the bialternate product's)."""
+    values = np.linalg.eigvals(monodromy)
     i, j = np.triu_indices(len(values), k=1)
-    return float(np.real(np.prod(values[i] * values[j] - 1.0)))
+    return values[i] * values[j] - 1.0
+
+
+def _scaled(factors_at):
+    """The test function Π f (real: its factors ``factors_at(point)`` come in conjugate
+    pairs), divided by |Π f| at the first point it is evaluated at: the same zeros and
+    the same shape, where the product itself, of hundreds of factors on a ring of many
+    blades, leaves a float's range."""
+    reference = []
+
+    def test(point):
+        factors = factors_at(point)
+        with np.errstate(divide="ignore", invalid="ignore"):  # a factor of exactly 0
+            size = float(np.sum(np.log(np.abs(factors))))
+            sign = math.copysign(1.0, float(np.real(np.prod(factors / np.abs(factors)))))
+        if not reference:
+            reference.append(size if math.isfinite(size) else 0.0)
+        return sign * math.exp(size - reference[0])
+
+    return test

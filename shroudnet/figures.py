@@ -180,8 +180,8 @@ def work_precision_diagram(study: Study, *, title: str = "What accuracy costs") 
 
 #: Markers of bifurcation points by kind.
 BIFURCATION_MARKERS = {"fold": ("o", "C3"), "period-doubling": ("s", "C2"),
-                       "torus": ("D", "C4"), "grazing": ("^", "0.4"),
-                       "stick-slip": ("v", "0.4")}
+                       "torus": ("D", "C4"), "symmetry-breaking": ("*", "C1"),
+                       "grazing": ("^", "0.4"), "stick-slip": ("v", "0.4")}
 
 
 #: What ``forced_response`` may draw on its upper panel: (the value of an orbit for a

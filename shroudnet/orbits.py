@@ -285,24 +285,24 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
                         samples_per_period, history, cyclic)
 
 
-def symmetry_of(scene: Scene, periods: int, symmetry: str | None) -> CyclicSymmetry | None:
-    """The ``CyclicSymmetry`` ``periodic_orbit`` solves with (``symmetry`` as it takes it),
-    or None for whole periods."""
+def symmetry_of(scene: Scene, periods: int, symmetry: str | None,
+                owner: str = "periodic_orbit") -> CyclicSymmetry | None:
+    """The ``CyclicSymmetry`` ``owner`` solves with (``symmetry`` as ``periodic_orbit``
+    takes it), or None for whole periods."""
     if symmetry is not None:
-        check_choice("periodic_orbit", "symmetry", symmetry, ("cyclic", "none"))
+        check_choice(owner, "symmetry", symmetry, ("cyclic", "none"))
     if symmetry == "none":
         return None
     if periods != 1:
         if symmetry == "cyclic":
-            raise ValueError(f"periodic_orbit: symmetry='cyclic' solves period-1 orbits (a "
+            raise ValueError(f"{owner}: symmetry='cyclic' solves period-1 orbits (a "
                              f"travelling wave), got periods = {periods}")
         return None
     try:
         return cyclic_symmetry(scene)
     except ValueError as reason:
         if symmetry == "cyclic":
-            raise ValueError(f"periodic_orbit: symmetry='cyclic' does not hold: "
-                             f"{reason}") from None
+            raise ValueError(f"{owner}: symmetry='cyclic' does not hold: {reason}") from None
         return None
 
 

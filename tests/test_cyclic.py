@@ -15,6 +15,7 @@ import shroudnet as sn
 import shroudnet.orbits as orbits_module
 from contact_laws import LinearSpring
 from shroudnet.cyclic import cyclic_symmetry
+from shroudnet.linear import nodal_diameters
 from shroudnet.scenes import bladed_disc_24, three_blade_paper
 
 PAPER = three_blade_paper()
@@ -152,3 +153,76 @@ def test_what_breaks_the_symmetry_is_named():
     with pytest.raises(ValueError, match="coupling 0 between nodes 0 and 2"):
         cyclic_symmetry(sn.Scene(group=uneven, excitation=ring(6, 1).excitation,
                                  speed_rpm=6000.0))
+
+
+def test_continuation_follows_the_travelling_waves_as_the_full_solver_does():
+    """Six blades in engine order 2 over 5000–5400 rpm: the reduced branch meets the
+    full branch's period doublings at the same speeds, with the same multipliers."""
+    def scene_at(speed_rpm):
+        return ring(6, 2, speed_rpm)
+
+    branches = [sn.continuation(scene_at, 5000.0, 5400.0, symmetry=symmetry)
+                for symmetry in ("cyclic", "none")]
+    found = [[(b.kind, b.parameter, b.multiplier) for b in branch.bifurcations
+              if b.kind == "period-doubling"] for branch in branches]
+    assert len(found[0]) == len(found[1]) == 2
+    for (kind, p, multiplier), (other_kind, q, other) in zip(*found):
+        # Measured: the speeds to 1.2e-7 rpm, the multipliers to 1.1e-10.
+        assert kind == other_kind and p == pytest.approx(q, abs=1e-3)
+        assert abs(multiplier - other) <= 1e-5
+    assert branches[0].parameter[-1] == branches[1].parameter[-1] == 5400.0
+
+
+@pytest.fixture(scope="module")
+def breaking():
+    """The travelling wave of ND 1 on six blades over 3000–3300 rpm, and its
+    symmetry-breaking bifurcations."""
+    branch = sn.continuation(lambda speed_rpm: ring(6, 1, speed_rpm), 3000.0, 3300.0,
+                             symmetry="cyclic")
+    return branch, [b for b in branch.bifurcations if b.kind == "symmetry-breaking"]
+
+
+def test_a_symmetry_breaking_bifurcation_is_located_with_its_wave_number(breaking):
+    """A real multiplier passes +1 along a wave of ND 2, on the branch forced in ND 1,
+    and back: between the two, the travelling wave is unstable."""
+    branch, found = breaking
+    assert [b.wave_number for b in found] == [2, 2]
+    for b in found:
+        # Measured: |μ − 1| of 1.8e-11 and 6e-13 at 3133.97 and 3169.10 rpm.
+        assert abs(b.multiplier - 1.0) <= 1e-6
+    between = [orbit for p, orbit in zip(branch.parameter, branch.orbits)
+               if found[0].parameter < p < found[1].parameter]
+    assert between and not any(orbit.stable for orbit in between)
+    assert all(orbit.wave_numbers[0] == 2 for orbit in between)
+
+
+def test_a_transient_near_the_unstable_wave_leaves_it_for_the_predicted_wave_number(
+        breaking):
+    """Started 1e-6 off the unstable travelling wave, the motion departs from it by the
+    multiplier's factor a period, along the diameter its eigenvector has."""
+    branch, found = breaking
+    middle = 0.5 * (found[0].parameter + found[1].parameter)
+    orbit = branch.orbits[int(np.argmin(np.abs(branch.parameter - middle)))]
+    growth = abs(orbit.multipliers[0])
+    start = orbit.state * (1.0 + 1e-6 * np.random.default_rng(1).standard_normal(12))
+    run = sn.simulate(orbit.scene, 12, samples_per_period=1, initial=np.split(start, 2),
+                      method=sn.Adaptive(rtol=1e-11), event_tolerance=1e-13)
+    departure = run.x - orbit.initial[0]
+    sizes = np.abs(departure).max(axis=1)
+    # Measured: 2.0 per period over periods 6–12 against |μ| = 2.008.
+    assert (sizes[12] / sizes[6]) ** (1.0 / 6.0) == pytest.approx(growth, rel=0.05)
+    assert sizes[12] > 100.0 * sizes[1]
+    assert nodal_diameters(departure[12][:, None], 6)[0] == orbit.wave_numbers[0] == 2
+
+
+def test_from_a_symmetry_breaking_bifurcation_the_broken_branch_is_followed(breaking):
+    branch, found = breaking
+    broken = sn.continuation(lambda speed_rpm: ring(6, 1, speed_rpm), 3000.0, 3300.0,
+                             from_bifurcation=found[0], max_points=6)
+    assert len(broken.parameter) == 6
+    last = broken.orbits[-1].initial[0]
+    # Its blades no longer repeat one another: the orbit is not a travelling wave.
+    assert np.ptp(np.sort(np.abs(last))) > 0.1 * np.abs(last).max()
+    with pytest.raises(ValueError, match="followed with the full solver"):
+        sn.continuation(lambda speed_rpm: ring(6, 1, speed_rpm), 3000.0, 3300.0,
+                        from_bifurcation=found[0], symmetry="cyclic")
