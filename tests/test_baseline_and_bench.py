@@ -69,7 +69,8 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
     out = capsys.readouterr().out
     for heading in ("0. First run", "1. Integration speed", "2. Effects", "3. Against plain",
                     "4. Sweeps", "Fig. 6-class diagram", "peak resident memory",
-                    "5. The tangent flow", "6. Steady states", "wall time of the benchmark"):
+                    "5. The tangent flow", "6. Steady states", "8. Tuned rings",
+                    "wall time of the benchmark"):
         assert heading in out
     for wall, compiling in figures(rf"\): {N} s, of which {N} s compiling$", out, 2):
         assert 0.0 <= compiling <= wall
@@ -143,6 +144,11 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
     ((swept, ratio),) = figures(rf"speeds \(.*\): {N} s, {N}x the continuation's time",
                                 out, 1)
     assert ratio == pytest.approx(swept / seconds, abs=0.06)
+
+    # 8. tuned rings: the speed-ups are the quotients of the times
+    for full, symmetric, ratio in figures(
+            rf"full {N} ms, symmetric {N} ms \({N}x\)", out, 1):
+        assert ratio == pytest.approx(full / symmetric, abs=0.05 + 0.1 * ratio / symmetric)
 
 
 def test_a_second_process_loads_the_compiled_kernel_instead_of_compiling():
