@@ -26,6 +26,10 @@ MAX_ELEMENTS = 100_000
 #: The largest tip mass, as a multiple of the beam's own mass ρAL, whose mass matrix a
 #: float still resolves (its eigenvalues span that ratio).
 TIP_MASS_RATIO = 1e12
+#: The largest ratio of an element's rotational to translational entries (L_e² or its
+#: inverse, in m²) that the beam's matrices are built with: beyond it their eigenvalues
+#: (and the positive definiteness of M) are lost to rounding.
+ELEMENT_SPREAD = 1e12
 #: Gauss–Legendre points on [0, 1]: five integrate the degree-8 products exactly.
 _GAUSS_POINTS, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(5)
 _GAUSS_POINTS = 0.5 * (_GAUSS_POINTS + 1.0)
@@ -130,6 +134,13 @@ def cantilever_beam(*, length: float, youngs_modulus: float, density: float,
         hub_radius = check_real(owner, "hub_radius", hub_radius, low=0.0, unit="m")
 
     size, step = 4 * elements, length / elements
+    spread = max(step, 1.0 / step) ** 2
+    if spread > ELEMENT_SPREAD:
+        raise ValueError(f"{owner}: length = {length:g} m over {elements} elements makes "
+                         f"elements of {step:g} m, whose rotational and translational "
+                         f"mass and stiffness entries differ by {spread:.1e} [m²], more than "
+                         f"{ELEMENT_SPREAD:g}, beyond what the eigenvalues resolve: check "
+                         "the length's units [m]")
     mass, stiffness, speed = ([], [], [])
     try:
         with np.errstate(over="raise", invalid="raise"):

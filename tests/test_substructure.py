@@ -482,6 +482,9 @@ SPRING = np.array([[2.0, -1.0], [-1.0, 1.0]])
     (lambda: strip(load_position=0.0), ValueError,
      r"cantilever_beam\.load_position must be in \(0, 1\]"),
     (lambda: strip(elements=0), ValueError, r"cantilever_beam\.elements must be an int >= 1"),
+    (lambda: cantilever_beam(length=8e8, width=0.02, thickness=0.003, elements=2, **STEEL),
+     ValueError, r"cantilever_beam: length = 8e\+08 m over 2 elements makes elements of "
+                 r"4e\+08 m.*check the length's units"),
     (lambda: strip(shear_modulus=-1.0), ValueError, r"cantilever_beam\.shear_modulus"),
 ])
 def test_bad_input_fails_early_naming_the_field(make, error, message):
