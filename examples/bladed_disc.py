@@ -6,8 +6,14 @@ Saves in OUTPUT_FOLDER (default examples/output/):
 - bladed_disc_zzenf.png: the first three families' frequencies against the nodal diameter
   with the shrouds open and stuck, and the engine-order zig-zag at 3000 rpm;
 - bladed_disc_response.png: a tip's amplitude (half its peak-to-peak) and E_ρ along the
-  period-1 orbits (``continuation``) across the engine-order-6 resonance, 2900–3300 rpm,
-  where the preloaded shrouds open, slip and stick every period;
+  period-1 travelling waves (``continuation``, on the reduced map of one sector-passing
+  quarter period) across the engine-order-6 resonance, 2900–3300 rpm, where the
+  preloaded shrouds open, slip and stick every period; stable waves solid, unstable ones
+  dashed, and the bifurcations marked, each with the nodal diameter of its eigenvector:
+  those that break the wave's symmetry lead to standing or localised motion;
+- bladed_disc_localised.png: each sector's tip amplitude at 3000 rpm, for the travelling
+  wave (unstable there) and for the orbit a transient settles on instead, whose sectors
+  no longer repeat one another;
 - bladed_disc_mistuning.png: the distribution of the amplification factor over random
   blade frequency patterns (``mistuning_study``), with Whitehead's bound.
 The scene is ``shroudnet.scenes.bladed_disc_24``: a disc node and a two-node blade per
@@ -20,8 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-from shroudnet import (Branch, LinearModes, MistuningStudy, continuation, linear_modes,
-                       mistuning_study)
+from shroudnet import (Branch, LinearModes, MistuningStudy, PeriodicOrbit, continuation,
+                       linear_modes, mistuning_study, periodic_orbit)
 from shroudnet.scenes import bladed_disc_24
 
 OUTPUT = Path(__file__).resolve().parent / "output"
@@ -39,6 +45,8 @@ class Result:
     stuck: LinearModes
     branch: Branch
     mistuning: MistuningStudy
+    wave: PeriodicOrbit
+    settled: PeriodicOrbit
 
 
 #: The speeds [rpm] of the forced-response curve and of the mistuning study: across the
@@ -57,7 +65,17 @@ def compute(max_points=150, samples=40, speeds=9, transient=200, record=10):
     study = mistuning_study(scene, spread=0.01, samples=samples,
                             speeds_rpm=np.linspace(*PEAK, speeds), transient=transient,
                             record=record, progress=False)
-    return Result(open_, stuck, branch, study)
+    # At 3000 rpm: the travelling wave, and the orbit shooting whole periods finds from a
+    # transient, which need not share the wave's symmetry.
+    wave = periodic_orbit(scene, symmetry="cyclic", tolerance=1e-8)
+    settled = periodic_orbit(scene, symmetry="none", transient=transient, tolerance=1e-8)
+    return Result(open_, stuck, branch, study, wave, settled)
+
+
+def tip_amplitudes(orbit: PeriodicOrbit) -> np.ndarray:
+    """Each sector's tip amplitude [m] (half its peak-to-peak), sector by sector."""
+    half = 0.5 * (orbit.maximum - orbit.minimum)
+    return half.reshape(24, -1)[:, -1]
 
 
 def report(result: Result):
@@ -71,7 +89,15 @@ def report(result: Result):
           f"{branch.parameter[-1]:.1f} rpm, {branch.stable.sum()} stable; the tip's largest "
           f"amplitude {branch.amplitude(TIP).max() * 1e3:.4f} mm")
     for b in branch.bifurcations:
-        print(f"  {b.kind} at {b.parameter:.2f} rpm")
+        smooth = np.isfinite(b.multiplier)
+        print(f"  {b.kind} at {b.parameter:.2f} rpm"
+              + (f", |μ| = {abs(b.multiplier):.6f} along ND {b.wave_number}" if smooth
+                 else ""))
+    for label, orbit in (("travelling wave", result.wave), ("after a transient", result.settled)):
+        tips = tip_amplitudes(orbit)
+        print(f"3000 rpm, {label}: {'stable' if orbit.stable else 'unstable'}, |μ|max "
+              f"{abs(orbit.multipliers[0]):.4f} along ND {orbit.wave_numbers[0]}; tip "
+              f"amplitudes {tips.min() * 1e3:.4f}–{tips.max() * 1e3:.4f} mm over the sectors")
     study = result.mistuning
     factors = study.amplification
     print(f"mistuning, spread {study.spread:g}, {len(factors)} patterns: amplification "
@@ -82,7 +108,8 @@ def report(result: Result):
 
 def main(max_points=150, samples=40, speeds=9, transient=200, record=10, output=OUTPUT):
     """Compute, print the tables, save the figures in ``output``; returns the ``Result``."""
-    from shroudnet.figures import forced_response, mistuning_histogram, zzenf_diagram
+    from shroudnet.figures import (forced_response, mistuning_histogram, sector_amplitudes,
+                                   zzenf_diagram)
     result = compute(max_points, samples, speeds, transient, record)
     report(result)
     output = Path(output)
@@ -95,6 +122,10 @@ def main(max_points=150, samples=40, speeds=9, transient=200, record=10, output=
         output / "bladed_disc_response.png", dpi=110)
     mistuning_histogram(result.mistuning).savefig(output / "bladed_disc_mistuning.png",
                                                   dpi=110)
+    sector_amplitudes({"travelling wave (unstable)": result.wave,
+                       "the orbit a transient settles on": result.settled},
+                      title="Bladed disc at 3000 rpm, engine order 6: tip amplitude by "
+                            "sector").savefig(output / "bladed_disc_localised.png", dpi=110)
     print(f"saved the figures in {output}")
     return result
 

@@ -18,6 +18,7 @@ from .continuation import Branch
 from .engine.codes import Mode
 from .linear import GroupCampbell, LinearModes, excited_diameter
 from .mistuning import MistuningStudy
+from .orbits import PeriodicOrbit
 from .precision import Study
 from .simulation import Simulation
 from .sweep import Sweep
@@ -326,6 +327,30 @@ def zzenf_diagram(modes: Mapping[str, LinearModes], *, speed_rpm: float,
             axes.annotate(f"l = {order}", (nd, frequency), textcoords="offset points",
                           xytext=(4, 4), fontsize="small")
     axes.set(xlabel="nodal diameter", ylabel="frequency [Hz]", title=title)
+    axes.legend(fontsize="small")
+    return figure
+
+
+def sector_amplitudes(orbits: Mapping[str, PeriodicOrbit], slot: int = -1, *,
+                      scale: float = 1e3, unit: str = "mm",
+                      title: str = "Amplitude round the ring") -> Figure:
+    """Each sector's amplitude (half its peak-to-peak, [m] times ``scale`` in ``unit``) of
+    the node in position ``slot`` of its sector, one line per orbit of a ring or disc of
+    sectors: flat for a travelling wave, localised where a symmetry-breaking bifurcation
+    has taken over."""
+    figure = Figure(figsize=(7, 4.5), layout="constrained")
+    axes = figure.add_subplot()
+    for k, (label, orbit) in enumerate(orbits.items()):
+        sectors = orbit.scene.group.graph.graph.get("sectors")
+        if sectors is None:
+            raise ValueError(f"sector_amplitudes: the orbit {label!r} is not of a ring or a "
+                             "disc of sectors")
+        half = 0.5 * (orbit.maximum - orbit.minimum)
+        per_sector = len(half) // sectors
+        values = half.reshape(sectors, per_sector)[:, slot] * scale
+        axes.plot(np.arange(1, sectors + 1), values, "o-", color=f"C{k}", label=label)
+    axes.set(xlabel="sector", ylabel=f"amplitude, ½ peak-to-peak [{unit}]", title=title,
+             ylim=(0.0, None))
     axes.legend(fontsize="small")
     return figure
 
