@@ -228,9 +228,10 @@ def _parser() -> argparse.ArgumentParser:
         "numbers: forced-response curve with stability and bifurcations",
         description="Continue the branch of periodic orbits of SCENE.toml in one of its "
         "numbers from A to B (pseudo-arclength, through folds), with each orbit's Floquet "
-        "multipliers. Prints the bifurcations met (fold, period-doubling, torus, grazing, "
-        "stick-slip); writes the branch (.npz, loads back with shroudnet.results.load) and "
-        "its forced-response figure (.png) of the [run] blade.")
+        "multipliers. Prints the bifurcations met (fold, period-doubling, torus, "
+        "symmetry-breaking, grazing, stick-slip; on a ring, each smooth one with the nodal "
+        "diameter of its eigenvector); writes the branch (.npz, loads back with "
+        "shroudnet.results.load) and its forced-response figure (.png) of the [run] blade.")
     follow.add_argument("scene", type=Path, help="scene file (TOML)")
     follow.add_argument("--param", required=True, metavar="PATH",
                         help="the number to follow, as a dotted path into the file (as for "
@@ -247,6 +248,11 @@ def _parser() -> argparse.ArgumentParser:
                         "more points")
     follow.add_argument("--max-points", type=whole(2), default=1000,
                         help="the most orbits (default 1000)")
+    follow.add_argument("--symmetry", choices=("cyclic", "none"), default=None,
+                        help="'cyclic': follow the travelling waves of a tuned ring forced "
+                        "in engine order on the reduced map of one sector-passing time; "
+                        "'none': shoot whole periods (default: 'cyclic' where the ring has "
+                        "the symmetry)")
     follow.add_argument("--output", "-o", type=Path, default=Path("."),
                         help="folder for SCENE-continue-PATH.npz and .png (default: here)")
     _blade_option(follow)
@@ -759,7 +765,8 @@ def _continue(args) -> int:
     try:
         branch = continuation(scene_at, args.start, args.stop, periods=args.periods,
                               max_step=args.max_step, max_points=args.max_points,
-                              parameter=args.param, progress=_branch_progress(args.param))
+                              parameter=args.param, progress=_branch_progress(args.param),
+                              symmetry=args.symmetry)
     except KeyboardInterrupt:
         raise Interrupted("interrupted; nothing was saved") from None
     finally:
@@ -777,12 +784,20 @@ def _continue(args) -> int:
           f"at {args.param} = {branch.parameter[top]:.6g} (max |x| {peak:.4g} m)")
     for b in branch.bifurcations:
         critical = (f", multiplier {b.multiplier.real:+.6f}{b.multiplier.imag:+.6f}j"
-                    if np.isfinite(b.multiplier) else "")
+                    + _diameter(b) if np.isfinite(b.multiplier) else "")
         print(f"{b.kind:17s}at {args.param} = {b.parameter:.8g}{critical}")
     saved = results.save_branch(_beside(stem, ".npz"), branch, scene_at)
     figure = _save_branch_figure(branch, blade, _beside(stem, ".png"))
     print(f"saved    {saved}, {figure}")
     return 0
+
+
+def _diameter(bifurcation) -> str:
+    """", along ND k" for a bifurcation of a ring (the diameter of its eigenvector), else
+    nothing."""
+    if bifurcation.orbit.scene.group.graph.graph.get("sectors") is None:
+        return ""
+    return f", along ND {bifurcation.wave_number}"
 
 
 def _modes(args) -> int:
