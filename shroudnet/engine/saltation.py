@@ -32,17 +32,25 @@ GRAZING_GAIN = 1e6
 
 
 @njit_inlined
-def grazing(jump_size, normal, s, rate):
-    """Whether a switch with guard gradient ``normal`` (∂g/∂y, 2n) and rate ġ = ``rate``
-    grazes: its saltation's correction, with accelerations that jump by at most
-    ``jump_size``, would stretch a tangent by more than ``GRAZING_GAIN``."""
+def correction_stretch(jump_size, normal, s):
+    """How far a saltation's correction stretches a tangent per unit of the guard's rate ġ,
+    for accelerations that jump by at most ``jump_size`` across a guard with gradient
+    ``normal`` (∂g/∂y, 2n): ``jump_size`` (|∂g/∂x| τ + |∂g/∂ẋ|) (``GRAZING_GAIN``)."""
     n = len(s.mass)
     by_position = 0.0
     by_velocity = 0.0
     for i in range(n):
         by_position = max(by_position, abs(normal[i]))
         by_velocity = max(by_velocity, abs(normal[n + i]))
-    return jump_size * (by_position * time_scale(s) + by_velocity) > GRAZING_GAIN * abs(rate)
+    return jump_size * (by_position * time_scale(s) + by_velocity)
+
+
+@njit_inlined
+def grazing(jump_size, normal, s, rate):
+    """Whether a switch with guard gradient ``normal`` (∂g/∂y, 2n) and rate ġ = ``rate``
+    grazes: its saltation's correction, with accelerations that jump by at most
+    ``jump_size``, would stretch a tangent by more than ``GRAZING_GAIN``."""
+    return correction_stretch(jump_size, normal, s) > GRAZING_GAIN * abs(rate)
 
 
 @njit_inlined
@@ -214,22 +222,65 @@ def apply_saltation(t, e, time_rate, several, s, topology, g):
 #: interfaces that switch at the same instant commute (``apply_saltations``).
 COMMUTING = 1e-9
 
+#: The stretch (as ``GRAZING_GAIN`` measures it) below which a jump of the vector field
+#: outside every switching interface's support is the switch's location error, not a
+#: force that changed there (``apply_saltations``). Where the vector field is continuous
+#: across a switch (stick onset on one-mass nodes, breakaway with μ(0⁺) = μ_s, a contact
+#: law with N(0) = 0), f⁺ − P f⁻ is that error alone, of the order of the event tolerance
+#: times the slope of the forces.
+LOCATION_STRETCH = 1e-6
+
+
+@njit_inlined
+def _claim(e, k, s, topology, owner):
+    """Give the nodes of the clusters of interface e's two ends to switch k; returns how
+    many were not its own before, or −1 where one belonged to another switch."""
+    added = 0
+    for i in range(len(owner)):
+        label = topology.labels[i]
+        if (s.left[e] >= 0 and topology.labels[s.left[e]] == label) or (
+                s.right[e] >= 0 and topology.labels[s.right[e]] == label):
+            if owner[i] >= 0 and owner[i] != k:
+                return -1
+            if owner[i] != k:
+                owner[i] = k
+                added += 1
+    return added
+
+
+@njit_inlined
+def _end_owner(e, s, topology, owner):
+    """The switch that owns a node of the clusters of interface e's ends: −1 for none,
+    −2 for nodes of two different switches."""
+    found = -1
+    for i in range(len(owner)):
+        label = topology.labels[i]
+        if owner[i] >= 0 and ((s.left[e] >= 0 and topology.labels[s.left[e]] == label) or (
+                s.right[e] >= 0 and topology.labels[s.right[e]] == label)):
+            if found >= 0 and owner[i] != found:
+                return -2
+            found = owner[i]
+    return found
+
 
 @njit_step_exact
-def commuting_saltations(t, count, s, topology, g, sw):
+def commuting_saltations(t, count, modes, s, topology, g, sw):
     """Φ ← S Φ for switches of several interfaces at one instant, where that is well
     defined; returns whether it was (else nothing is changed).
 
-    Interface k's switch changes the vector field on its support only: the blades of the
-    clusters (those after the switch) its two ends belong to. Where the supports are
-    disjoint, the jump f⁺ − P f⁻ vanishes outside them, and no guard sees another's jump
-    (|n_jᵀ Δf_k| ≤ ``COMMUTING`` |n_jᵀ f⁻ + ∂g_j/∂t| for j ≠ k), the saltation matrices
-    S_k = P + Δf_k n_kᵀ / ġ_k commute: in whichever order a perturbation makes the
-    interfaces switch, S Φ = P Φ + Σ_k Δf_k (n_kᵀ Φ) / ġ_k. Such are interfaces far apart
-    on a ring, which its symmetry makes switch together. The first ``count`` rows of
-    sw.crossing_normals and entries of sw.crossing_rates are n_k and ġ_k of sw.crossings[k]
-    (``records.Switching``); g.f_minus and g.f_plus hold f⁻ and f⁺. A grazing one
-    (``GRAZING_GAIN``) is counted in g.singular, as ``apply_saltation`` counts it.
+    Interface k's switch changes the vector field on its support only: the nodes of the
+    clusters (those after the switch) of its two ends, and of the ends of every interface
+    whose mode changed with it (``modes`` against sw.modes_before) and that reaches its
+    support: a stuck interface released, or a candidate held, because of it. Where the
+    supports are disjoint, the jump f⁺ − P f⁻ outside them is below ``LOCATION_STRETCH``,
+    and no guard sees another's jump (|n_jᵀ Δf_k| ≤ ``COMMUTING`` |n_jᵀ f⁻ + ∂g_j/∂t| for
+    j ≠ k), the saltation matrices S_k = P + Δf_k n_kᵀ / ġ_k commute: in whichever order a
+    perturbation makes the interfaces switch, S Φ = P Φ + Σ_k Δf_k (n_kᵀ Φ) / ġ_k. Such
+    are interfaces far apart on a ring, which its symmetry makes switch together. The
+    first ``count`` rows of sw.crossing_normals and entries of sw.crossing_rates are n_k
+    and ġ_k of sw.crossings[k] (``records.Switching``); g.f_minus and g.f_plus hold f⁻
+    and f⁺. A grazing one (``GRAZING_GAIN``) is counted in g.singular, as
+    ``apply_saltation`` counts it.
     """
     n = len(s.mass)
     crossings, normals, rates = sw.crossings, sw.crossing_normals, sw.crossing_rates
@@ -237,25 +288,37 @@ def commuting_saltations(t, count, s, topology, g, sw):
     for r in range(2 * n):
         jump[r] = g.f_minus[r]
     project_velocities(s, topology, jump, n, g.rows)
-    largest = 0.0
     for r in range(2 * n):
         jump[r] = g.f_plus[r] - jump[r]
-        largest = max(largest, abs(jump[r]))
     owner = sw.owner
     for i in range(n):
         owner[i] = -1
     for k in range(count):
-        e = crossings[k]
-        for i in range(n):
-            label = topology.labels[i]
-            if (s.left[e] >= 0 and topology.labels[s.left[e]] == label) or (
-                    s.right[e] >= 0 and topology.labels[s.right[e]] == label):
-                if owner[i] >= 0 and owner[i] != k:
-                    return False
-                owner[i] = k
-    for i in range(n):
-        if owner[i] < 0 and max(abs(jump[i]), abs(jump[n + i])) > 1e-12 * largest:
+        if _claim(crossings[k], k, s, topology, owner) < 0:
             return False
+    grown = True
+    while grown:  # the interfaces that changed mode with a switch join its support
+        grown = False
+        for e in range(len(modes)):
+            if modes[e] == sw.modes_before[e]:
+                continue
+            k = _end_owner(e, s, topology, owner)
+            if k == -2:
+                return False
+            if k >= 0 and _claim(e, k, s, topology, owner) > 0:
+                grown = True
+    for e in range(len(modes)):  # a mode change that no switch reaches: not split
+        if modes[e] != sw.modes_before[e] and _end_owner(e, s, topology, owner) < 0:
+            return False
+    scale = time_scale(s)
+    for i in range(n):
+        if owner[i] >= 0:
+            continue
+        size = max(abs(jump[i]) / scale, abs(jump[n + i]))
+        for k in range(count):
+            if size > 0.0 and correction_stretch(size, normals[k], s) \
+                    > LOCATION_STRETCH * abs(rates[k]):
+                return False
     for j in range(count):
         for k in range(count):
             if j == k:

@@ -200,7 +200,7 @@ def structure_breakaway_normal(e, sign, t, s, modes, topology, g):
 
 
 @njit_step
-def structure_saltations(t, count, s, topology, g, sw):
+def structure_saltations(t, count, modes, s, topology, g, sw):
     """``apply_saltations`` for substructures: switches of several interfaces at one
     instant are not split by support (a substructure's coordinates are shared by all its
     interfaces), so none is applied here and the caller counts the switch as singular."""

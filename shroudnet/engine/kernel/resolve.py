@@ -205,7 +205,8 @@ def switch(t, state, topology, s, w, sw, events, controls):
         for i in range(len(state.x)):
             g.f_plus[i] = state.v[i]
             g.f_plus[len(state.x) + i] = w.a_start[i]
-        if not (several and apply_saltations(t, n_crossed, s, topology, g, sw)):
+        if not (several and apply_saltations(t, n_crossed, state.modes, s, topology, g,
+                                             sw)):
             apply_saltation(t, crossing, time_rate, several, s, topology, g)
     if status == FINISHED and not is_finite(state):
         status = NOT_FINITE
