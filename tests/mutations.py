@@ -275,6 +275,14 @@ MUTATIONS = (
              "        v[i, i] += b[1]\n", "        v[i, i] += b[0]\n",
              "the Padé approximant's odd part U takes b₀ for b₁: e^A is wrong at every scale",
              (EXPONENTIAL,)),
+    Mutation("saltation-knock-on-support-ignored", "tangent",
+             "    grown = True\n    while grown:",
+             "    grown = False\n    while grown:",
+             "a stuck neighbour released by a switch is left out of that switch's support: "
+             "a ring's symmetric pairs of switches are called singular",
+             ("tests/test_tangent.py::"
+              "test_a_rings_interfaces_switching_together_by_its_symmetry_multiply_their_"
+              "saltations",)),
     # ---- orbits: Newton's step (M − I) Δy = −(φ(y) − y) ----------------------------------
     Mutation("newton-without-monodromy", "orbits",
              "change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)",
