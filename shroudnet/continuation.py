@@ -63,7 +63,8 @@ KINK_JUMPS = (1e-5, 1e-4, 1e-3)
 #: A corrector whose residual stops falling (by less than half an iteration) within
 #: this many times the tolerance has met the map's own integration noise: it has converged.
 NOISE_FLOOR = 10.0
-#: How far from a period doubling the doubled branch is first sought (scaled units).
+#: How far from a period doubling (or a symmetry-breaking point) the new branch is first
+#: sought (scaled units).
 DOUBLED_OFFSET = 1e-3
 #: Corrector iterations before a step is halved; a step that converged in at most
 #: ``EASY_ITERATIONS`` grows by ``GROWTH``.
@@ -681,36 +682,29 @@ class Solver:
 
     def doubled(self, bifurcation):
         """The first point of the period-2k branch born at a period doubling, and the
-        direction away from it."""
-        orbit = bifurcation.orbit
-        self.weights = state_weights(orbit.scene, orbit.state)
-        values, vectors = np.linalg.eig(orbit.monodromy)
-        k = np.argmin(np.abs(values + 1.0))
-        w = self.weights
-        away = np.append(w * np.real(vectors[:, k]), 0.0)
-        away /= np.linalg.norm(away)
-        periods = 2 * orbit.periods
-        base = np.append(w * orbit.state, bifurcation.parameter / self.span)
-        size = DOUBLED_OFFSET
-        point, _ = self.correct(base + size * away, away, away @ base + size, periods,
-                                reach=1.0)
-        return point, point.u - base
-
+        direction away from it (``branching``)."""
+        return self.branching(bifurcation, -1.0, 2 * bifurcation.orbit.periods)
 
     def broken(self, bifurcation):
         """The first point of the branch of non-symmetric orbits born at a
         symmetry-breaking bifurcation (followed with the full solver), and the direction
-        away from it: along the critical multiplier's eigenvector."""
+        away from it (``branching``)."""
+        return self.branching(bifurcation, bifurcation.multiplier, bifurcation.orbit.periods)
+
+    def branching(self, bifurcation, multiplier, periods):
+        """The first point of the branch of orbits of ``periods`` born at ``bifurcation``,
+        ``DOUBLED_OFFSET`` along the eigenvector of its orbit's multiplier nearest
+        ``multiplier``, and the direction away from it."""
         orbit = bifurcation.orbit
         self.weights = state_weights(orbit.scene, orbit.state)
         values, vectors = np.linalg.eig(orbit.monodromy)
-        k = np.argmin(np.abs(values - bifurcation.multiplier))
+        k = np.argmin(np.abs(values - multiplier))
         w = self.weights
         away = np.append(w * np.real(vectors[:, k]), 0.0)
         away /= np.linalg.norm(away)
         base = np.append(w * orbit.state, bifurcation.parameter / self.span)
         size = DOUBLED_OFFSET
-        point, _ = self.correct(base + size * away, away, away @ base + size, orbit.periods,
+        point, _ = self.correct(base + size * away, away, away @ base + size, periods,
                                 reach=1.0)
         return point, point.u - base
 

@@ -35,29 +35,40 @@ from .stability import StroboscopicStep
 
 @dataclass(frozen=True)
 class CyclicSymmetry:
-    """The symmetry of a tuned ring forced in engine order (module docstring).
-
-    ``sectors``: N; ``engine_order``: l; ``image``: P(p) for every node position p;
-    ``steps``: k, the sectors the orbit moves on over ``fraction`` = τ / T_e = g/N.
-    """
+    """The symmetry of a tuned ring forced in engine order (module docstring):
+    ``sectors`` N of ``per_sector`` nodes each, ``engine_order`` l."""
 
     sectors: int
+    per_sector: int
     engine_order: int
-    image: np.ndarray
-    steps: int
-    fraction: float
+
+    @property
+    def share(self) -> int:
+        """g = gcd(l, N)."""
+        return math.gcd(self.engine_order, self.sectors)
+
+    @property
+    def fraction(self) -> float:
+        """τ / T_e = g/N."""
+        return self.share / self.sectors
 
     @property
     def repeats(self) -> int:
         """N/g: the reduced maps in one excitation period."""
-        return round(1.0 / self.fraction)
+        return self.sectors // self.share
+
+    @property
+    def steps(self) -> int:
+        """k, the sectors the orbit moves on over τ: k (l/g) ≡ 1 (mod N/g); 0 where
+        N/g = 1."""
+        return pow(self.engine_order // self.share, -1, self.repeats) if self.repeats > 1 \
+            else 0
 
     def positions(self, steps: int) -> np.ndarray:
-        """Pᵐ (m = ``steps``, taken mod N) as an index array: (Sᵐ y)_p = y[Pᵐ(p)]."""
-        index = np.arange(len(self.image))
-        for _ in range(steps % self.sectors):
-            index = self.image[index]
-        return index
+        """Pᵐ (m = ``steps``) as an index array, (Sᵐ y)_p = y[Pᵐ(p)]: node p's image m
+        sectors on, p + m·``per_sector`` round the ring."""
+        n = self.sectors * self.per_sector
+        return (np.arange(n) + steps * self.per_sector) % n
 
     def shifted(self, y: np.ndarray, steps: int) -> np.ndarray:
         """Sᵐ y for a state y = (x, ẋ) (or a matrix whose rows are), m = ``steps``."""
@@ -86,19 +97,18 @@ def cyclic_symmetry(scene: Scene) -> CyclicSymmetry:
         raise ValueError("cyclic symmetry needs every node to move with its sector; this "
                          "group has prescribed-motion nodes")
     n = a.n_blades
-    per_sector = n // sectors
-    position = np.arange(n)
-    image = (position + per_sector) % n
+    if n % sectors:
+        raise ValueError(f"cyclic symmetry needs the {n} nodes to be {sectors} sectors of "
+                         "as many nodes each")
+    symmetry = CyclicSymmetry(sectors=sectors, per_sector=n // sectors,
+                              engine_order=scene.excitation.engine_order)
+    image = symmetry.positions(1)
     _check_nodes(a, image)
     _check_edges("interface", (a.left, a.right), image, _interface_rows(a))
     _check_edges("coupling", (a.coupling_left, a.coupling_right), image,
                  list(zip(a.coupling_stiffness, a.coupling_damping)))
-    engine_order = scene.excitation.engine_order
-    _check_forcing(a, image, engine_order, sectors)
-    share = math.gcd(engine_order, sectors)
-    steps = pow(engine_order // share, -1, sectors // share) if sectors > share else 0
-    return CyclicSymmetry(sectors=sectors, engine_order=engine_order, image=image,
-                          steps=steps, fraction=share / sectors)
+    _check_forcing(a, image, symmetry.engine_order, sectors)
+    return symmetry
 
 
 def _check_nodes(a, image) -> None:
@@ -153,14 +163,11 @@ def _check_forcing(a, image, engine_order, sectors) -> None:
                          "from sector to sector")
 
 
-def first_sector(scene: Scene, symmetry: CyclicSymmetry) -> np.ndarray:
-    """The positions of the responses (``Scene.responses``) of the first sector: on a
-    symmetric orbit the others repeat them, sector by sector."""
-    count = len(scene.responses)
-    if count % symmetry.sectors:
-        raise ValueError(f"the {count} responses are not one set per sector of "
-                         f"{symmetry.sectors}")
-    return np.arange(count // symmetry.sectors)
+def first_sector(symmetry: CyclicSymmetry) -> np.ndarray:
+    """The positions of the first sector's responses (its nodes: ``cyclic_symmetry`` takes
+    groups of ``Blade``s only): on a symmetric orbit the others repeat them, sector by
+    sector."""
+    return np.arange(symmetry.per_sector)
 
 
 def reduced_step(scene: Scene, symmetry: CyclicSymmetry, initial, *, method,

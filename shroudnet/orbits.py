@@ -408,10 +408,9 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
     initial = (y[:n].copy(), y[n:].copy())
     run = simulate(scene, periods, method=method, samples_per_period=samples_per_period,
                    event_tolerance=event_tolerance, initial=initial)
-    responses = None if cyclic is None else first_sector(scene, cyclic)
     found = orbit_extremes(scene, initial, run.t, run.x, run.v, run.events.time,
                            method=run.settings.method, event_tolerance=event_tolerance,
-                           responses=responses)
+                           responses=None if cyclic is None else first_sector(cyclic))
     maximum, minimum = found.maximum, found.minimum
     if cyclic is not None:
         maximum, minimum = np.tile(maximum, cyclic.sectors), np.tile(minimum, cyclic.sectors)
