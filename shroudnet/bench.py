@@ -550,7 +550,7 @@ def main(argv=None) -> None:
             continue
         (full, full_orbit), (symmetric, orbit) = found["full"], found["symmetric"]
         gap = np.abs(full_orbit.state - orbit.state).max() / np.abs(orbit.state).max()
-        print(f"   {label}: full {full * 1e3:.0f} ms, symmetric {symmetric * 1e3:.0f} ms "
+        print(f"   {label}: full {full * 1e3:.5g} ms, symmetric {symmetric * 1e3:.5g} ms "
               f"({full / symmetric:.1f}x); |μ|max {abs(orbit.multipliers[0]):.4f} of ND "
               f"{orbit.wave_numbers[0]}"
               + ("" if gap < 1e-6 else f"; the full solver found another orbit ({gap:.2g} "
