@@ -34,6 +34,13 @@ from shroudnet import (Blade, BladeGroup, Excitation, AntiPhase, Interface,
 pytestmark = pytest.mark.timeout(900)
 
 
+@pytest.fixture(autouse=True)
+def _in_a_scratch_folder(tmp_path, monkeypatch):
+    """A door handed a random string as a folder (``sweep(save_to="Å")``) writes there:
+    relative to a scratch folder, never to the checkout."""
+    monkeypatch.chdir(tmp_path)
+
+
 def _project_errors() -> tuple[type[Exception], ...]:
     from shroudnet.results import ResultsError
     from shroudnet.scenefile import SceneFileError
