@@ -29,6 +29,7 @@ import importlib.util
 import inspect
 import sys
 import time
+import weakref
 from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
@@ -271,11 +272,24 @@ def _cached(driver) -> bool:
         return False
 
 
+#: Each scene's kernel arrays, made once: a Newton step, a refinement of an extreme and
+#: every run of a study integrate the same scene again and again (the kernel only reads them).
+_KERNEL_SCENES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
 def kernel_scene(scene: Scene) -> KernelScene | StructureScene:
     """The scene's arrays with each law given as (index of its class, parameter row), and
     its prescribed-motion nodes after the blades (``KernelScene``); with substructures or
     elastic contacts, a ``StructureScene``, with the elastic contacts' sliders as
-    coordinates between the free and the prescribed ones."""
+    coordinates between the free and the prescribed ones. Made once per scene."""
+    found = _KERNEL_SCENES.get(scene)
+    if found is None:
+        found = _KERNEL_SCENES[scene] = _lowered(scene)
+    return found
+
+
+def _lowered(scene: Scene) -> KernelScene | StructureScene:
+    """``kernel_scene``, made afresh."""
     a = scene.arrays
     for e in np.flatnonzero(np.isfinite(a.tangential_stiffness)):
         if type(a.friction_laws[e]) is not Coulomb:
