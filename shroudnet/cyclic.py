@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .extremes import state_at
 from .scene import Scene
 from .simulate import integrate
 from .stability import StroboscopicStep
@@ -75,6 +76,25 @@ class CyclicSymmetry:
         index = self.positions(steps)
         n = len(index)
         return np.asarray(y)[np.concatenate([index, n + index])]
+
+    @property
+    def repeating(self) -> int:
+        """The nodes of the N/g sectors over which a symmetric orbit's state repeats round
+        the ring: the forcing's phase, 2πl/N a sector, comes round every N/g sectors."""
+        return self.repeats * self.per_sector
+
+    def tiled(self, z: np.ndarray) -> np.ndarray:
+        """The ring's state y = B z (or matrix, by rows) that repeats z = (x, ẋ) of the
+        first N/g sectors all round the ring."""
+        m = self.repeating
+        index = np.arange(self.sectors * self.per_sector) % m
+        return np.asarray(z)[np.concatenate([index, m + index])]
+
+    def restricted(self, y: np.ndarray) -> np.ndarray:
+        """The first N/g sectors' part z of a ring's state y (or matrix, by rows): the
+        inverse of ``tiled`` on the states it makes."""
+        m, n = self.repeating, self.sectors * self.per_sector
+        return np.asarray(y)[np.r_[0:m, n:n + m]]
 
     def monodromy(self, reduced: np.ndarray) -> np.ndarray:
         """M = S^{kN/g} A^{N/g} from the reduced map's Jacobian A = ``reduced``."""
@@ -170,20 +190,48 @@ def first_sector(symmetry: CyclicSymmetry) -> np.ndarray:
     return np.arange(symmetry.per_sector)
 
 
+def state_on_orbit(symmetry: CyclicSymmetry, scene: Scene, initial, *, method,
+                   event_tolerance: float):
+    """time [s] → (x, ẋ) of the symmetric orbit from ``initial``, run again from its start
+    over less than τ: with t = iτ + s, 0 ≤ s < τ, y(t) = S^{ik} y(s) — a run to s rather
+    than to t (``extremes.state_at``)."""
+    tau = symmetry.fraction * scene.excitation_period
+
+    def state(time):
+        turns = max(int(np.floor(time / tau)), 0)
+        x, v = state_at(scene, initial, time - turns * tau, method, event_tolerance)
+        return np.split(symmetry.shifted(np.concatenate([x, v]), turns * symmetry.steps), 2)
+    return state
+
+
 def reduced_step(scene: Scene, symmetry: CyclicSymmetry, initial, *, method,
-                 event_tolerance: float) -> StroboscopicStep:
+                 event_tolerance: float, repeating: bool = False) -> StroboscopicStep:
     """G(y) = S⁻ᵏ φ_τ(y) and its Jacobian A = S⁻ᵏ Φ_τ from ``initial`` = (x0, v0), in one
     run over τ with the 2N × 2N tangent flow (``stability.stroboscopic_step`` over τ);
-    ``singular`` counts the switches of the run over τ."""
+    ``singular`` counts the switches of the run over τ.
+
+    With ``repeating``, ``initial`` is z, the first N/g sectors' state, of a ring state
+    y = B z that repeats it round the ring (``CyclicSymmetry.tiled``), which G maps onto
+    such a state again (the forcing comes round every N/g sectors): the step is
+    z ↦ B⁺ G(B z) with its Jacobian B⁺ A B, whose tangent flow carries 2mN/g columns, not
+    2mN — the map Newton solves on, the symmetric orbit lying among those states."""
+    x0, v0 = initial
+    if repeating:
+        x0, v0 = np.split(symmetry.tiled(np.concatenate([x0, v0])), 2)
     n = scene.arrays.n_blades
+    start = np.eye(2 * n)
+    if repeating:
+        start = symmetry.tiled(np.eye(2 * symmetry.repeating))
     run = integrate(scene, 1, method=method, samples_per_period=1,
-                    event_tolerance=event_tolerance, initial=initial, event_capacity=0,
-                    tangent=np.eye(2 * n),
-                    until=symmetry.fraction * scene.excitation_period).run
+                    event_tolerance=event_tolerance, initial=(x0, v0), event_capacity=0,
+                    tangent=start, until=symmetry.fraction * scene.excitation_period).run
     tangent = run.tangent
-    end = np.concatenate([run.output.x[-1], run.output.v[-1]])
-    return StroboscopicStep(scene=scene, end=symmetry.shifted(end, -symmetry.steps),
-                            jacobian=symmetry.shifted(tangent.matrix, -symmetry.steps),
+    end = symmetry.shifted(np.concatenate([run.output.x[-1], run.output.v[-1]]),
+                           -symmetry.steps)
+    jacobian = symmetry.shifted(tangent.matrix, -symmetry.steps)
+    if repeating:
+        end, jacobian = symmetry.restricted(end), symmetry.restricted(jacobian)
+    return StroboscopicStep(scene=scene, end=end, jacobian=jacobian,
                             singular=int(tangent.singular[0]),
                             singular_time=float(tangent.singular_time[0]),
                             singular_interface=int(tangent.singular_interface[0]))

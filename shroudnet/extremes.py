@@ -43,12 +43,16 @@ class Extremes:
 
 
 def orbit_extremes(scene, initial, t, x, v, switches, *, method, event_tolerance,
-                   responses=None) -> Extremes:
+                   responses=None, state=None) -> Extremes:
     """The ``Extremes`` of the orbit starting at ``initial`` (x0, ẋ0) at t = 0, from its
     samples ``t``, ``x``, ``ẋ`` over one whole orbit (first and last samples one orbit
     apart) and the times of its ``switches`` [s], each extremum refined by running the
-    orbit again to it with ``method`` and ``event_tolerance`` (module docstring); of the
-    responses whose positions ``responses`` lists (default: all of them)."""
+    orbit again to it with ``method`` and ``event_tolerance`` (module docstring), or by
+    ``state`` (time [s] → the orbit's (x, ẋ) there) where given; of the responses whose
+    positions ``responses`` lists (default: all of them)."""
+    if state is None:
+        def state(time):
+            return state_at(scene, initial, time, method, event_tolerance)
     rows = scene.response_matrix
     if responses is not None:
         rows = rows[responses]
@@ -58,8 +62,8 @@ def orbit_extremes(scene, initial, t, x, v, switches, *, method, event_tolerance
         for sign in best:
             k = int(np.argmax(sign * r[:-1, j]))
             options = [(sign * r[k, j], t[k])] + [
-                _refine(scene, initial, time, rows[j], sign, t, r[:, j], rate[:, j],
-                        switches, method, event_tolerance)
+                _refine(scene, state, time, rows[j], sign, t, r[:, j], rate[:, j],
+                        switches)
                 for time, _ in _crossings(t, sign * r[:, j], sign * rate[:, j])]
             best[sign].append(max(options, key=lambda pair: pair[0]))
     return Extremes(
@@ -136,8 +140,7 @@ def _falling_root(p0, p1, m0, m1) -> float | None:
     return float(np.clip(min(inside), 0.0, 1.0)) if inside else None
 
 
-def _refine(scene, initial, time, row, sign, t, r, rate, switches, method,
-            event_tolerance):
+def _refine(scene, state, time, row, sign, t, r, rate, switches):
     """(sign · r*, t*) of the extremum in the sample interval holding the candidate time
     ``time`` (module docstring). Where no switch lies in the interval the motion is smooth
     there: one run to ``time`` and the vertex of the parabola through its state, with the
@@ -148,7 +151,7 @@ def _refine(scene, initial, time, row, sign, t, r, rate, switches, method,
         h = t[k + 1] - t[k]
         curvature = sign * _hermite_slopes(r[k], r[k + 1], h * rate[k], h * rate[k + 1],
                                            (time - t[k]) / h)[1] / (h * h)
-        x, v = state_at(scene, initial, time, method, event_tolerance)
+        x, v = state(time)
         value, slope = sign * float(row @ x), sign * float(row @ v)
         if curvature < 0.0:
             value -= slope * slope / (2.0 * curvature)
@@ -157,7 +160,7 @@ def _refine(scene, initial, time, row, sign, t, r, rate, switches, method,
     best, trial, stale = (-np.inf, time), time, 0
     width = ROOT_WIDTH * scene.excitation_period
     for _ in range(ROOT_STEPS):
-        x, v = state_at(scene, initial, trial, method, event_tolerance)
+        x, v = state(trial)
         value, slope = sign * float(row @ x), sign * float(row @ v)
         best = max(best, (value, trial))
         if slope > 0.0:

@@ -19,7 +19,8 @@ from .engine.codes import EventKind
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
 from .scene import Scene
 from .analysis import hysteresis_loop
-from .cyclic import CyclicSymmetry, cyclic_symmetry, first_sector, reduced_step, whole_period
+from .cyclic import (CyclicSymmetry, cyclic_symmetry, first_sector, reduced_step,
+                     state_on_orbit, whole_period)
 from .cycle import (EnergyPerCycle, Harmonics, energy_per_cycle, equivalent_damping,
                     harmonics, kinetic_peak)
 from .extremes import orbit_extremes, state_at
@@ -264,23 +265,37 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
     cyclic = symmetry_of(scene, periods, symmetry)
     starts = start_states(scene, periods, guess, transient, method, event_tolerance)
 
+    # Where the forcing comes round in fewer sectors than the ring has (g > 1), Newton
+    # solves on the states that repeat every N/g sectors, its tangent flow of 2mN/g
+    # columns; one run with the whole ring's tangent at the orbit then gives every
+    # multiplier.
+    repeating = cyclic is not None and cyclic.share > 1
+
     def step_at(z):
         if cyclic is None:
             return stroboscopic_step(scene, periods, np.split(z, 2), method=method,
                                      event_tolerance=event_tolerance)
         return reduced_step(scene, cyclic, np.split(z, 2), method=method,
-                            event_tolerance=event_tolerance)
+                            event_tolerance=event_tolerance, repeating=repeating)
 
     for attempt, y in enumerate(starts):
         weights = state_weights(scene, y)
+        if repeating:
+            y, weights = cyclic.restricted(y), cyclic.restricted(weights)
         try:
             solve = newton(step_at, y, weights, tolerance)
         except ConvergenceError:
             if attempt == len(starts) - 1:
                 raise
             continue
-        step = solve.step if cyclic is None else whole_period(cyclic, solve.step)
-        return orbit_at(scene, periods, solve.state, step, solve.residual,
+        y, step = solve.state, solve.step
+        if repeating:
+            y = cyclic.tiled(y)
+            step = reduced_step(scene, cyclic, np.split(y, 2), method=method,
+                                event_tolerance=event_tolerance)
+        if cyclic is not None:
+            step = whole_period(cyclic, step)
+        return orbit_at(scene, periods, y, step, solve.residual,
                         1.0 / weights[0], solve.iterations, method, event_tolerance,
                         samples_per_period, history, cyclic)
 
@@ -408,9 +423,16 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
     initial = (y[:n].copy(), y[n:].copy())
     run = simulate(scene, periods, method=method, samples_per_period=samples_per_period,
                    event_tolerance=event_tolerance, initial=initial)
+    if cyclic is None:
+        def state(time):
+            return state_at(scene, initial, time, run.settings.method, event_tolerance)
+    else:
+        state = state_on_orbit(cyclic, scene, initial, method=run.settings.method,
+                               event_tolerance=event_tolerance)
     found = orbit_extremes(scene, initial, run.t, run.x, run.v, run.events.time,
                            method=run.settings.method, event_tolerance=event_tolerance,
-                           responses=None if cyclic is None else first_sector(cyclic))
+                           responses=None if cyclic is None else first_sector(cyclic),
+                           state=state)
     maximum, minimum = found.maximum, found.minimum
     if cyclic is not None:
         maximum, minimum = np.tile(maximum, cyclic.sectors), np.tile(minimum, cyclic.sectors)
@@ -424,8 +446,7 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
                          maximum=maximum, minimum=minimum,
                          mean=np.mean(responses, axis=0),
                          energy_per_cycle=energy_per_cycle(run, periods),
-                         kinetic_peak=kinetic_peak(scene, run, lambda time: state_at(
-                             scene, initial, time, run.settings.method, event_tolerance)),
+                         kinetic_peak=kinetic_peak(scene, run, state),
                          singular=step.singular, history=run if history else None)
 
 

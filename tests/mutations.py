@@ -337,9 +337,21 @@ MUTATIONS = (
              "add up to over a period",
              ("tests/test_cyclic.py",)),
     Mutation("cyclic-shift-backwards", "orbits",
-             "end=symmetry.shifted(end, -symmetry.steps)",
-             "end=symmetry.shifted(end, symmetry.steps)",
+             "run.output.v[-1]]),\n                           -symmetry.steps)",
+             "run.output.v[-1]]),\n                           symmetry.steps)",
              "the reduced map shifts the state one way and its Jacobian the other",
+             ("tests/test_cyclic.py",)),
+    Mutation("repeating-velocities-misread", "orbits",
+             "return np.asarray(y)[np.r_[0:m, n:n + m]]",
+             "return np.asarray(y)[np.r_[0:m, m:2 * m]]",
+             "Newton's map on the repeating states reads the second sector's displacements "
+             "for the first one's velocities",
+             ("tests/test_cyclic.py",)),
+    Mutation("orbit-state-unshifted", "orbits",
+             "symmetry.shifted(np.concatenate([x, v]), turns * symmetry.steps)",
+             "symmetry.shifted(np.concatenate([x, v]), 0)",
+             "the symmetric orbit's state at t = iτ + s is taken as its state at s, not "
+             "moved on i sectors",
              ("tests/test_cyclic.py",)),
     # ---- continuation: the test functions of the smooth bifurcations ---------------------
     Mutation("kinks-not-crossed", "continuation",
