@@ -189,5 +189,6 @@ def state_at(scene, initial, time, method, event_tolerance):
         return initial
     periods = max(1, int(np.ceil(time / scene.excitation_period - 1e-12)))
     run = integrate(scene, periods, method=method, event_tolerance=event_tolerance,
-                    initial=initial, until=min(time, periods * scene.excitation_period)).run
+                    initial=initial, until=min(time, periods * scene.excitation_period),
+                    event_capacity=0).run
     return run.output.x[-1], run.output.v[-1]

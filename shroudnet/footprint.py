@@ -32,6 +32,7 @@ million blades takes a minute and gigabytes of its own.
 
 from __future__ import annotations
 
+import functools
 import os
 from pathlib import Path
 from typing import NamedTuple
@@ -96,9 +97,11 @@ def scene_footprint(scene, samples: int, event_capacity: int, *,
                          tangent_columns=tangent_columns)
 
 
+@functools.cache
 def machine_memory() -> int | None:
     """Bytes of memory this machine has (``os.sysconf``: physical pages × page size),
-    lowered to a cgroup v2 limit where one is set; None where neither can be read."""
+    lowered to a cgroup v2 limit where one is set; None where neither can be read. Read
+    once: every run checks against it."""
     found = []
     try:
         found.append(os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
