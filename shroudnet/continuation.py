@@ -11,7 +11,8 @@ that times l Ω, p over |stop − start|), so that a step of the arclength weigh
 orbit's change and the parameter's alike. Along the branch the Floquet multipliers are
 watched: a real one through +1 (where the parameter turns back) is a fold, one through −1
 a period doubling, a complex pair through the unit circle a torus (Neimark–Sacker)
-bifurcation; each is located on the branch by the secant method on its test function. A
+bifurcation; each is located on the branch by the secant method on its test function,
+|μ| − 1 of the multiplier that crosses. A
 change of the orbit's switch sequence is a nonsmooth bifurcation ("grazing" for contact
 closing or opening, "stick-slip" for stick phases), reported at the first orbit beyond it.
 
@@ -83,6 +84,10 @@ LOCATING_STEPS = 16
 LOCATED = 1e-6
 #: |Im μ| / |μ| below which a multiplier is taken as real.
 REAL = 1e-8
+#: How far |μ| − 1 may stay from 0 where the bracket has closed on a sign change of a
+#: multiplier's test function: beyond it the change is a jump (two real multipliers that
+#: meet and leave the axis together), not a crossing of the unit circle.
+JUMP = 1e-3
 
 
 @dataclass(frozen=True)
@@ -642,14 +647,15 @@ class Solver:
     def locate(self, kind, test, a, b, index) -> Bifurcation | None:
         """The zero of ``test`` between points a and b: the Illinois (modified regula
         falsi) method on the arclength from a, to ``LOCATED`` of the arclength from a to
-        b; None where ``test`` has the same sign at both (multipliers that changed their
-        count without crossing the circle: two real ones that meet and leave the real
-        axis together, say)."""
+        b; None where ``test`` has the same sign at both, or, for a multiplier's test, where it
+        jumps through 0 rather than crossing it (multipliers that changed their count
+        without crossing the circle: two real ones that meet and leave the real axis
+        together, say)."""
         width = float(a.tangent @ (b.u - a.u))
         low, high = (0.0, test(a)), (width, test(b))
         if low[1] * high[1] > 0.0:
             return None
-        best, best_value, kept = b, abs(high[1]), None
+        best, best_value, kept, bracketed = b, abs(high[1]), None, False
         for _ in range(LOCATING_STEPS):
             if high[1] == low[1]:
                 break
@@ -662,7 +668,8 @@ class Solver:
             value = test(trial)
             if abs(value) < best_value:
                 best, best_value = trial, abs(value)
-            if value == 0.0 or abs(high[0] - low[0]) <= LOCATED * abs(width):
+            bracketed = abs(high[0] - low[0]) <= LOCATED * abs(width)
+            if value == 0.0 or bracketed:
                 break
             if math.copysign(1.0, value) == math.copysign(1.0, low[1]):
                 low = (sigma, value)
@@ -674,6 +681,8 @@ class Solver:
                 if kept == "high":
                     low = (low[0], low[1] / 2.0)
                 kept = "high"
+        if bracketed and kind != "fold" and best_value > JUMP:
+            return None  # |μ| jumps there: two multipliers met, none crossed the circle
         orbit = self.orbit(best, 0)
         return Bifurcation(kind, best.parameter, orbit, critical(kind, orbit.multipliers),
                            index, (a.parameter, b.parameter))
@@ -746,9 +755,10 @@ def smooth_changes(a, orbit_a, b, orbit_b, monodromy, symmetric=False):
     """(kind, test function of a point) of each smooth bifurcation between a and b, their
     orbits' monodromy matrices M = ``monodromy(point)``. The test functions are
     continuous along the branch and change sign at the bifurcation: the tangent's
-    parameter component (fold), det(M + I) (period doubling), Π_{i<j} (μ_i μ_j − 1), the
-    bialternate product (torus), and, on a ``symmetric`` branch, det(M − I) where a real
-    multiplier passes +1 without a fold (symmetry breaking)."""
+    parameter component (fold); and |μ| − 1 of the multiplier that crosses the unit
+    circle (``_modulus_crossing``): among the real negative ones (period doubling), the
+    complex pairs (torus), or, on a ``symmetric`` branch where no fold explains it, the
+    real positive ones (symmetry breaking)."""
     changes = []
     fold = a.tangent[-1] * b.tangent[-1] < 0.0
     if fold:
@@ -756,37 +766,28 @@ def smooth_changes(a, orbit_a, b, orbit_b, monodromy, symmetric=False):
     (doubling_a, torus_a, rising_a), (doubling_b, torus_b, rising_b) = (
         _counts(orbit_a.multipliers), _counts(orbit_b.multipliers))
     if doubling_a != doubling_b:
-        changes.append(("period-doubling", _scaled(
-            lambda point: np.linalg.eigvals(monodromy(point)) + 1.0)))
+        changes.append(("period-doubling", _modulus_crossing(
+            monodromy, lambda mu: _real(mu) & (mu.real < 0.0), min(doubling_a, doubling_b))))
     if torus_a != torus_b:
-        changes.append(("torus", _scaled(lambda point: _pair_factors(monodromy(point)))))
+        changes.append(("torus", _modulus_crossing(
+            monodromy, lambda mu: ~_real(mu) & (mu.imag > 0.0), min(torus_a, torus_b) // 2)))
     if symmetric and not fold and rising_a != rising_b:
-        changes.append(("symmetry-breaking", _scaled(
-            lambda point: np.linalg.eigvals(monodromy(point)) - 1.0)))
+        changes.append(("symmetry-breaking", _modulus_crossing(
+            monodromy, lambda mu: _real(mu) & (mu.real > 0.0), min(rising_a, rising_b))))
     return changes
 
 
-def _pair_factors(monodromy):
-    """μ_i μ_j − 1 over the pairs i < j of M's eigenvalues (the bialternate product's)."""
-    values = np.linalg.eigvals(monodromy)
-    i, j = np.triu_indices(len(values), k=1)
-    return values[i] * values[j] - 1.0
-
-
-def _scaled(factors_at):
-    """The test function Π f (real: its factors ``factors_at(point)`` come in conjugate
-    pairs), divided by |Π f| at the first point it is evaluated at: the same zeros and
-    the same shape, where the product itself, of hundreds of factors on a ring of many
-    blades, leaves a float's range."""
-    reference = []
-
+def _modulus_crossing(monodromy, kept, rank):
+    """The test function |μ| − 1 of the multiplier, of those that ``kept`` keeps (one of
+    each complex pair), ``rank`` from the largest in modulus (0: the largest): where
+    ``rank`` of them lie outside the unit circle at one end of the interval and one more
+    at the other, it is the one that crossed, and the function changes sign exactly
+    there. It varies as that multiplier does, as a product over all of them (det(M + I),
+    the bialternate product, of some 10⁴ factors on a ring of many sectors) does not: its
+    size changes by orders of magnitude over an interval, which the secant method follows
+    only in as many halvings. −1 where fewer than rank + 1 are kept."""
     def test(point):
-        factors = factors_at(point)
-        with np.errstate(divide="ignore", invalid="ignore"):  # a factor of exactly 0
-            size = float(np.sum(np.log(np.abs(factors))))
-            sign = math.copysign(1.0, float(np.real(np.prod(factors / np.abs(factors)))))
-        if not reference:
-            reference.append(size if math.isfinite(size) else 0.0)
-        return sign * math.exp(size - reference[0])
-
+        multipliers = np.linalg.eigvals(monodromy(point))
+        moduli = np.sort(np.abs(multipliers[kept(multipliers)]))[::-1]
+        return float(moduli[rank]) - 1.0 if rank < len(moduli) else -1.0
     return test

@@ -52,8 +52,15 @@ def agreement(scene):
         assert np.abs(getattr(full, name) - getattr(symmetric, name)).max() \
             <= 1e-8 * full.scale, name
     assert abs(full.kinetic_peak - symmetric.kinetic_peak) <= 1e-6 * full.kinetic_peak
-    return (state / full.scale, np.abs(full.multipliers - symmetric.multipliers).max(),
-            symmetric)
+    return state / full.scale, _multiset_gap(full.multipliers, symmetric.multipliers), symmetric
+
+
+def _multiset_gap(a, b):
+    """The largest distance from a multiplier of either set to the nearest of the other:
+    multipliers of equal modulus (the open blades of a ring, a degenerate pair per blade)
+    come in no particular order."""
+    distances = np.abs(a[:, None] - b[None, :])
+    return max(distances.min(axis=0).max(), distances.min(axis=1).max())
 
 
 @pytest.mark.parametrize("engine_order", [1, 2, 3, 6], ids=[
@@ -121,9 +128,17 @@ def test_newtons_map_on_the_repeating_states_is_the_whole_rings_restricted_to_th
     assert np.abs(repeating.jacobian - expected).max() <= 1e-9 * np.abs(expected).max()
 
 
+#: Gaps of the property's rings: none, or at least 1 nm either way. An interference
+#: within rounding of 0 (hypothesis draws −2e-244 m) leaves an in-phase ring's shrouds
+#: touching at a force of 1e-238 N all period, stuck on the edge of breakaway: the full
+#: solver's start, 1e-12 of the scale from the symmetric orbit's, breaks them away and
+#: follows another sequence of modes, so the two solvers' tangents are of different runs.
+GAPS = st.one_of(st.just(0.0), st.floats(1e-9, 5e-6), st.floats(-5e-6, -1e-9))
+
+
 @settings(max_examples=6)
 @given(n=st.integers(3, 6), order=st.integers(1, 12), speed=st.floats(4500.0, 7500.0),
-       gap=st.floats(-5e-6, 5e-6))
+       gap=GAPS)
 def test_for_small_tuned_rings_the_symmetric_and_the_full_solver_agree(n, order, speed, gap):
     shroud = sn.Interface(gap=gap, angle=SHROUD.angle, normal=SHROUD.normal,
                           friction=SHROUD.friction)
