@@ -20,7 +20,8 @@
    across the paper's l = 2 resonance takes (``continuation``), against transient sweeps
    up and down the same speeds.
 7. Substructures: periods per second and milliseconds per periodic orbit (with all its
-   multipliers) of a packet of six three-mode blades (``scenes.modal_packet``), and the
+   multipliers) of a packet of six three-mode blades (``scenes.modal_packet``), with its
+   1-D rigid-stick contacts and with 3-D elastic ones, and the
    seconds a forced-response curve of 300 of its orbits takes; two
    unreduced beams with a shroud contact (``scenes.beam_pair``) against the plain
    ``solve_ivp`` reference of ``baseline_structures`` at equal tolerances, both measured
@@ -320,6 +321,23 @@ def packet_costs(periods: int, repeats: int) -> tuple[float, float, object]:
     return periods / seconds, orbit_seconds, orbit
 
 
+def contact_rates(periods: int, repeats: int) -> dict[str, float]:
+    """Periods per second of ``scenes.modal_packet`` by its contacts: 1-D, sliding along
+    one direction with rigid stick, against 3-D shroud points whose faces slide in their
+    plane with elastic stick (k_t three times the normal contact stiffness; 2-D Coulomb
+    friction with a circular limit, the sliders in the state)."""
+    scenes = {"1-D contacts, rigid stick": modal_packet(),
+              "3-D contacts, elastic stick, 2-D friction": modal_packet(
+                  tangential_stiffness=3e5)}
+    rates = {}
+    for label, scene in scenes.items():
+        simulate(scene, 5)  # compile or load the kernel
+        seconds, _ = median_time(lambda: simulate(scene, periods, samples_per_period=20),
+                                 repeats)
+        rates[label] = periods / seconds
+    return rates
+
+
 def packet_curve(points: int) -> tuple[float, object]:
     """(seconds, the branch) of a forced-response curve of ``scenes.modal_packet`` up in
     speed from 2600 rpm across its first flap resonance, of at most ``points`` orbits
@@ -521,6 +539,9 @@ def main(argv=None) -> None:
     print(f"   packet of 6 blades of 3 modes (18 coordinates, 5 interfaces): {rate:,.0f} "
           f"periods/s; a periodic orbit with its {len(orbit.multipliers)} multipliers from a "
           f"settled guess {orbit_seconds * 1e3:.0f} ms ({orbit.iterations} Newton steps)")
+    rates = contact_rates(20 if args.quick else 200, repeats)
+    print("   the packet's contacts: " + "; ".join(
+        f"{label} {rate:,.0f} periods/s" for label, rate in rates.items()))
     seconds, branch = packet_curve(20 if args.quick else 300)
     print(f"   its forced-response curve up from 2600 rpm: {len(branch)} orbits with their "
           f"multipliers in {seconds:.1f} s ({branch.ended} at "

@@ -257,17 +257,25 @@ def block_on_belt(*, belt_speed: float = 0.1, normal_force: float = 10.0, mass: 
     return Scene(group=group, excitation=NO_EXCITATION, speed_rpm=60.0 / period)
 
 
+#: The shroud point's displacement per unit modal coordinate of ``modal_blade``'s three
+#: modes: flapwise, edgewise and radial rows (the radial one taken with ``dimensions=3``).
+SHROUD_SHAPES = ((1.0, 0.25, -0.5), (0.15, 1.0, 0.35), (0.08, -0.12, 0.3))
+
+
 @_named_arguments
-def modal_blade(*, damping_ratio: float = 0.003) -> Substructure:
+def modal_blade(*, damping_ratio: float = 0.003, dimensions: int = 2) -> Substructure:
     """A blade given by three modes, as an FE modal analysis prints them: first flap
     (180 Hz at rest), edgewise (450 Hz) and second flap (1050 Hz), each stiffening with
     speed by Southwell's law; modal masses 0.06, 0.05, 0.04 kg; the shapes at the shroud
-    (two components: flapwise, edgewise) and at the load point (flapwise)."""
+    (``dimensions`` components: flapwise, edgewise and, with 3, radial:
+    ``SHROUD_SHAPES``) and at the load point (flapwise)."""
+    dimensions = check_int("modal_blade", "dimensions", dimensions, low=2, most=3)
     return Substructure.modal(
         frequencies=[Southwell(f0=180.0, coefficient=3.0), Southwell(f0=450.0, coefficient=1.5),
                      Southwell(f0=1050.0, coefficient=2.0)],
         damping_ratios=damping_ratio, masses=[0.06, 0.05, 0.04],
-        shapes={"shroud": [[1.0, 0.25, -0.5], [0.15, 1.0, 0.35]], "load": [[0.7, 0.4, 0.2]]},
+        shapes={"shroud": [list(row) for row in SHROUD_SHAPES[:dimensions]],
+                "load": [[0.7, 0.4, 0.2]]},
         load="load")
 
 
@@ -277,20 +285,34 @@ def modal_packet(*, blades: int = 6, speed_rpm: float = 2800.0, gap: float = -2e
                  friction: FrictionLaw | None = Coulomb(mu=0.3), q1: float = 1.0,
                  engine_order: int = 4, damping_ratio: float = 0.02,
                  normal_law: NormalLaw | None = None,
-                 blades_on_disc: int | None = None) -> Scene:
+                 blades_on_disc: int | None = None,
+                 tangential_stiffness: float | None = None) -> Scene:
     """A packet of ``blades`` ``modal_blade``s whose shrouds meet on faces inclined at
     ``face`` [rad] to the flapwise direction, each interface a ``contact_stiffness`` [N/m]
     spring (or ``normal_law``) with ``gap`` [m] (negative: a preload) and ``friction``,
     forced by engine order ``engine_order`` at ``q1`` [N] on the load points, on a disc of
     ``blades_on_disc`` blades (by default the packet's own count, as if it were the whole
-    disc). The first flap mode meets engine order 4 near 3000 rpm (199.7 Hz)."""
+    disc). The first flap mode meets engine order 4 near 3000 rpm (199.7 Hz).
+
+    With a ``tangential_stiffness`` k_t [N/m] the contacts are elastic and 3-D: the
+    shroud points move in three directions (``modal_blade(dimensions=3)``), and each face
+    slides in its plane, spanned by its in-plane direction of the flap–edge plane and the
+    radial direction, its stick the Jenkins element of that k_t and a circular Coulomb
+    limit. Without, the faces slide along the one in-plane direction, stick rigid."""
     normal = (math.cos(face), math.sin(face))
     if normal_law is None:
         normal_law = LinearSpring(stiffness=contact_stiffness)
-    shroud = Interface(gap=gap, normal=normal_law,
-                       friction=friction, normal_direction=normal,
-                       tangent_direction=(-normal[1], normal[0]))
-    blade = modal_blade(damping_ratio=damping_ratio)
+    if tangential_stiffness is None:
+        shroud = Interface(gap=gap, normal=normal_law,
+                           friction=friction, normal_direction=normal,
+                           tangent_direction=(-normal[1], normal[0]))
+        blade = modal_blade(damping_ratio=damping_ratio)
+    else:
+        shroud = Interface(gap=gap, normal=normal_law, friction=friction,
+                           normal_direction=(*normal, 0.0),
+                           tangent_directions=((-normal[1], normal[0], 0.0), (0.0, 0.0, 1.0)),
+                           tangential_stiffness=tangential_stiffness)
+        blade = modal_blade(damping_ratio=damping_ratio, dimensions=3)
     group = BladeGroup()
     blades = check_int("modal_packet", "blades", blades, low=1, most=MAX_NODES)
     names = [f"blade{k}" for k in range(1, blades + 1)]

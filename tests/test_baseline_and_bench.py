@@ -145,6 +145,11 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
                                 out, 1)
     assert ratio == pytest.approx(swept / seconds, abs=0.06)
 
+    # 7. the packet's contacts: both kinds run, the elastic 3-D ones carrying sliders
+    ((rigid, elastic),) = figures(rf"rigid stick {N} periods/s; 3-D contacts, elastic "
+                                  rf"stick, 2-D friction {N} periods/s", out, 1)
+    assert rigid > 0.0 and elastic > 0.0
+
     # 8. tuned rings: the speed-ups are the quotients of the times
     for full, symmetric, ratio in figures(
             rf"full {N} ms, symmetric {N} ms \({N}x\)", out, 1):
