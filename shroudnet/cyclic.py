@@ -214,27 +214,51 @@ def reduced_step(scene: Scene, symmetry: CyclicSymmetry, initial, *, method,
     y = B z that repeats it round the ring (``CyclicSymmetry.tiled``), which G maps onto
     such a state again (the forcing comes round every N/g sectors): the step is
     z ↦ B⁺ G(B z) with its Jacobian B⁺ A B, whose tangent flow carries 2mN/g columns, not
-    2mN — the map Newton solves on, the symmetric orbit lying among those states."""
+    2mN — the map Newton solves on, the symmetric orbit lying among those states.
+    Without, from a start that repeats every N/g sectors, the tangent flow carries the
+    first N/g sectors' 2mN/g columns too, and ``whole_tangent`` moves them round the
+    ring; from any other start, all 2mN."""
     x0, v0 = initial
     if repeating:
         x0, v0 = np.split(symmetry.tiled(np.concatenate([x0, v0])), 2)
     n = scene.arrays.n_blades
-    start = np.eye(2 * n)
-    if repeating:
-        start = symmetry.tiled(np.eye(2 * symmetry.repeating))
+    y = np.concatenate([x0, v0])
+    # The first N/g sectors' columns stand for all where the state repeats every N/g
+    # sectors exactly (``whole_tangent``); a start that does not carries every column.
+    block = repeating or np.array_equal(symmetry.tiled(symmetry.restricted(y)), y)
+    first = symmetry.restricted(np.arange(2 * n)) if block else np.arange(2 * n)
+    start = symmetry.tiled(np.eye(len(first))) if repeating else np.eye(2 * n)[:, first]
     run = integrate(scene, 1, method=method, samples_per_period=1,
                     event_tolerance=event_tolerance, initial=(x0, v0), event_capacity=0,
                     tangent=start, until=symmetry.fraction * scene.excitation_period).run
     tangent = run.tangent
     end = symmetry.shifted(np.concatenate([run.output.x[-1], run.output.v[-1]]),
                            -symmetry.steps)
-    jacobian = symmetry.shifted(tangent.matrix, -symmetry.steps)
+    matrix = whole_tangent(symmetry, tangent.matrix) if block and not repeating \
+        else tangent.matrix
+    jacobian = symmetry.shifted(matrix, -symmetry.steps)
     if repeating:
         end, jacobian = symmetry.restricted(end), symmetry.restricted(jacobian)
     return StroboscopicStep(scene=scene, end=end, jacobian=jacobian,
                             singular=int(tangent.singular[0]),
                             singular_time=float(tangent.singular_time[0]),
                             singular_interface=int(tangent.singular_interface[0]))
+
+
+def whole_tangent(symmetry: CyclicSymmetry, block: np.ndarray) -> np.ndarray:
+    """Φ_τ of the whole ring from ``block``, its columns along the first N/g sectors'
+    coordinates. On a symmetric orbit the ring's state repeats every N/g sectors over
+    all of τ, and so do its forces: the tangent flow commutes with that shift, R = S^{N/g},
+    and its columns along the c-th group of N/g sectors are R⁻ᶜ Φ_τ's along the first —
+    a tangent flow of 2mN/g columns gives all 2mN (m coordinates a sector)."""
+    m = symmetry.repeating
+    n = symmetry.sectors * symmetry.per_sector
+    whole = np.empty((2 * n, 2 * n))
+    for c in range(symmetry.share):
+        moved = symmetry.shifted(block, -c * symmetry.repeats)
+        whole[:, c * m:(c + 1) * m] = moved[:, :m]
+        whole[:, n + c * m:n + (c + 1) * m] = moved[:, m:]
+    return whole
 
 
 def whole_period(symmetry: CyclicSymmetry, reduced: StroboscopicStep) -> StroboscopicStep:

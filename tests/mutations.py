@@ -347,6 +347,12 @@ MUTATIONS = (
              "Newton's map on the repeating states reads the second sector's displacements "
              "for the first one's velocities",
              ("tests/test_cyclic.py",)),
+    Mutation("whole-tangent-moved-the-wrong-way", "orbits",
+             "moved = symmetry.shifted(block, -c * symmetry.repeats)",
+             "moved = symmetry.shifted(block, c * symmetry.repeats)",
+             "the first N/g sectors' tangent columns are moved round the ring the wrong way "
+             "to stand for the others'",
+             ("tests/test_cyclic.py",)),
     Mutation("orbit-state-unshifted", "orbits",
              "symmetry.shifted(np.concatenate([x, v]), turns * symmetry.steps)",
              "symmetry.shifted(np.concatenate([x, v]), 0)",

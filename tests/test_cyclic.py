@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 import shroudnet as sn
 import shroudnet.orbits as orbits_module
 from contact_laws import LinearSpring
-from shroudnet.cyclic import cyclic_symmetry, reduced_step
+from shroudnet.cyclic import cyclic_symmetry, reduced_step, whole_tangent
+from shroudnet.simulate import integrate
 from shroudnet.linear import nodal_diameters
 from shroudnet.scenes import bladed_disc_24, three_blade_paper
 
@@ -126,6 +127,25 @@ def test_newtons_map_on_the_repeating_states_is_the_whole_rings_restricted_to_th
         <= 1e-12 * np.abs(whole.end).max()
     expected = symmetry.restricted(whole.jacobian @ basis)
     assert np.abs(repeating.jacobian - expected).max() <= 1e-9 * np.abs(expected).max()
+
+
+def test_the_whole_rings_tangent_is_its_first_sectors_columns_moved_round():
+    """From a state that repeats every N/g sectors, Φ_τ commutes with that shift: its 24
+    columns (12 blades, l = 4) are the first 3 sectors' 6 moved round the ring
+    (``whole_tangent``), against a tangent flow that carries all 24."""
+    scene = ring(12, 4)
+    symmetry = cyclic_symmetry(scene)
+    start = sn.simulate(scene, 30, samples_per_period=1)
+    y = symmetry.tiled(symmetry.restricted(np.concatenate([start.x[-1], start.v[-1]])))
+    run = integrate(scene, 1, method=EXACT, samples_per_period=1, event_tolerance=LOCATED,
+                    initial=np.split(y, 2), event_capacity=0, tangent=np.eye(24),
+                    until=symmetry.fraction * scene.excitation_period).run
+    every = run.tangent.matrix
+    assert run.events.counts.sum() > 0  # the shrouds switch on the way
+    first = symmetry.restricted(np.arange(24))
+    moved = whole_tangent(symmetry, every[:, first])
+    # Measured: 2.7e-16 of the largest entry.
+    assert np.abs(moved - every).max() <= 1e-12 * np.abs(every).max()
 
 
 #: Gaps of the property's rings: none, or at least 1 nm either way. An interference
