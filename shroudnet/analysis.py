@@ -317,15 +317,25 @@ class HysteresisLoop:
         return float(np.sum(0.5 * (self.force[1:] + self.force[:-1]) * du) / self.cycles)
 
 
-def hysteresis_loop(sim: Simulation, interface: int, skip: int) -> HysteresisLoop:
+def hysteresis_loop(sim: Simulation, interface: int, skip: int,
+                    direction: int = 1) -> HysteresisLoop:
     """The hysteresis loop of interface ``interface`` (its position, 0-based) over the
-    periods of ``sim`` after ``skip`` (as ``steady_rows`` takes it)."""
+    periods of ``sim`` after ``skip`` (as ``steady_rows`` takes it): its friction force
+    against its tangential relative displacement along t₁ (``direction`` 1) or, on a face
+    that slides in its plane, t₂ (2). Over steady cycles of an elastic contact the two
+    loops' areas add up to the energy its slider dissipates: ∮ f·dr_t = ∮ f·dw, the
+    spring's ½k_t|u|² coming back to itself."""
     check_instance("hysteresis_loop", "sim", sim, Simulation,
                    expected="a shroudnet.Simulation")
     interface = sim.checked_interface(interface, "hysteresis_loop")
+    direction = check_int("hysteresis_loop", "direction", direction, low=1, most=2)
+    if direction == 2 and not np.any(sim.scene.arrays.slip_rows(2)[interface]):
+        raise ValueError(f"hysteresis_loop.direction = 2: interface {interface} slides along "
+                         "one direction; a face that slides in its plane takes "
+                         "Interface(tangent_directions=(t1, t2), ...)")
     rows = steady_rows(sim, skip, "hysteresis_loop")
-    slip = sim.slip_displacement(interface)[rows]
-    return HysteresisLoop(slip=slip, force=sim.friction_force[rows, interface],
+    slip = sim.slip_displacement(interface, direction)[rows]
+    return HysteresisLoop(slip=slip, force=sim.friction_along(interface, direction)[rows],
                           cycles=sim.periods - skip, interface=interface)
 
 

@@ -376,6 +376,7 @@ _SIMULATION_ARRAYS = (
     _Array("v", ("sample", "column")),
     _Array("normal_force", ("sample", "interface")),
     _Array("friction_force", ("sample", "interface")),
+    _Array("friction_force_second", ("sample", "interface"), optional=True),  # elastic
     _Array("modes", ("sample", "interface"), _INTEGER, codes=Mode),
     _Array("work", ("sample", "work column")),
     *_EVENT_ARRAYS,
@@ -404,6 +405,7 @@ class SimulationArrays:
     energy: EnergyLedger
     samples_per_period: int
     steps: int
+    friction_force_second: np.ndarray | None = None  # (n_t × n_interfaces) [N], or None
 
     @property
     def periods(self) -> int:
@@ -426,6 +428,8 @@ def save_simulation(path: str | Path, sim: Simulation,
               "friction_force": sim.friction_force, "modes": sim.modes, "work": sim.work,
               "event_time": sim.events.time, "event_interface": sim.events.interface,
               "event_kind": sim.events.kind}
+    if sim.friction_force_second is not None:
+        arrays["friction_force_second"] = sim.friction_force_second
     return _save_npz(path, meta, arrays)
 
 
@@ -498,7 +502,7 @@ def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulatio
                       normal_force=data.normal_force, friction_force=data.friction_force,
                       modes=data.modes, events=data.events, energy=data.energy,
                       work=data.work, samples_per_period=data.samples_per_period,
-                      steps=data.steps)
+                      steps=data.steps, friction_force_second=data.friction_force_second)
 
 
 def _scene(path: Path, document: dict, laws: scenefile.Laws) -> scenefile.SceneFile:

@@ -81,10 +81,16 @@ class SceneArrays:
         """Whether the scene has substructures (its arrays are by coordinate)."""
         return self.layout is not None
 
-    def slip_rows(self) -> np.ndarray:
+    def slip_rows(self, direction: int = 1) -> np.ndarray:
         """T (interfaces × (coordinates + prescribed nodes)): each interface's tangential
         relative displacement u_t = T_e [x, x_p] [m], whose rate is its slip velocity:
-        t_e·(r_a − r_b), or (x_i − x_j) cos α for blades (a fixed node has no column)."""
+        t_e·(r_a − r_b), or (x_i − x_j) cos α for blades (a fixed node has no column);
+        along t₂ of the face's plane with ``direction`` 2 (zero rows where a face has one
+        direction)."""
+        if direction == 2:
+            if self.second_tangent_rows is None:
+                return np.zeros((self.n_interfaces, self.n_blades + self.n_prescribed))
+            return self.second_tangent_rows.copy()
         if self.is_structure:
             return self.tangent_rows.copy()
         rows = np.zeros((self.n_interfaces, self.n_blades + self.n_prescribed))

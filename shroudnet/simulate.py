@@ -95,7 +95,21 @@ def simulate(scene: Scene, periods: int, *,
                       normal_force=out.normal, friction_force=out.friction, modes=out.modes,
                       events=events, energy=EnergyLedger(**ledger), work=out.energy,
                       samples_per_period=samples_per_period, steps=int(run.steps),
-                      compile_seconds=done.compile_seconds)
+                      compile_seconds=done.compile_seconds,
+                      friction_force_second=_second_friction(scene, done.stretches))
+
+
+def _second_friction(scene, stretches) -> np.ndarray | None:
+    """f₂ = k_t u₂ [N] of each elastic contact at every sample (n_t × n_interfaces, 0 on
+    the others: u₂ stays 0 on a face of one direction, u on an open contact), from the
+    springs' ``stretches`` (``Integration.stretches``); None without elastic contacts."""
+    stiffness = scene.arrays.tangential_stiffness
+    elastic = np.flatnonzero(np.isfinite(stiffness))
+    if len(elastic) == 0:
+        return None
+    force = np.zeros((len(stretches), len(stiffness)))
+    force[:, elastic] = stiffness[elastic] * stretches[:, 1::2]
+    return force
 
 
 @dataclass(frozen=True)

@@ -72,7 +72,10 @@ class Simulation:
     """A trajectory of a scene, sampled uniformly with a sample at every t = k T_e.
 
     Arrays have one row per sample: ``x``, ``v`` by blade position (n_t × n_blades),
-    ``normal_force``, ``friction_force`` and ``modes`` by interface (n_t × n_interfaces).
+    ``normal_force``, ``friction_force`` and ``modes`` by interface (n_t × n_interfaces);
+    ``friction_force`` is along the tangent t (t₁ of a face's plane), and
+    ``friction_force_second`` along t₂ where the scene has elastic contacts (0 on
+    interfaces with one direction; None without elastic contacts).
     ``settings`` says how the run was made; a table in its saved layout
     (``SimulationSettings.as_dict``) is taken too.
     """
@@ -91,6 +94,7 @@ class Simulation:
     samples_per_period: int
     steps: int               # Runge–Kutta steps taken (accepted ones, for Adaptive)
     compile_seconds: float = 0.0  # spent compiling the integrator, or loading it, first
+    friction_force_second: np.ndarray | None = None  # (n_t × n_interfaces) along t₂ [N]
 
     def __post_init__(self):
         if not isinstance(self.settings, SimulationSettings):
@@ -138,13 +142,15 @@ class Simulation:
         substructure's units; expand a reduced one with ``Substructure.expand``."""
         return self.x @ self.scene.dof_rows(node).T
 
-    def slip_displacement(self, interface: int) -> np.ndarray:
+    def slip_displacement(self, interface: int, direction: int = 1) -> np.ndarray:
         """The tangential relative displacement u_t [m] of the interface at position
         ``interface`` (0-based, as in ``friction_force``) at every sample: the integral of
-        its slip velocity, t·(r_a − r_b) (blades: (x_i − x_j) cos α). Against
-        ``friction_force[:, interface]`` it draws the interface's hysteresis loop, whose
-        area is the energy friction takes (``analysis.hysteresis_loop``)."""
-        row = self._slip_row(interface, "Simulation.slip_displacement")
+        its slip velocity, t·(r_a − r_b) (blades: (x_i − x_j) cos α); with ``direction``
+        2, t₂·(r_a − r_b) in a face's plane. Against ``friction_force[:, interface]`` (or
+        ``friction_force_second``) it draws the interface's hysteresis loop in that
+        direction, whose area is the energy friction takes along it
+        (``analysis.hysteresis_loop``)."""
+        row = self._slip_row(interface, "Simulation.slip_displacement", direction)
         return np.concatenate([self.x, self.scene.arrays.prescribed_state(self.t)[0]],
                               axis=1) @ row
 
@@ -164,8 +170,23 @@ class Simulation:
             raise ValueError(f"{caller}: the scene has no interfaces")
         return check_int(caller, "interface", interface, low=0, high=count - 1)
 
-    def _slip_row(self, interface, caller: str) -> np.ndarray:
-        return self.scene.arrays.slip_rows()[self.checked_interface(interface, caller)]
+    def _slip_row(self, interface, caller: str, direction: int = 1) -> np.ndarray:
+        direction = check_int(caller, "direction", direction, low=1, most=2)
+        return self.scene.arrays.slip_rows(direction)[self.checked_interface(interface,
+                                                                             caller)]
+
+    def friction_along(self, interface: int, direction: int = 1) -> np.ndarray:
+        """The friction force [N] of the interface at position ``interface`` along its
+        tangent t₁ (``direction`` 1: ``friction_force``) or t₂ (2: 0 where the interface
+        has one direction) at every sample."""
+        interface = self.checked_interface(interface, "Simulation.friction_along")
+        direction = check_int("Simulation.friction_along", "direction", direction, low=1,
+                              most=2)
+        if direction == 1:
+            return self.friction_force[:, interface]
+        if self.friction_force_second is None:
+            return np.zeros(len(self.t))
+        return self.friction_force_second[:, interface]
 
 
 def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:

@@ -347,6 +347,11 @@ MUTATIONS = (
              "Newton's map on the repeating states reads the second sector's displacements "
              "for the first one's velocities",
              ("tests/test_cyclic.py",)),
+    Mutation("second-friction-from-the-first-stretch", "ledger",
+             "force[:, elastic] = stiffness[elastic] * stretches[:, 1::2]",
+             "force[:, elastic] = stiffness[elastic] * stretches[:, 0::2]",
+             "the friction along t₂ of a face is read off the spring's stretch along t₁",
+             ("tests/test_elastic_engine.py",)),
     Mutation("whole-tangent-moved-the-wrong-way", "orbits",
              "moved = symmetry.shifted(block, -c * symmetry.repeats)",
              "moved = symmetry.shifted(block, c * symmetry.repeats)",

@@ -99,6 +99,21 @@ def check_campbell(example, result, arguments):
     assert second == [pytest.approx(6487.5, rel=1e-3)]
 
 
+def check_fe_packet_elastic(example, result, arguments):
+    """The open limit peaks where engine order 4 meets the first flap mode (2995.37 rpm,
+    as in ``check_fe_packet``); stuck, the faces' springs k_t stiffen the packet, so its
+    peak lies at a higher speed; the settled response stays below the open peak, and the
+    face dissipates along both directions of its plane at each loop's speed."""
+    speeds, open_ = result.speeds, result.limits["linear, open"]
+    spacing = speeds[1] - speeds[0]
+    crossing = 60.0 * 180.0 / math.sqrt(13.0)
+    assert abs(speeds[np.argmax(open_)] - crossing) <= spacing
+    assert speeds[np.argmax(result.limits["linear, stuck"])] > crossing + spacing
+    assert result.amplitude.max() < open_.max()
+    assert len(result.loops) == 2 * len(example.LOOP_SPEEDS)
+    assert all(loop.area_per_cycle() > 0.0 for loop in result.loops.values())
+
+
 def check_fe_packet(example, result, arguments):
     """With the shrouds open the blades are apart, and engine order 4 meets the first flap
     mode f = √(180² + 3 (Ω/60)²) Hz (Southwell, ``scenes.modal_blade``) where
@@ -236,6 +251,9 @@ EXAMPLES = {
                   ["fe_packet_campbell_open.png", "fe_packet_campbell_stuck.png",
                    "fe_packet_response.png", "fe_packet_content.png",
                    "fe_packet_hysteresis.png"], check_fe_packet),
+    "fe_packet_elastic": ({"speeds": 8, "transient": 20, "record": 3, "loop_transient": 10},
+                          ["fe_packet_elastic_response.png", "fe_packet_elastic_loops.png"],
+                          check_fe_packet_elastic),
     "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
                                 ["fig21_energy_density_gamma1.png",
                                  "fig22_energy_density_gap.png",
