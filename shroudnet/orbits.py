@@ -267,8 +267,8 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
 
     # Where the forcing comes round in fewer sectors than the ring has (g > 1), Newton
     # solves on the states that repeat every N/g sectors, its tangent flow of 2mN/g
-    # columns; one run with the whole ring's tangent at the orbit then gives every
-    # multiplier.
+    # columns; one run at the orbit then gives every multiplier, its first N/g sectors'
+    # tangent columns moved round the ring (``cyclic.whole_tangent``).
     repeating = cyclic is not None and cyclic.share > 1
 
     def step_at(z):
