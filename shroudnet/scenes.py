@@ -257,6 +257,22 @@ def block_on_belt(*, belt_speed: float = 0.1, normal_force: float = 10.0, mass: 
     return Scene(group=group, excitation=NO_EXCITATION, speed_rpm=60.0 / period)
 
 
+@_named_arguments
+def blade_pair(*, tangential_stiffness: float | None = None, q1: float = 60.0) -> Scene:
+    """Two blades (0.1 and 0.3 kg, 1e5 and 2e5 N/m) pressed together 0.1 mm at a face
+    inclined at 0.6 rad (a 3e5 N/m contact spring, Coulomb μ = 0.3), forced apart in phase
+    opposition at ``q1`` [N] and 6000 rpm, so that the contact slips for part of each
+    cycle and sticks for the rest; stick rigid, or elastic with ``tangential_stiffness``
+    k_t [N/m] (a Jenkins element), which tends to rigid stick as k_t grows."""
+    group = BladeGroup().add_blade("a", Blade(mass=0.1, damping=2.0, stiffness=1e5))
+    group.add_blade("b", Blade(mass=0.3, damping=3.0, stiffness=2e5))
+    group.connect("a", "b", Interface(
+        gap=-1e-4, angle=0.6, normal=LinearSpring(stiffness=3e5), friction=Coulomb(mu=0.3),
+        tangential_stiffness=tangential_stiffness))
+    return Scene(group=group, speed_rpm=6000.0, excitation=Excitation(
+        engine_order=1, amplitudes=(0.0, q1), phases=AntiPhase()))
+
+
 #: The shroud point's displacement per unit modal coordinate of ``modal_blade``'s three
 #: modes: flapwise, edgewise and radial rows (the radial one taken with ``dimensions=3``).
 SHROUD_SHAPES = ((1.0, 0.25, -0.5), (0.15, 1.0, 0.35), (0.08, -0.12, 0.3))

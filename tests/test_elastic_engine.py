@@ -169,13 +169,7 @@ def test_a_stiff_contact_closing_straight_into_slip_converges_to_the_reference()
 def pair(k_t, amplitude=60.0):
     """Two blades pressed together at 0.6 rad, forced apart in phase opposition so that
     the contact slips for part of each cycle; rigid stick where ``k_t`` is None."""
-    group = sn.BladeGroup().add_blade("a", sn.Blade(mass=0.1, damping=2.0, stiffness=1e5))
-    group.add_blade("b", sn.Blade(mass=0.3, damping=3.0, stiffness=2e5))
-    group.connect("a", "b", sn.Interface(
-        gap=-1e-4, angle=0.6, normal=LinearSpring(stiffness=3e5), friction=Coulomb(mu=0.3),
-        tangential_stiffness=k_t))
-    return sn.Scene(group=group, excitation=sn.Excitation(
-        engine_order=1, amplitudes=(0.0, amplitude), phases=sn.AntiPhase()), speed_rpm=6000.0)
+    return sn.scenes.blade_pair(tangential_stiffness=k_t, q1=amplitude)
 
 
 def test_elastic_stick_between_blades_tends_to_rigid_stick_as_k_t_grows():

@@ -99,6 +99,16 @@ def check_campbell(example, result, arguments):
     assert second == [pytest.approx(6487.5, rel=1e-3)]
 
 
+def check_elastic_stick(example, result, arguments):
+    """Each decade of k_t brings the motion √10 closer to rigid stick's (the stuck
+    spring's ringing, v/ω_t ∝ 1/√k_t), and the loops' dissipation to rigid stick's."""
+    assert np.all(np.diff(result.difference) < 0.0)
+    ratios = result.difference[:-1] / result.difference[1:]
+    assert ratios == pytest.approx(math.sqrt(10.0), rel=0.15)
+    rigid = result.loops["rigid stick"].area_per_cycle()
+    assert result.loops["k_t = 1e+07 N/m"].area_per_cycle() == pytest.approx(rigid, rel=0.05)
+
+
 def check_fe_packet_elastic(example, result, arguments):
     """The open limit peaks where engine order 4 meets the first flap mode (2995.37 rpm,
     as in ``check_fe_packet``); stuck, the faces' springs k_t stiffen the packet, so its
@@ -251,6 +261,9 @@ EXAMPLES = {
                   ["fe_packet_campbell_open.png", "fe_packet_campbell_stuck.png",
                    "fe_packet_response.png", "fe_packet_content.png",
                    "fe_packet_hysteresis.png"], check_fe_packet),
+    "elastic_stick": ({"decades": (7, 9), "per_decade": 1},
+                      ["elastic_stick_convergence.png", "elastic_stick_loops.png"],
+                      check_elastic_stick),
     "fe_packet_elastic": ({"speeds": 8, "transient": 20, "record": 3, "loop_transient": 10},
                           ["fe_packet_elastic_response.png", "fe_packet_elastic_loops.png"],
                           check_fe_packet_elastic),

@@ -154,6 +154,7 @@ VALID = {
     "scenes.three_blade_paper": call(),
     "scenes.bladed_disc_24": call(),
     "scenes.block_on_belt": call(),
+    "scenes.blade_pair": call(tangential_stiffness=1e7),
     "scenes.modal_blade": call(),
     "scenes.modal_packet": call(blades=2),
     "scenes.beam_pair": call(),
