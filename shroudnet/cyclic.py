@@ -207,7 +207,7 @@ def state_on_orbit(symmetry: CyclicSymmetry, scene: Scene, initial, *, method,
 def reduced_step(scene: Scene, symmetry: CyclicSymmetry, initial, *, method,
                  event_tolerance: float, repeating: bool = False) -> StroboscopicStep:
     """G(y) = S⁻ᵏ φ_τ(y) and its Jacobian A = S⁻ᵏ Φ_τ from ``initial`` = (x0, v0), in one
-    run over τ with the 2N × 2N tangent flow (``stability.stroboscopic_step`` over τ);
+    run over τ with its tangent flow (``stability.stroboscopic_step`` over τ);
     ``singular`` counts the switches of the run over τ.
 
     With ``repeating``, ``initial`` is z, the first N/g sectors' state, of a ring state
