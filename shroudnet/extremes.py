@@ -42,17 +42,12 @@ class Extremes:
     time_of_minimum: np.ndarray
 
 
-def orbit_extremes(scene, initial, t, x, v, switches, *, method, event_tolerance,
-                   responses=None, state=None) -> Extremes:
-    """The ``Extremes`` of the orbit starting at ``initial`` (x0, ẋ0) at t = 0, from its
-    samples ``t``, ``x``, ``ẋ`` over one whole orbit (first and last samples one orbit
-    apart) and the times of its ``switches`` [s], each extremum refined by running the
-    orbit again to it with ``method`` and ``event_tolerance`` (module docstring), or by
-    ``state`` (time [s] → the orbit's (x, ẋ) there) where given; of the responses whose
-    positions ``responses`` lists (default: all of them)."""
-    if state is None:
-        def state(time):
-            return state_at(scene, initial, time, method, event_tolerance)
+def orbit_extremes(scene, t, x, v, switches, state, *, responses=None) -> Extremes:
+    """The ``Extremes`` of an orbit from its samples ``t``, ``x``, ``ẋ`` over one whole
+    orbit (first and last samples one orbit apart) and the times of its ``switches`` [s],
+    each extremum refined on the orbit's exact states, ``state`` (time [s] → (x, ẋ):
+    ``state_at``, the orbit run again to that time; module docstring); of the responses
+    whose positions ``responses`` lists (default: all of them)."""
     rows = scene.response_matrix
     if responses is not None:
         rows = rows[responses]

@@ -429,10 +429,8 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
     else:
         state = state_on_orbit(cyclic, scene, initial, method=run.settings.method,
                                event_tolerance=event_tolerance)
-    found = orbit_extremes(scene, initial, run.t, run.x, run.v, run.events.time,
-                           method=run.settings.method, event_tolerance=event_tolerance,
-                           responses=None if cyclic is None else first_sector(cyclic),
-                           state=state)
+    found = orbit_extremes(scene, run.t, run.x, run.v, run.events.time, state,
+                           responses=None if cyclic is None else first_sector(cyclic))
     maximum, minimum = found.maximum, found.minimum
     if cyclic is not None:
         maximum, minimum = np.tile(maximum, cyclic.sectors), np.tile(minimum, cyclic.sectors)
