@@ -99,3 +99,27 @@ def test_a_kernel_function_is_named_by_its_phase_module_and_line(monkeypatch):
         generate.forget_kernels()
     assert "mistyped" in str(error.value)
     assert f'kernel/forces.py", line {line}' in str(error.value)
+
+
+def test_an_engine_functions_cache_goes_stale_with_any_engine_module(tmp_path, monkeypatch):
+    """numba stamps a cached function by its own file, but the helpers it inlines from
+    other modules are cached inside it: the engine's functions are stamped by all of the
+    engine's sources, so that a change to one helper recompiles every function using it."""
+    from shroudnet.engine import compiled
+    from shroudnet.engine.tangent import stage_tangent
+
+    locator = stage_tangent._cache._impl.locator
+    assert isinstance(locator, compiled._EngineCacheLocator)
+    stamp = locator.get_source_stamp()
+    for path in ENGINE.glob("*.py"):
+        (tmp_path / path.name).write_bytes(path.read_bytes())
+    helper = tmp_path / "structures.py"  # not stage_tangent's own module
+    monkeypatch.setattr(compiled, "_ENGINE", tmp_path)
+    compiled._engine_stamp.cache_clear()
+    try:
+        assert locator.get_source_stamp() == stamp  # the same sources
+        compiled._engine_stamp.cache_clear()
+        helper.write_text(helper.read_text() + "\n# changed\n")
+        assert locator.get_source_stamp() != stamp
+    finally:
+        compiled._engine_stamp.cache_clear()

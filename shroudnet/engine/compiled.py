@@ -50,7 +50,9 @@ faster, from the fused stage sums of the four stages.
 """
 
 import functools
+import hashlib
 import os
+from pathlib import Path
 
 from numba import njit
 from numba.core import caching
@@ -118,13 +120,62 @@ class _KernelCacheLocator(caching._CacheLocator):
         return locator
 
 
+#: numba's locator of a module's own ``__pycache__`` (named with an underscore before 0.60).
+_IN_TREE = getattr(caching, "InTreeCacheLocator", None) or caching._InTreeCacheLocator
+
+
+class _EngineCacheLocator(_IN_TREE):
+    """Where numba caches the engine's own functions (those outside a kernel): beside
+    their module, as numba does, but stamped with the sources of the whole engine, not of
+    their one file. A function carries inlined into its cached code the helpers it calls
+    from other modules; stamped by its own file, it would come back from the cache with
+    their old code after they changed (a stage of the tangent flow kept calling the
+    accelerations of before the elastic contacts' variations were added)."""
+
+    def get_source_stamp(self):
+        return _engine_stamp()
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        if Path(py_file).resolve().parent != _ENGINE:
+            return None
+        return super().from_function(py_func, py_file)
+
+
+_ENGINE = Path(__file__).resolve().parent
+
+
+@functools.cache
+def _engine_stamp() -> str:
+    """A digest of every module of the engine (read once per process)."""
+    digest = hashlib.sha256()
+    for path in sorted(_ENGINE.glob("*.py")):
+        digest.update(path.read_bytes())
+    return digest.hexdigest()
+
+
+def _locate_engine_functions() -> None:
+    """Put ``_EngineCacheLocator`` before numba's own locators, before any engine function
+    is decorated (numba picks a function's locator as it decorates it)."""
+    locators = _numba_locators()
+    if isinstance(locators, list) and _EngineCacheLocator not in locators:
+        locators.insert(0, _EngineCacheLocator)
+
+
+def _numba_locators():
+    implementation = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl",
+                                                                    None)
+    return getattr(implementation, "_locator_classes", None)
+
+
+_locate_engine_functions()
+
+
 @functools.cache
 def _locate_kernels_in_their_folder() -> None:
     """Put ``_KernelCacheLocator`` before numba's own locators (once, at the first kernel).
     With another numba, whose internals differ, numba's own locators keep the kernels."""
-    implementation = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl",
-                                                                    None)
-    locators = getattr(implementation, "_locator_classes", None)
+    locators = _numba_locators()
     if isinstance(locators, list) and _KernelCacheLocator not in locators:
         locators.insert(0, _KernelCacheLocator)
 
