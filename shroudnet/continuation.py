@@ -41,7 +41,7 @@ from .linear_response import frequency_response
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
 from .orbits import (ORBIT_TOLERANCE, SMALLEST_TOLERANCE, UNIT_CIRCLE, ConvergenceError,
                      PeriodicOrbit, least_squares, orbit_at, periodic_orbit, state_weights,
-                     symmetry_of)
+                     refuse_sliders, symmetry_of)
 from .parametric import checked_scene_at
 from .scene import Scene
 from .simulate import MAX_PERIODS, integrate
@@ -351,6 +351,7 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
             raise
         raise type(error)(f"continuation: scene_at refused the range start = {start:g} … "
                           f"stop = {stop:g}: {error}") from error
+    refuse_sliders(scene_at(start), "continuation")
     cyclic = None if from_bifurcation is not None and symmetry is None else symmetry_of(
         scene_at(start), periods, symmetry, "continuation")
     if cyclic is not None and from_bifurcation is not None:

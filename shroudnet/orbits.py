@@ -262,6 +262,7 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
     samples_per_period = check_int("periodic_orbit", "samples_per_period", samples_per_period,
                                    low=1)
     check_instance("periodic_orbit", "history", history, bool, expected="True or False")
+    refuse_sliders(scene, "periodic_orbit")
     cyclic = symmetry_of(scene, periods, symmetry)
     starts = start_states(scene, periods, guess, transient, method, event_tolerance)
 
@@ -298,6 +299,18 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
         return orbit_at(scene, periods, y, step, solve.residual,
                         1.0 / weights[0], solve.iterations, method, event_tolerance,
                         samples_per_period, history, cyclic)
+
+
+def refuse_sliders(scene: Scene, owner: str) -> None:
+    """Refuse, by name, a scene with elastic contacts: its state holds their sliders'
+    stretches too, which the orbits' Newton state (x, ẋ) does not carry."""
+    elastic = [(left, right) for left, right, interface in scene.group.interfaces
+               if interface.elastic]
+    if elastic:
+        raise ValueError(
+            f"{owner}: the elastic contacts {elastic} (Interface.tangential_stiffness) keep "
+            "their sliders' stretches in the state, which periodic orbits do not carry yet; "
+            "simulate, monodromy and lyapunov take them")
 
 
 def symmetry_of(scene: Scene, periods: int, symmetry: str | None,

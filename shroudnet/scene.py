@@ -106,8 +106,9 @@ class SceneArrays:
         """Whether the vector field is linear in the state between switches: substructures
         whose every law has ``constant_slopes`` (the stiffness, damping, stick
         constraints and excitation are so already), so that the tangent flow of a phase
-        is the matrix exponential of its Jacobian."""
-        return self.is_structure and all(
+        is the matrix exponential of its Jacobian. An elastic contact's slip turns its
+        slider with the stretch's direction, which is not linear."""
+        return self.is_structure and not np.isfinite(self.tangential_stiffness).any() and all(
             type(law).constant_slopes for law in self.normal_laws) and all(
             law is None or type(law).constant_slopes for law in self.friction_laws)
 

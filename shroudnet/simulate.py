@@ -134,8 +134,12 @@ def integrate(scene: Scene, periods: int, *,
               samples_per_period: int = 100, event_tolerance: float = EVENT_TOLERANCE,
               zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
               tangent: np.ndarray | None = None,
-              orthonormalise: bool = False, until: float | None = None) -> Integration:
+              orthonormalise: bool = False, until: float | None = None,
+              stretches: np.ndarray | None = None) -> Integration:
     """``simulate``'s checks and run, returning the kernel's raw record.
+
+    ``stretches`` (2 per elastic contact [m]) start the sliders stretched, as another run
+    left them; by default relaxed.
 
     With ``tangent`` (2 n_blades × k), the run integrates those k tangent vectors of the
     start with the state (``engine.tangent``), in a kernel compiled for it, by the adaptive
@@ -176,7 +180,7 @@ def integrate(scene: Scene, periods: int, *,
     x0, v0 = np.concatenate([x0, x_p]), np.concatenate([v0, v_p])
     tangent0 = _with_prescribed(tangent0, n, len(x_p))
     arrays = kernel_scene(scene)
-    x0, v0, tangent0 = _with_sliders(arrays, x0, v0, tangent0, n)
+    x0, v0, tangent0 = _with_sliders(arrays, x0, v0, tangent0, n, stretches)
 
     kernel = load_kernel(scene, tangent=tangent is not None,
                          adaptive=not isinstance(method, FixedStep))
@@ -243,15 +247,17 @@ def _with_prescribed(tangent, n, n_prescribed):
     return rows
 
 
-def _with_sliders(arrays, x0, v0, tangent0, n):
+def _with_sliders(arrays, x0, v0, tangent0, n, stretches=None):
     """The start (x0, v0, tangent columns) in the integrator's coordinates: the elastic
     contacts' stretches u (``engine.sliders``) after the n free coordinates, each relaxed
-    (u = 0: no friction force), at rest and without variation."""
+    (u = 0: no friction force) or as ``stretches`` give them (the last row of another
+    run's ``Integration.stretches``, to take it up), at rest and without variation."""
     index = getattr(arrays, "slider_index", np.zeros(0, dtype=np.int64))
     sliders = 2 * int(np.sum(index >= 0))
     if sliders == 0:
         return x0, v0, tangent0
-    x0, v0 = (np.insert(values, [n] * sliders, 0.0) for values in (x0, v0))
+    x0 = np.insert(x0, [n] * sliders, 0.0 if stretches is None else stretches)
+    v0 = np.insert(v0, [n] * sliders, 0.0)
     nodes = tangent0.shape[0] // 2
     tangent0 = np.insert(tangent0, [n] * sliders + [nodes + n] * sliders, 0.0, axis=0)
     return x0, v0, tangent0

@@ -45,7 +45,9 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
     initial : (x0, v0), optional
         The start: displacements [m] and velocities [m/s] by blade position; default at
         rest. A start with stuck interfaces has its velocities projected onto the stick
-        clusters first, and M includes that projection.
+        clusters first, and M includes that projection. Elastic contacts start with
+        their sliders relaxed (no friction force): M is the orbit's monodromy where they
+        are open at the start.
     method : Adaptive or Accuracy
         The accuracy of the trajectory; M is the exact derivative of the computed map.
     event_tolerance : float
@@ -185,18 +187,20 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
     transient = check_int("lyapunov", "transient", transient, low=0, most=MAX_PERIODS)
     seed = check_int("lyapunov", "seed", seed, low=0)
     exponents = check_int("lyapunov", "exponents", exponents, low=1, high=2 * n)
+    stretches = None
     if transient > 0:
         before = integrate(scene, transient, method=method, samples_per_period=1,
                            event_tolerance=event_tolerance, initial=initial,
-                           event_capacity=0).run.output
-        initial = (before.x[-1], before.v[-1])
+                           event_capacity=0)
+        initial = (before.run.output.x[-1], before.run.output.v[-1])
+        stretches = before.stretches[-1]  # elastic contacts' sliders go on as they were
     rng = np.random.default_rng(seed)
     start, _ = np.linalg.qr(rng.standard_normal((2 * n, exponents)))
     frequency = scene.arrays.excitation_frequency  # orthonormal in |δx|² + |δẋ / lΩ|²
     start[n:] *= frequency if frequency > 0.0 else 1.0
     done = integrate(scene, periods, method=method, samples_per_period=1,
                      event_tolerance=event_tolerance, initial=initial, event_capacity=0,
-                     tangent=start, orthonormalise=True)
+                     tangent=start, orthonormalise=True, stretches=stretches)
     tangent = done.run.tangent
     growth = tangent.log_growth.copy()
     per_period = growth / periods

@@ -117,6 +117,10 @@ CYCLE = "tests/test_cycle.py"
 EXTREMES = "tests/test_extremes.py"
 #: Elastic contacts: their geometry and their stuck limit against closed forms.
 ELASTIC = "tests/test_elastic_contacts.py"
+#: Their tangent: the sliders' Jacobian and the monodromy through 2-D stick–slip–separation.
+ELASTIC_TANGENT = "tests/test_elastic_tangent.py"
+ELASTIC_MONODROMY = ("tests/test_elastic_tangent.py::"
+                     "test_monodromy_through_stick_slip_and_separation_of_2d_elastic_faces")
 
 
 @dataclass(frozen=True)
@@ -283,6 +287,21 @@ MUTATIONS = (
              ("tests/test_tangent.py::"
               "test_a_rings_interfaces_switching_together_by_its_symmetry_multiply_their_"
               "saltations",)),
+    Mutation("slider-turn-dropped", "tangent",
+             "    return (first - speed * turn1 + d1 * loading,",
+             "    return (first + 0.0 * turn1 + d1 * loading,",
+             "a slipping slider's direction û is held fixed in its variation: the term λ δû "
+             "of δu̇ is dropped", (ELASTIC_TANGENT,)),
+    Mutation("slider-breakaway-normal-without-the-stretch", "tangent",
+             "        normal[k] = -s.tangential_stiffness[e] * w.friction[e] / size",
+             "        normal[k] = 0.0 * w.friction[e] / size",
+             "the elastic breakaway guard μN − k_t|u| is differentiated as if the stretch "
+             "along t₁ did not load it", (ELASTIC_MONODROMY,)),
+    Mutation("open-stretch-kept", "tangent",
+             "        if k < 0 or modes[e] != OPEN:\n            continue\n        for column",
+             "        if k >= 0 or modes[e] != OPEN:\n            continue\n        for column",
+             "an opening contact keeps its stretch's variation, though its slider follows "
+             "(u = 0) from then on", (ELASTIC_MONODROMY,)),
     # ---- orbits: Newton's step (M − I) Δy = −(φ(y) − y) ----------------------------------
     Mutation("newton-without-monodromy", "orbits",
              "change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)",

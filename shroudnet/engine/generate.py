@@ -158,10 +158,8 @@ def load_kernel(scene: Scene, tangent: bool = False, adaptive: bool = True) -> M
     if tangent and not adaptive:
         raise ValueError("the tangent flow is integrated by the adaptive method only")
     arrays = scene.arrays
-    if has_sliders(arrays) and tangent:
-        raise ValueError("a scene with elastic contacts (Interface.tangential_stiffness) "
-                         "is integrated without its tangent flow: its periodic orbits, "
-                         "monodromy and Lyapunov exponents are not available")
+    if tangent:
+        _check_slider_laws(scene)
     normal_classes, friction_classes = _law_classes(arrays)
     effects = flags(arrays, tangent)
     if built_in(normal_classes, friction_classes):
@@ -170,6 +168,21 @@ def load_kernel(scene: Scene, tangent: bool = False, adaptive: bool = True) -> M
             "HAS_SLIDERS": has_sliders(arrays)}
     return _kernel(tuple(normal_classes), tuple(friction_classes), tuple(effects.items()),
                    adaptive)
+
+
+def _check_slider_laws(scene: Scene) -> None:
+    """Refuse the tangent flow of an elastic contact whose normal law's slopes vary: the
+    variation of its slipping stretch's rate takes δṄ from constant slopes
+    (``slider_tangent``)."""
+    a = scene.arrays
+    for e in np.flatnonzero(np.isfinite(a.tangential_stiffness)):
+        law = a.normal_laws[e]
+        if not type(law).constant_slopes:
+            left, right, _ = scene.group.interfaces[e]
+            raise ValueError(
+                f"interface ({left!r}, {right!r}): the tangent flow (periodic orbits, "
+                "monodromy, Lyapunov exponents) of an elastic contact takes a normal law of "
+                f"constant slopes, LinearSpring or ConstantLoad, not {type(law).__name__}")
 
 
 def _digest(*parts: str) -> str:

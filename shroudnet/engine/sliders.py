@@ -33,7 +33,7 @@ import math
 
 from .codes import OPEN, SLIP_NEGATIVE, SLIP_POSITIVE, STICK
 from .compiled import njit_inlined
-from .structures import row_dot
+from .support import row_dot
 
 
 @njit_inlined
@@ -179,8 +179,20 @@ def switch_slider(x, modes, s, e, contact_crossed, motion_crossed, friction):
 
 
 @njit_inlined
-def initial_slider_modes(modes, s):
-    """Every closed elastic contact starts stuck, its slider relaxed (u = 0)."""
+def initial_slider_modes(x, modes, s, w):
+    """The elastic contacts' modes at the start, from their normal forces in w.normal: open
+    ones relaxed (u = 0); closed ones stuck, or slipping where the stretch the start
+    gives them holds its force at the limit or beyond, |f| ≥ μN (a run that takes up
+    another's end)."""
     for e in range(len(modes)):
-        if s.slider_index[e] >= 0 and modes[e] != OPEN:
+        k = s.slider_index[e]
+        if k < 0:
+            continue
+        if modes[e] == OPEN:
+            release_slider(x, s, e)
+            continue
+        stretch = math.hypot(x[k], x[k + 1])
+        if stretch > 0.0 and s.tangential_stiffness[e] * stretch >= s.static_mu[e] * w.normal[e]:
+            modes[e] = SLIP_POSITIVE if x[k] >= 0.0 else SLIP_NEGATIVE
+        else:
             modes[e] = STICK

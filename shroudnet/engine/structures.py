@@ -14,16 +14,8 @@ from .codes import OPEN, STICK
 from .compiled import njit_inlined, njit_step
 from .dispatch import by_scene
 from .dynamics import blade_kinematics, excitation_rate, prescribed_acceleration
-
-
-@njit_inlined
-def row_dot(s, rows, e, values, first):
-    """Σ_i rows[e, i] values[first + i] over interface e's coordinates (its support)."""
-    total = 0.0
-    for k in range(s.support_start[e], s.support_start[e + 1]):
-        i = s.support_index[k]
-        total += rows[e, i] * values[first + i]
-    return total
+from .slider_tangent import slider_force_change, slider_rate_change
+from .support import row_dot
 
 
 @njit_inlined
@@ -92,7 +84,9 @@ def structure_linearised_acceleration(direction, s, modes, topology, g):
         δN_e = ∂N/∂δ n_e·δx + ∂N/∂δ̇ n_e·δẋ,
 
     and δẍ_f = (δR_f − G_fᵀ δλ)/m with δλ = W_f δR_f (the prescribed motions do not
-    depend on the state: δẍ_p = 0)."""
+    depend on the state: δẍ_p = 0). An elastic contact's friction is its spring's,
+    δf = k_t δu, and its stretch's rate δu̇ lands in the direction's velocity slot
+    (``slider_tangent``)."""
     n = len(s.mass)
     free = n - len(s.motion_amplitude)
     change = g.resultant_change
@@ -114,6 +108,7 @@ def structure_linearised_acceleration(direction, s, modes, topology, g):
         for k in range(s.support_start[e], s.support_start[e + 1]):
             i = s.support_index[k]
             change[i] -= normal * s.normal_rows[e, i] + friction * s.tangent_rows[e, i]
+    slider_force_change(direction, s, modes, change)
     acceleration = g.acceleration_change
     for i in range(free):
         acceleration[i] = change[i]
@@ -128,6 +123,7 @@ def structure_linearised_acceleration(direction, s, modes, topology, g):
             acceleration[i] -= s.tangent_rows[e, i] * value
     for i in range(free):
         acceleration[i] /= s.mass[i]
+    slider_rate_change(direction, s, modes, g)
 
 
 @njit_inlined

@@ -20,7 +20,8 @@ from shroudnet.engine.dynamics import (cluster_accelerations, continued_mu, coup
                                        resultant_forces, static_friction)
 from shroudnet.engine.sliders import (push_second_friction, slider_forces, slider_guards,
                                      slider_rate)
-from shroudnet.engine.structures import kinematics, row_dot, structure_resultant
+from shroudnet.engine.structures import kinematics, structure_resultant
+from shroudnet.engine.support import row_dot
 
 if TYPE_CHECKING:
     from .generated import (HAS_COUPLINGS, HAS_FRICTION, HAS_PRESCRIBED, HAS_REGULARISED,

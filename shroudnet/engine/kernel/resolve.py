@@ -23,10 +23,11 @@ from shroudnet.engine.regroup import project_velocities, regroup, same_stuck
 from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches, piling_up,
                                       relative_acceleration)
 from shroudnet.engine.saltation import apply_saltation, apply_saltations, project_tangent
+from shroudnet.engine.slider_tangent import first_order_field, release_open_stretches
 from shroudnet.engine.sliders import initial_slider_modes, switch_slider
 
 if TYPE_CHECKING:
-    from .forces import evaluate_guards_apart
+    from .forces import evaluate_guards_apart, law_forces
     from .generated import HAS_PRESCRIBED, HAS_SLIDERS, HAS_STRUCTURES, HAS_TANGENT
     from .tangent import crossed_gradients, crossings_coincide, guard_gradient
 
@@ -205,9 +206,13 @@ def switch(t, state, topology, s, w, sw, events, controls):
         for i in range(len(state.x)):
             g.f_plus[i] = state.v[i]
             g.f_plus[len(state.x) + i] = w.a_start[i]
+        if HAS_SLIDERS:
+            first_order_field(s, g.f_plus)
         if not (several and apply_saltations(t, n_crossed, state.modes, s, topology, g,
                                              sw)):
             apply_saltation(t, crossing, time_rate, several, s, topology, g)
+        if HAS_SLIDERS:
+            release_open_stretches(state.modes, s, g.matrix)
     if status == FINISHED and not is_finite(state):
         status = NOT_FINITE
     return status, stop_interface, topology
@@ -231,7 +236,8 @@ def begin(state, s, w, sw, controls, out):
     start's projection)."""
     initial_modes(state, s, w, sw.candidates)
     if HAS_SLIDERS:
-        initial_slider_modes(state.modes, s)
+        law_forces(s, state.modes, w)
+        initial_slider_modes(state.x, state.modes, s, w)
     status, lost, topology, _ = settle(controls.t0, state, regroup(s, state.modes, sw), s, w,
                                        sw)
     state.energy[PROJECTION] += lost

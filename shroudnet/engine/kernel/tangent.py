@@ -21,6 +21,7 @@ from shroudnet.engine.records import new_switching, new_tangent, new_work, plain
 from shroudnet.engine.regroup import regroup
 from shroudnet.engine.saltation import (breakaway_normal, contact_normal, reduce_to_clusters,
                                         same_surface, slip_normal)
+from shroudnet.engine.slider_tangent import first_order_field, slider_breakaway_normal
 from shroudnet.engine.tableau import DP_A, DP_C, DP_STAGES, stage_sum
 from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
                                       linearised_acceleration, stage_tangent, tangent_error,
@@ -28,7 +29,7 @@ from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
 
 if TYPE_CHECKING:
     from .forces import derivative, sliding_coefficient
-    from .generated import (HAS_FRICTION, HAS_REGULARISED, HAS_STRUCTURES,
+    from .generated import (HAS_FRICTION, HAS_REGULARISED, HAS_SLIDERS, HAS_STRUCTURES,
                             friction_coefficient, friction_slope, normal_force_gradient)
 
 
@@ -77,6 +78,9 @@ def linearise(t, x, v, modes, topology, s, g):
         if HAS_STRUCTURES:
             g.normal_u[e] = d_penetration
             g.normal_du[e] = d_rate
+            if HAS_SLIDERS:
+                if s.slider_index[e] >= 0:  # its friction is its spring's: ``slider_tangent``
+                    continue
             if modes[e] != STICK and HAS_FRICTION and s.friction_kind[e] >= 0:
                 mu, sigma, d_slip = friction_slopes(s, e, modes[e], w)
                 g.force_u[e] = mu * sigma
@@ -214,9 +218,14 @@ def guard_gradient(t, e, state, topology, s, w):
     for i in range(n):
         g.f_minus[i] = state.v[i]
         g.f_minus[n + i] = w.a_end[i]
+    if HAS_SLIDERS:
+        first_order_field(s, g.f_minus)
     if crossed(state.contact_before[e], w.contact[e]):
         contact_normal(e, s, g)
         return 0.0
+    if HAS_SLIDERS:
+        if s.slider_index[e] >= 0:
+            return slider_guard_gradient(t, e, state, topology, s, g)
     if state.modes[e] != STICK:
         slip_normal(e, s, g)
         return 0.0
@@ -228,6 +237,22 @@ def guard_gradient(t, e, state, topology, s, w):
                         gw.imbalance, gw.friction)
     sign = 1.0 if gw.friction[e] >= 0.0 else -1.0
     return breakaway_normal(e, sign, t, s, state.modes, topology, g)
+
+
+@njit_step
+def slider_guard_gradient(t, e, state, topology, s, g):
+    """``guard_gradient`` of elastic contact e's motion guard: breakaway's
+    (``slider_tangent.slider_breakaway_normal``) from stick; from slip, none (0): the
+    vector field is continuous where λ falls to 0 (u̇ jumps by û λ = 0), so the saltation
+    of sticking is P whatever the gradient. ∂g/∂t is 0 for both."""
+    g = state.tangent
+    if state.modes[e] == STICK:
+        linearise(t, state.x, state.v, state.modes, topology, s, g)
+        slider_breakaway_normal(e, s, g)
+    else:
+        for r in range(len(g.guard_normal)):
+            g.guard_normal[r] = 0.0
+    return 0.0
 
 
 @njit_step_merged

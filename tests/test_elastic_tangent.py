@@ -1,0 +1,137 @@
+"""The tangent flow of elastic contacts: the Jacobian of their sliders' vector field in
+every mode, the monodromy through closing, breakaway, sticking and separation of 2-D
+Jenkins elements, runs that take up another's sliders, and Lyapunov exponents.
+
+The references are computed here: central differences of the kernel's vector field and
+of the trajectories ``simulate`` computes, and the multipliers of a monodromy matrix."""
+
+import numpy as np
+import pytest
+
+import shroudnet as sn
+from contact_laws import Coulomb, KelvinVoigt
+from shroudnet.engine.codes import OPEN, SLIP_POSITIVE, STICK
+from shroudnet.engine.generate import kernel_scene, load_kernel
+from shroudnet.simulate import integrate
+from tests.test_tangent import (EXACT, differenced_monodromy, scaled_error, settled_state,
+                                state_scale)
+
+
+def pair_on_a_disc():
+    """Two three-mode blades of the packet, 2-D elastic faces (k_t = 30 kN/m), forced as
+    two of eight blades on a disc: every period the face closes, sticks, breaks away,
+    sticks again, breaks away and opens."""
+    return sn.scenes.modal_packet(blades=2, tangential_stiffness=3e4, gap=-1e-6, q1=3.0,
+                                  speed_rpm=3100.0, blades_on_disc=8)
+
+
+def first_order_field(kernel, s, t, y, modes, n):
+    """(ẋ, ẍ) of the kernel's state y = (x with the stretches, ẋ) in fixed ``modes``, each
+    stretch's rate u̇ in its x-row (``derivative`` leaves it in its acceleration slot)."""
+    _, acceleration = kernel.linearise_at(t, y[:n].copy(), y[n:].copy(), modes, s,
+                                          np.zeros((2 * n, 0)))
+    field = np.concatenate([y[n:], acceleration])
+    for k in s.slider_index[s.slider_index >= 0]:
+        field[k:k + 2] = field[n + k:n + k + 2]
+        field[n + k:n + k + 2] = 0.0
+    return field
+
+
+@pytest.mark.parametrize("mode", [OPEN, STICK, SLIP_POSITIVE])
+def test_the_sliders_jacobian_agrees_with_differences_of_their_vector_field(mode):
+    """In slip the stretch turns with ṙ_t (û = u/|u| in u̇ = ṙ_t − û λ): the terms
+    λ δû and û (δû·u̇) of its variation are the ones a rigid contact does not have."""
+    scene = pair_on_a_disc()
+    s = kernel_scene(scene)
+    kernel = load_kernel(scene, tangent=True)
+    n = len(s.mass)
+    k = int(s.slider_index[0])
+    rng = np.random.default_rng(3)
+    y = np.concatenate([rng.normal(size=n) * 1e-6, rng.normal(size=n) * 1e-2])
+    y[n + k:n + k + 2] = 0.0  # a stretch has no velocity of its own
+    if mode == OPEN:
+        y[k:k + 2] = 0.0
+    modes = np.array([mode], dtype=np.int64)
+    jacobian, _ = kernel.linearise_at(1e-3, y[:n].copy(), y[n:].copy(), modes, s,
+                                      np.zeros((2 * n, 0)))
+    columns = []
+    for j in range(2 * n):
+        step = 1e-11 if j < n else 1e-7
+        up, down = y.copy(), y.copy()
+        up[j] += step
+        down[j] -= step
+        columns.append((first_order_field(kernel, s, 1e-3, up, modes, n)
+                        - first_order_field(kernel, s, 1e-3, down, modes, n)) / (2 * step))
+    reference = np.array(columns).T
+    keep = np.r_[0:n, n:n + k, n + k + 2:2 * n]  # a stretch's velocity slot is no state
+    reference, jacobian = reference[:, keep], jacobian[:, keep]
+    row_scale = np.abs(reference).max(axis=1, keepdims=True) + 1.0
+    # Measured: 1.6e-11, 3.0e-11 and 3.6e-11 of each row's largest entry (open, stuck, slipping).
+    assert (np.abs(jacobian - reference) <= 1e-7 * row_scale).all()
+    if mode == OPEN:
+        assert not jacobian[k:k + 2].any()
+
+
+def test_monodromy_through_stick_slip_and_separation_of_2d_elastic_faces():
+    """The sliders start relaxed (the face is open at t = 0), so the map (x, ẋ) ↦ (x, ẋ)
+    is the orbit's; its saltations: closing (the stretch starts to follow ṙ_t),
+    breakaway (μN − k_t|u| = 0), sticking (λ = 0, continuous: the identity) and
+    opening (the stretch reset to 0)."""
+    scene = pair_on_a_disc()
+    y = settled_state(scene, 20)
+    counts = sn.simulate(scene, 1, method=EXACT, samples_per_period=1,
+                         initial=np.split(y, 2)).events.counts
+    assert all(counts[kind] > 0 for kind in ("closing", "separation", "sticking",
+                                             "breakaway")), counts
+    scale = state_scale(y)
+    matrix = sn.monodromy(scene, 1, initial=np.split(y, 2), method=EXACT)
+    reference = differenced_monodromy(scene, 1, y, scale, 1e-13)
+    # Measured: 1.5e-8 (0.60 with the sliders' rows left out of the tangent).
+    assert scaled_error(matrix, reference, scale) <= 1e-6
+
+
+def test_a_run_takes_up_the_sliders_where_another_left_them():
+    """Six periods, or one and then five from its end with its stretches: the contacts
+    slipping at the hand-over slip on at the limit (restarted relaxed, the motion moves
+    by 8e-4 of its size)."""
+    scene = sn.scenes.modal_packet(tangential_stiffness=3e5, speed_rpm=2800.0)
+    method = sn.Adaptive(rtol=1e-10)
+    whole = integrate(scene, 6, method=method, samples_per_period=1, event_capacity=0)
+    first = integrate(scene, 1, method=method, samples_per_period=1, event_capacity=0)
+    assert SLIP_POSITIVE in first.run.output.modes[-1]
+    end = first.run.output
+    rest = integrate(scene, 5, method=method, samples_per_period=1, event_capacity=0,
+                     initial=(end.x[-1], end.v[-1]), stretches=first.stretches[-1])
+    size = np.abs(whole.run.output.x).max()
+    # Measured: 6.7e-11 of the motion, 1.1e-10 of the stretches.
+    assert np.abs(rest.run.output.x[-1] - whole.run.output.x[-1]).max() <= 1e-8 * size
+    assert np.abs(rest.stretches[-1] - whole.stretches[-1]).max() \
+        <= 1e-8 * np.abs(whole.stretches).max()
+
+
+def test_largest_lyapunov_exponent_of_a_stable_elastic_orbit_is_its_largest_multipliers_log():
+    """The pair's orbit, open at t = 0, is stable: λ_max = ln|μ_max| per period."""
+    scene = pair_on_a_disc()
+    y = settled_state(scene, 100)
+    multipliers = np.linalg.eigvals(sn.monodromy(scene, 1, initial=np.split(y, 2),
+                                                 method=EXACT))
+    expected = np.log(np.abs(multipliers).max())
+    result = sn.lyapunov(scene, 300, transient=100)
+    # Measured: −0.131 ± 0.009 against −0.122.
+    assert expected < 0.0
+    assert result.largest == pytest.approx(expected, abs=max(3 * result.error[0], 0.01))
+
+
+def test_orbits_and_a_varying_slope_are_refused_with_elastic_contacts_by_name():
+    scene = pair_on_a_disc()
+    with pytest.raises(ValueError, match=r"periodic_orbit: the elastic contacts \[\('blade1', "
+                                         r"'blade2'\)\].*monodromy and lyapunov"):
+        sn.periodic_orbit(scene)
+    with pytest.raises(ValueError, match="continuation: the elastic contacts"):
+        sn.continuation(lambda rpm: pair_on_a_disc(), 3000.0, 3100.0)
+    voigt = sn.scenes.modal_packet(blades=2, tangential_stiffness=3e4, blades_on_disc=8,
+                                   normal_law=KelvinVoigt(stiffness=1e5, damping=1.0),
+                                   friction=Coulomb(mu=0.3))
+    with pytest.raises(ValueError, match=r"\('blade1', 'blade2'\).*constant slopes.*"
+                                         "KelvinVoigt"):
+        sn.monodromy(voigt, 1)
