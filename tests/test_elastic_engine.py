@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import shroudnet as sn
-from contact_laws import Coulomb, ExponentialFriction, LinearSpring
+from contact_laws import ConstantLoad, Coulomb, ExponentialFriction, LinearSpring
 from shroudnet.baseline_jenkins import JenkinsOscillator, run_oscillator
 from shroudnet.substructure import Substructure
 
@@ -85,6 +85,31 @@ def test_the_loop_moves_as_the_independent_jenkins_reference(runs):
     period = 2.0 * math.pi / OMEGA
     for t in ref.switch_times:
         assert np.abs(times - t).min() <= 1e-7 * period
+
+
+def test_a_driven_1d_element_dissipates_the_closed_form_of_jenkins_loop():
+    """A Jenkins element (k_t = 10 kN/m, μ = 0.3) under a constant 10 N load, driven by
+    u₀ sin ωt (u₀ = 1 mm, 50 Hz) against an anvil that does not give (1e12 N/m): it
+    slips once u moves 2a = 2μN/k_t past a reversal, so a steady cycle dissipates
+    4μN(u₀ − a), and the five periods from rest, slip lengths u₀ − a, nine of 2(u₀ − a)
+    and u₀ − 2a, μN(20u₀ − 21a)."""
+    load, mu, k_t, u0, frequency = 10.0, 0.3, 1e4, 1e-3, 50.0
+    group = sn.BladeGroup().add_blade("anvil", sn.Blade(mass=1e6, damping=1e6,
+                                                       stiffness=1e12))
+    group.add_prescribed("driver", sn.HarmonicMotion(amplitude=u0, frequency=frequency))
+    group.connect("driver", "anvil", sn.Interface(
+        gap=0.0, angle=0.0, normal=ConstantLoad(force=load), friction=Coulomb(mu=mu),
+        tangential_stiffness=k_t))
+    scene = sn.Scene(group=group, excitation=sn.scenes.NO_EXCITATION,
+                     speed_rpm=60.0 * frequency)
+    sim = sn.simulate(scene, 5, samples_per_period=400, method=sn.Adaptive(rtol=1e-10))
+    limit = mu * load
+    a = limit / k_t
+    assert sim.events.counts["breakaway"] == 11 and sim.events.counts["sticking"] == 10
+    # Measured: 1.2e-8 (the anvil gives 3e-12 m); the loop's area 3.9e-5 (its samples).
+    assert sim.energy.friction_loss == pytest.approx(limit * (20 * u0 - 21 * a), rel=1e-7)
+    assert sn.hysteresis_loop(sim, 0, 1).area_per_cycle() == pytest.approx(
+        4 * limit * (u0 - a), rel=1e-4)
 
 
 def test_the_ledger_books_the_sliders_loss_and_the_springs_energy(runs):
