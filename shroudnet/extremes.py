@@ -181,7 +181,7 @@ ROOT_STEPS = 40
 def state_at(scene, initial, time, method, event_tolerance):
     """(x, ẋ) of the orbit at ``time`` [s], by running it again from its start."""
     if time <= 0.0:
-        return initial
+        return initial[:2]
     periods = max(1, int(np.ceil(time / scene.excitation_period - 1e-12)))
     run = integrate(scene, periods, method=method, event_tolerance=event_tolerance,
                     initial=initial, until=min(time, periods * scene.excitation_period),

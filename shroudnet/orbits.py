@@ -25,9 +25,10 @@ from .cycle import (EnergyPerCycle, Harmonics, energy_per_cycle, equivalent_damp
                     harmonics, kinetic_peak)
 from .extremes import orbit_extremes, state_at
 from .linear import nodal_diameters
-from .simulate import MAX_PERIODS, initial_state, simulate
+from .simulate import MAX_PERIODS, initial_state, simulate, split_stretches
 from .simulation import EventLog, Simulation, SimulationError
-from .stability import TANGENT_METHOD, StroboscopicStep, stroboscopic_step
+from .stability import (TANGENT_METHOD, StroboscopicStep, state_parts, state_size,
+                        stroboscopic_step)
 
 
 class ConvergenceError(SimulationError):
@@ -51,7 +52,8 @@ UNIT_CIRCLE = 1.0 + 1e-7
 class PeriodicOrbit:
     """A periodic orbit of a forced scene, of ``periods`` excitation periods.
 
-    ``initial``: (x0 [m], ẋ0 [m/s]) at t = 0 mod T_e, by blade position. ``multipliers``:
+    ``initial``: (x0 [m], ẋ0 [m/s]) at t = 0 mod T_e, by blade position, and with elastic
+    contacts their springs' stretches u0 [m] (``Simulation.stretches``). ``multipliers``:
     the Floquet multipliers (eigenvalues of ``monodromy``), complex, by descending modulus;
     a stick phase gives zeros. ``residual``: max |φ(y) − y| over ``scale``, the state scale
     [m] (velocities count divided by l Ω). ``events``: the switches over one orbit, in
@@ -71,7 +73,7 @@ class PeriodicOrbit:
     """
 
     scene: Scene
-    initial: tuple[np.ndarray, np.ndarray]
+    initial: tuple[np.ndarray, ...]
     periods: int
     multipliers: np.ndarray
     monodromy: np.ndarray
@@ -99,7 +101,7 @@ class PeriodicOrbit:
 
     @property
     def state(self) -> np.ndarray:
-        """y = (x0, ẋ0) as one array."""
+        """y = (x0, ẋ0[, u0]) as one array."""
         return np.concatenate(self.initial)
 
     @property
@@ -222,9 +224,10 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
     scene : Scene
     periods : int
         k ≥ 1: the orbit's period is k T_e.
-    guess : (x0, v0), optional
-        A start near the orbit [m, m/s]. Default: the state after ``transient`` periods
-        from rest.
+    guess : (x0, v0) or (x0, v0, u0), optional
+        A start near the orbit [m, m/s], with elastic contacts' stretches u0 [m] (relaxed
+        where not given). Default: the state after ``transient`` periods from rest. With
+        elastic contacts the state Newton solves for holds their stretches too.
     method : Adaptive or Accuracy
         The accuracy of the map; the orbit is as good as the map.
     transient : int
@@ -262,7 +265,6 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
     samples_per_period = check_int("periodic_orbit", "samples_per_period", samples_per_period,
                                    low=1)
     check_instance("periodic_orbit", "history", history, bool, expected="True or False")
-    refuse_sliders(scene, "periodic_orbit")
     cyclic = symmetry_of(scene, periods, symmetry)
     starts = start_states(scene, periods, guess, transient, method, event_tolerance)
 
@@ -274,7 +276,7 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
 
     def step_at(z):
         if cyclic is None:
-            return stroboscopic_step(scene, periods, np.split(z, 2), method=method,
+            return stroboscopic_step(scene, periods, state_parts(scene, z), method=method,
                                      event_tolerance=event_tolerance)
         return reduced_step(scene, cyclic, np.split(z, 2), method=method,
                             event_tolerance=event_tolerance, repeating=repeating)
@@ -303,14 +305,14 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
 
 def refuse_sliders(scene: Scene, owner: str) -> None:
     """Refuse, by name, a scene with elastic contacts: its state holds their sliders'
-    stretches too, which the orbits' Newton state (x, ẋ) does not carry."""
+    stretches too, which the continuation's state (x, ẋ, parameter) does not carry."""
     elastic = [(left, right) for left, right, interface in scene.group.interfaces
                if interface.elastic]
     if elastic:
         raise ValueError(
             f"{owner}: the elastic contacts {elastic} (Interface.tangential_stiffness) keep "
-            "their sliders' stretches in the state, which periodic orbits do not carry yet; "
-            "simulate, monodromy and lyapunov take them")
+            "their sliders' stretches in the state, which a continuation does not carry "
+            "yet; periodic_orbit, monodromy and lyapunov take them")
 
 
 def symmetry_of(scene: Scene, periods: int, symmetry: str | None,
@@ -343,13 +345,16 @@ def start_states(scene, periods, guess, transient, method, event_tolerance) -> l
     the second half of a ``transient`` from rest that come closest to themselves after
     ``periods`` periods (near-returns lie near an orbit), closest first."""
     n = scene.arrays.n_blades
+    sliders = state_size(scene) - 2 * n
     if guess is not None:
-        return [np.concatenate(initial_state(guess, n, "periodic_orbit", "guess"))]
+        guess, stretches = split_stretches(scene, guess, "periodic_orbit", "guess")
+        return [np.concatenate(initial_state(guess, n, "periodic_orbit", "guess")
+                               + (np.zeros(sliders) if stretches is None else stretches,))]
     if transient == 0:
-        return [np.zeros(2 * n)]
+        return [np.zeros(2 * n + sliders)]
     run = simulate(scene, transient + periods, method=method, samples_per_period=1,
                    event_tolerance=event_tolerance, event_capacity=0)
-    states = np.hstack([run.x, run.v])
+    states = np.hstack([run.x, run.v, run.stretches])
     weights = state_weights(scene, states[-1])
     half = transient // 2
     returns = np.abs(weights * (states[half + periods:] - states[half:-periods])).max(axis=1)
@@ -357,13 +362,15 @@ def start_states(scene, periods, guess, transient, method, event_tolerance) -> l
 
 
 def state_weights(scene: Scene, y: np.ndarray) -> np.ndarray:
-    """Per component of y, 1/scale: displacements over the state scale x̂ [m], velocities
-    over x̂ l Ω; x̂ is the largest of max |x|, max |ẋ| / (l Ω) and the static deflection."""
-    n = len(y) // 2
+    """Per component of y = (x, ẋ[, u]), 1/scale: displacements (and the elastic
+    contacts' stretches) over the state scale x̂ [m], velocities over x̂ l Ω; x̂ is the
+    largest of max |x|, max |ẋ| / (l Ω) and the static deflection."""
+    n = scene.arrays.n_blades
     frequency = scene.arrays.excitation_frequency
-    scale = max(np.abs(y[:n]).max(), np.abs(y[n:]).max() / frequency,
+    scale = max(np.abs(y[:n]).max(), np.abs(y[n:2 * n]).max() / frequency,
                 scene.arrays.static_deflection, 1e-12)
-    return np.concatenate([np.full(n, 1.0 / scale), np.full(n, 1.0 / (scale * frequency))])
+    return np.concatenate([np.full(n, 1.0 / scale), np.full(n, 1.0 / (scale * frequency)),
+                           np.full(len(y) - 2 * n, 1.0 / scale)])
 
 
 @dataclass(frozen=True)
@@ -432,8 +439,7 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
     extremes are every sector's."""
     multipliers = np.linalg.eigvals(step.jacobian).astype(complex)
     multipliers = multipliers[np.argsort(-np.abs(multipliers), kind="stable")]
-    n = len(y) // 2
-    initial = (y[:n].copy(), y[n:].copy())
+    initial = tuple(part.copy() for part in state_parts(scene, y))
     run = simulate(scene, periods, method=method, samples_per_period=samples_per_period,
                    event_tolerance=event_tolerance, initial=initial)
     if cyclic is None:

@@ -134,16 +134,14 @@ def integrate(scene: Scene, periods: int, *,
               samples_per_period: int = 100, event_tolerance: float = EVENT_TOLERANCE,
               zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
               tangent: np.ndarray | None = None,
-              orthonormalise: bool = False, until: float | None = None,
-              stretches: np.ndarray | None = None) -> Integration:
+              orthonormalise: bool = False, until: float | None = None) -> Integration:
     """``simulate``'s checks and run, returning the kernel's raw record.
 
-    ``stretches`` (2 per elastic contact [m]) start the sliders stretched, as another run
-    left them; by default relaxed.
-
-    With ``tangent`` (2 n_blades × k), the run integrates those k tangent vectors of the
-    start with the state (``engine.tangent``), in a kernel compiled for it, by the adaptive
-    method only; ``orthonormalise`` re-orthonormalises them after every step. With
+    With ``tangent`` (2 n_blades × k; with elastic contacts, its rows δx and δẋ may be
+    followed by the stretches' δu, 0 where they are not), the run integrates those k
+    tangent vectors of the start with the state (``engine.tangent``), in a kernel compiled
+    for it, by the adaptive method only; the run's tangent has rows δx, δẋ and, with
+    elastic contacts, δu. ``orthonormalise`` re-orthonormalises them after every step. With
     ``until`` [s] in (0, periods T_e], the run stops there instead, with two samples: the
     start and the state at ``until`` (the steps before it are those of the whole run).
     Arguments as ``simulate``; raises what it raises.
@@ -162,6 +160,7 @@ def integrate(scene: Scene, periods: int, *,
         raise ValueError(f"samples_per_period must divide FixedStep.steps_per_period = "
                          f"{method.steps_per_period}, got {samples_per_period}")
     n = scene.arrays.n_blades  # coordinates, with substructures
+    initial, stretches = split_stretches(scene, initial)
     x0, v0 = initial_state(initial, n)
     check_footprint(scene, periods * samples_per_period + 1, event_capacity,
                     tangent_columns=None if tangent is None else np.shape(tangent)[1])
@@ -176,11 +175,13 @@ def integrate(scene: Scene, periods: int, *,
                          "method=Adaptive(...) or Accuracy(...), not FixedStep")
     tangent0 = np.zeros((2 * n, n_columns)) if tangent is None else np.array(
         tangent, dtype=float)
+    tangent0, stretch_rows = tangent0[:2 * n], tangent0[2 * n:]  # rows δx, δẋ[, δu]
     x_p, v_p = scene.arrays.prescribed_state(0.0)
     x0, v0 = np.concatenate([x0, x_p]), np.concatenate([v0, v_p])
     tangent0 = _with_prescribed(tangent0, n, len(x_p))
     arrays = kernel_scene(scene)
-    x0, v0, tangent0 = _with_sliders(arrays, x0, v0, tangent0, n, stretches)
+    x0, v0, tangent0 = _with_sliders(arrays, x0, v0, tangent0, n, stretches,
+                                     stretch_rows if len(stretch_rows) else None)
 
     kernel = load_kernel(scene, tangent=tangent is not None,
                          adaptive=not isinstance(method, FixedStep))
@@ -216,7 +217,7 @@ def integrate(scene: Scene, periods: int, *,
     driver, compile_seconds = compiled(kernel.run, arguments)
     run = finish(driver(*arguments), output, events, state.tangent)
     stretches = run.output.x[:, n:len(x0) - len(x_p)]
-    run = _blades_only(run, n)
+    run = _blades_only(run, n, _slider_count(arrays))
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
@@ -247,33 +248,40 @@ def _with_prescribed(tangent, n, n_prescribed):
     return rows
 
 
-def _with_sliders(arrays, x0, v0, tangent0, n, stretches=None):
+def _with_sliders(arrays, x0, v0, tangent0, n, stretches=None, stretch_rows=None):
     """The start (x0, v0, tangent columns) in the integrator's coordinates: the elastic
     contacts' stretches u (``engine.sliders``) after the n free coordinates, each relaxed
-    (u = 0: no friction force) or as ``stretches`` give them (the last row of another
-    run's ``Integration.stretches``, to take it up), at rest and without variation."""
-    index = getattr(arrays, "slider_index", np.zeros(0, dtype=np.int64))
-    sliders = 2 * int(np.sum(index >= 0))
+    (u = 0: no friction force) or as ``stretches`` give them, and their tangent rows
+    ``stretch_rows`` (0 where None); their velocity slots at rest and without variation."""
+    sliders = _slider_count(arrays)
     if sliders == 0:
         return x0, v0, tangent0
+    nodes = len(x0)
     x0 = np.insert(x0, [n] * sliders, 0.0 if stretches is None else stretches)
     v0 = np.insert(v0, [n] * sliders, 0.0)
-    nodes = tangent0.shape[0] // 2
-    tangent0 = np.insert(tangent0, [n] * sliders + [nodes + n] * sliders, 0.0, axis=0)
+    tangent0 = np.insert(tangent0, [n] * sliders,
+                         0.0 if stretch_rows is None else stretch_rows, axis=0)
+    tangent0 = np.insert(tangent0, [nodes + sliders + n] * sliders, 0.0, axis=0)
     return x0, v0, tangent0
 
 
-def _blades_only(run: Run, n: int) -> Run:
-    """The run's record with the blades' rows only: the prescribed-motion nodes that follow
-    them in the integrator's state are known functions of time."""
+def _slider_count(arrays) -> int:
+    """The coordinates the elastic contacts' stretches take: two each."""
+    index = getattr(arrays, "slider_index", np.zeros(0, dtype=np.int64))
+    return 2 * int(np.sum(index >= 0))
+
+
+def _blades_only(run: Run, n: int, sliders: int) -> Run:
+    """The run's record with the blades' rows only, and its tangent's rows (δx, δẋ, δu):
+    the prescribed-motion nodes that follow the blades in the integrator's state are known
+    functions of time, and the ``sliders`` stretches' velocity slots are no state."""
     out, g = run.output, run.tangent
     nodes = out.x.shape[1]
     if nodes == n:
         return run
-    rows = np.r_[0:n, nodes:nodes + n]
+    rows = np.r_[0:n, nodes:nodes + n, n:n + sliders]
     return run._replace(output=out._replace(x=out.x[:, :n], v=out.v[:, :n]),
                         tangent=g._replace(matrix=g.matrix[rows]))
-
 
 
 #: The most excitation periods one run may span: beyond it the time t = periods·T_e is so
@@ -344,6 +352,23 @@ def _check_memory(scene, periods, samples_per_period, event_capacity):
                          f"events, more than {what}. Run fewer periods, "
                          "take fewer samples per period, or run in pieces, each starting from "
                          "the last state of the one before (initial=).")
+
+
+def split_stretches(scene: Scene, initial, owner: str = "simulate",
+                    field: str = "initial") -> tuple[object, np.ndarray | None]:
+    """(x0, v0) of ``initial`` and the stretches u0 its third member gives the sliders of a
+    scene with elastic contacts (2 per elastic contact [m], as ``Simulation.stretches``),
+    or None where it has none: relaxed sliders."""
+    count = 2 * int(np.isfinite(scene.arrays.tangential_stiffness).sum())
+    if count == 0 or not isinstance(initial, tuple | list) or len(initial) != 3:
+        return initial, None
+    try:
+        stretches = check_array(owner, f"{field} u0", initial[2], shape=(count,))
+    except ValueError:
+        raise ValueError(f"{owner}.{field} must be (x0, v0) or (x0, v0, u0): u0 must hold "
+                         f"the {count} stretches [m] of the elastic contacts' springs (two "
+                         f"each), got {initial[2]!r:.200}") from None
+    return tuple(initial[:2]), stretches
 
 
 def initial_state(initial, n: int, owner: str = "simulate",

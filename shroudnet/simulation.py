@@ -175,6 +175,20 @@ class Simulation:
         return self.scene.arrays.slip_rows(direction)[self.checked_interface(interface,
                                                                              caller)]
 
+    @property
+    def stretches(self) -> np.ndarray:
+        """The elastic contacts' springs' stretches u = r_t − w [m] at every sample (n_t ×
+        2 per elastic contact, in the order of the interfaces: along t₁, then t₂), read
+        back from their forces f = k_t u; with the last row as the third member of
+        ``initial``, a run takes up the sliders where this one left them."""
+        stiffness = self.scene.arrays.tangential_stiffness
+        elastic = np.flatnonzero(np.isfinite(stiffness))
+        values = np.empty((len(self.t), 2 * len(elastic)))
+        values[:, 0::2] = self.friction_force[:, elastic] / stiffness[elastic]
+        values[:, 1::2] = (0.0 if self.friction_force_second is None else
+                           self.friction_force_second[:, elastic] / stiffness[elastic])
+        return values
+
     def friction_along(self, interface: int, direction: int = 1) -> np.ndarray:
         """The friction force [N] of the interface at position ``interface`` along its
         tangent t₁ (``direction`` 1: ``friction_force``) or t₂ (2: 0 where the interface

@@ -45,9 +45,10 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
     initial : (x0, v0), optional
         The start: displacements [m] and velocities [m/s] by blade position; default at
         rest. A start with stuck interfaces has its velocities projected onto the stick
-        clusters first, and M includes that projection. Elastic contacts start with
-        their sliders relaxed (no friction force): M is the orbit's monodromy where they
-        are open at the start.
+        clusters first, and M includes that projection. With elastic contacts, (x0, v0,
+        u0) gives their springs' stretches too (``Simulation.stretches``; relaxed by
+        default); a contact that starts at its friction limit, or beyond, slips, its
+        stretch on the limit.
     method : Adaptive or Accuracy
         The accuracy of the trajectory; M is the exact derivative of the computed map.
     event_tolerance : float
@@ -56,7 +57,8 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
     Returns
     -------
     float array (2 n_blades, 2 n_blades)
-        Rows and columns: displacements by blade position, then velocities.
+        Rows and columns: displacements by blade position, then velocities; with elastic
+        contacts, then their stretches (``state_size`` in all).
 
     Raises
     ------
@@ -74,9 +76,24 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
     return step.jacobian
 
 
+def state_size(scene: Scene) -> int:
+    """The size of the state the stroboscopic map acts on: y = (x, ẋ), and with elastic
+    contacts their springs' stretches u too (two each: ``Simulation.stretches``)."""
+    return 2 * (scene.arrays.n_blades + int(np.isfinite(
+        scene.arrays.tangential_stiffness).sum()))
+
+
+def state_parts(scene: Scene, y: np.ndarray) -> tuple:
+    """y = (x, ẋ[, u]) as the ``initial`` of a run: (x0, v0), and u0 with elastic
+    contacts."""
+    n = scene.arrays.n_blades
+    return (y[:n], y[n:2 * n]) + ((y[2 * n:],) if len(y) > 2 * n else ())
+
+
 @dataclass(frozen=True)
 class StroboscopicStep:
-    """One application of the ``periods``-period stroboscopic map y ↦ φ(y), y = (x, ẋ):
+    """One application of the ``periods``-period stroboscopic map y ↦ φ(y), y = (x, ẋ)
+    (with elastic contacts (x, ẋ, u)):
     ``end`` = φ(start), its Jacobian ``jacobian`` (the monodromy matrix; see
     ``monodromy``), and ``singular``, the switches on the way where φ is not
     differentiable (grazing, or several interfaces at once), with the first one's
@@ -105,15 +122,18 @@ class StroboscopicStep:
 def stroboscopic_step(scene: Scene, periods: int, initial=None, *,
                       method: Adaptive | Accuracy = TANGENT_METHOD,
                       event_tolerance: float = EVENT_TOLERANCE) -> StroboscopicStep:
-    """φ and its Jacobian from ``initial`` = (x0, v0) (default at rest), in one run of the
-    state with the 2N × 2N tangent flow. Arguments as ``monodromy``."""
-    n = scene.arrays.n_blades
-    run = integrate(scene, periods, method=method, samples_per_period=1,
-                    event_tolerance=event_tolerance, initial=initial, event_capacity=0,
-                    tangent=np.eye(2 * n)).run
+    """φ and its Jacobian from ``initial`` = (x0, v0) or, with elastic contacts,
+    (x0, v0, u0) (default at rest), in one run of the state with its square tangent flow.
+    Arguments as ``monodromy``."""
+    size = state_size(scene)
+    done = integrate(scene, periods, method=method, samples_per_period=1,
+                     event_tolerance=event_tolerance, initial=initial, event_capacity=0,
+                     tangent=np.eye(size))
+    run = done.run
     tangent = run.tangent
     return StroboscopicStep(scene=scene,
-                            end=np.concatenate([run.output.x[-1], run.output.v[-1]]),
+                            end=np.concatenate([run.output.x[-1], run.output.v[-1],
+                                                done.stretches[-1]]),
                             jacobian=tangent.matrix.copy(), singular=int(tangent.singular[0]),
                             singular_time=float(tangent.singular_time[0]),
                             singular_interface=int(tangent.singular_interface[0]))
@@ -172,9 +192,10 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
     transient : int
         Periods run first and discarded, ≥ 0.
     exponents : int
-        How many, from the largest: 1 … 2 n_blades.
-    initial : (x0, v0), optional
-        The start of the transient.
+        How many, from the largest: 1 … ``state_size`` (2 n_blades, and two per elastic
+        contact).
+    initial : (x0, v0) or (x0, v0, u0), optional
+        The start of the transient, as ``monodromy`` takes it.
     method : Adaptive or Accuracy
     event_tolerance : float
         As ``simulate``.
@@ -186,21 +207,23 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
     periods = check_int("lyapunov", "periods", periods, low=LYAPUNOV_BLOCKS, most=MAX_PERIODS)
     transient = check_int("lyapunov", "transient", transient, low=0, most=MAX_PERIODS)
     seed = check_int("lyapunov", "seed", seed, low=0)
-    exponents = check_int("lyapunov", "exponents", exponents, low=1, high=2 * n)
-    stretches = None
+    size = state_size(scene)
+    exponents = check_int("lyapunov", "exponents", exponents, low=1, high=size)
     if transient > 0:
         before = integrate(scene, transient, method=method, samples_per_period=1,
                            event_tolerance=event_tolerance, initial=initial,
                            event_capacity=0)
-        initial = (before.run.output.x[-1], before.run.output.v[-1])
-        stretches = before.stretches[-1]  # elastic contacts' sliders go on as they were
+        # the elastic contacts' sliders go on as the transient left them
+        end = before.run.output
+        initial = (end.x[-1], end.v[-1]) + ((before.stretches[-1],)
+                                            if before.stretches.size else ())
     rng = np.random.default_rng(seed)
-    start, _ = np.linalg.qr(rng.standard_normal((2 * n, exponents)))
-    frequency = scene.arrays.excitation_frequency  # orthonormal in |δx|² + |δẋ / lΩ|²
-    start[n:] *= frequency if frequency > 0.0 else 1.0
+    start, _ = np.linalg.qr(rng.standard_normal((size, exponents)))
+    frequency = scene.arrays.excitation_frequency  # orthonormal in |δx|² + |δẋ / lΩ|² + |δu|²
+    start[n:2 * n] *= frequency if frequency > 0.0 else 1.0
     done = integrate(scene, periods, method=method, samples_per_period=1,
                      event_tolerance=event_tolerance, initial=initial, event_capacity=0,
-                     tangent=start, orthonormalise=True, stretches=stretches)
+                     tangent=start, orthonormalise=True)
     tangent = done.run.tangent
     growth = tangent.log_growth.copy()
     per_period = growth / periods

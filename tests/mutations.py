@@ -121,6 +121,8 @@ ELASTIC = "tests/test_elastic_contacts.py"
 ELASTIC_TANGENT = "tests/test_elastic_tangent.py"
 ELASTIC_MONODROMY = ("tests/test_elastic_tangent.py::"
                      "test_monodromy_through_stick_slip_and_separation_of_2d_elastic_faces")
+ELASTIC_ORBIT = ("tests/test_elastic_tangent.py::"
+                 "test_the_elastic_packets_orbit_carries_its_stretches_and_its_monodromy_agrees")
 
 
 @dataclass(frozen=True)
@@ -302,7 +304,18 @@ MUTATIONS = (
              "        if k >= 0 or modes[e] != OPEN:\n            continue\n        for column",
              "an opening contact keeps its stretch's variation, though its slider follows "
              "(u = 0) from then on", (ELASTIC_MONODROMY,)),
+    Mutation("slipping-start-without-the-load", "tangent",
+             "        matrix[k, column] = mu_over_k * change * d1 + scale",
+             "        matrix[k, column] = 0.0 * change * d1 + scale",
+             "a face that starts slipping has its stretch put on the friction limit μN/k_t, "
+             "but its tangent forgets that the limit moves with the normal load",
+             (ELASTIC_ORBIT,)),
     # ---- orbits: Newton's step (M − I) Δy = −(φ(y) − y) ----------------------------------
+    Mutation("orbit-end-relaxes-the-sliders", "orbits",
+             "                                                done.stretches[-1]]),",
+             "                                                0.0 * done.stretches[-1]]),",
+             "the map's end drops the elastic contacts' stretches: Newton seeks an orbit "
+             "whose springs relax every period", (ELASTIC_ORBIT,)),
     Mutation("newton-without-monodromy", "orbits",
              "change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)",
              "change = least_squares(-np.eye(len(y)), y - step.end)",

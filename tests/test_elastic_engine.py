@@ -250,9 +250,6 @@ def test_fixed_steps_carry_the_sliders():
 
 
 def test_what_the_loop_does_not_take_with_elastic_contacts_is_refused_by_name():
-    scene, _ = oscillator(1, (0.3, 0.2, 1.0))
-    with pytest.raises(ValueError, match="periodic orbits do not carry yet"):
-        sn.periodic_orbit(scene)
     group = sn.BladeGroup().add_blade("a", sn.Blade(mass=0.1, damping=2.0, stiffness=1e5))
     group.add_fixed("g").connect("a", "g", sn.Interface(
         gap=-1e-4, angle=0.6, normal=LinearSpring(stiffness=3e5),

@@ -10,8 +10,8 @@ A change d = (δx, δẋ) of the state changes an elastic contact's friction for
 
 from u̇ = ṙ_t − û λ, λ = û·ṙ_t − μṄ/k_t, with û = u/|u|, P = I − û ûᵀ,
 δû = P δu / |u| (so δû·ṙ_t = δû·u̇) and δṄ = ∂N/∂δ n·δẋ + ∂N/∂δ̇ n·δẍ: the normal law's
-slopes are taken as constant (``kernel.generate`` refuses the tangent flow of an elastic
-contact whose law's are not, whose δṄ would need its curvature).
+slopes are taken as constant (``generate.load_kernel`` refuses the tangent flow of an
+elastic contact whose law's are not, whose δṄ would need its curvature).
 
 The stretch is a first-order coordinate: its δu̇ is the x-row of J d, left in the
 direction's velocity slot (which no force reads, as the state's own velocity slot of a
@@ -134,3 +134,39 @@ def release_open_stretches(modes, s, matrix):
         for column in range(matrix.shape[1]):
             matrix[k, column] = 0.0
             matrix[k + 1, column] = 0.0
+
+
+@njit_inlined
+def slipping_start(x, s, e, normal, slope, rate_slope, matrix):
+    """Elastic contact e starts slipping, at its normal force ``normal`` N with slopes
+    ∂N/∂δ = ``slope`` and ∂N/∂δ̇ = ``rate_slope``: its stretch is put on the friction limit,
+    u ← r û with r = μN/k_t, and the tangent's rows of it are that projection's
+    derivative, δu ← (μ δN/k_t) û + (r/|u|) P δu with δN = ∂N/∂δ n·δx + ∂N/∂δ̇ n·δẋ (a
+    start just inside the limit sticks and breaks away at once, with the same
+    derivative)."""
+    k = s.slider_index[e]
+    n = len(s.mass)
+    stretch = math.hypot(x[k], x[k + 1])
+    d1, d2 = x[k] / stretch, x[k + 1] / stretch
+    mu_over_k = s.static_mu[e] / s.tangential_stiffness[e]
+    scale = mu_over_k * normal / stretch
+    for column in range(matrix.shape[1]):
+        radial = d1 * matrix[k, column] + d2 * matrix[k + 1, column]
+        change = slope * row_dot_column(s, e, matrix, column, 0) \
+            + rate_slope * row_dot_column(s, e, matrix, column, n)
+        matrix[k, column] = mu_over_k * change * d1 + scale * (matrix[k, column] - d1 * radial)
+        matrix[k + 1, column] = mu_over_k * change * d2 \
+            + scale * (matrix[k + 1, column] - d2 * radial)
+    x[k] *= scale
+    x[k + 1] *= scale
+
+
+@njit_inlined
+def row_dot_column(s, e, matrix, column, first):
+    """n_e · (rows ``first`` … of Φ's ``column``): the change of interface e's penetration
+    (``first`` 0) or its rate (``first`` n) along that tangent vector."""
+    total = 0.0
+    for index in range(s.support_start[e], s.support_start[e + 1]):
+        i = s.support_index[index]
+        total += s.normal_rows[e, i] * matrix[first + i, column]
+    return total

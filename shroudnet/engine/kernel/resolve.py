@@ -23,12 +23,14 @@ from shroudnet.engine.regroup import project_velocities, regroup, same_stuck
 from shroudnet.engine.resolve import (direction_bit, initial_modes, log_switches, piling_up,
                                       relative_acceleration)
 from shroudnet.engine.saltation import apply_saltation, apply_saltations, project_tangent
-from shroudnet.engine.slider_tangent import first_order_field, release_open_stretches
+from shroudnet.engine.slider_tangent import (first_order_field, release_open_stretches,
+                                             slipping_start)
 from shroudnet.engine.sliders import initial_slider_modes, switch_slider
 
 if TYPE_CHECKING:
     from .forces import evaluate_guards_apart, law_forces
-    from .generated import HAS_PRESCRIBED, HAS_SLIDERS, HAS_STRUCTURES, HAS_TANGENT
+    from .generated import (HAS_PRESCRIBED, HAS_SLIDERS, HAS_STRUCTURES, HAS_TANGENT,
+                            normal_force_gradient)
     from .tangent import crossed_gradients, crossings_coincide, guard_gradient
 
 
@@ -227,6 +229,22 @@ def start(t, state, topology, s, w):
     keep_guards(state, w)
 
 
+@njit_step
+def start_sliders(state, s, w):
+    """The elastic contacts' modes at the start (``sliders.initial_slider_modes``): an open
+    one's stretch relaxed, with its tangent, and a slipping one's put on its friction
+    limit with its tangent (``slider_tangent.slipping_start``)."""
+    law_forces(s, state.modes, w)
+    initial_slider_modes(state.x, state.modes, s, w)
+    release_open_stretches(state.modes, s, state.tangent.matrix)
+    for e in range(len(state.modes)):
+        if s.slider_index[e] < 0 or state.modes[e] == OPEN or state.modes[e] == STICK:
+            continue
+        slope, rate_slope = normal_force_gradient(s.normal_kind[e], s.normal_params[e],
+                                                  w.penetration[e], w.rate[e])
+        slipping_start(state.x, s, e, w.normal[e], slope, rate_slope, state.tangent.matrix)
+
+
 @njit_step_exact
 def begin(state, s, w, sw, controls, out):
     """The start at t0: consistent modes, velocities projected onto their clusters, the
@@ -236,8 +254,7 @@ def begin(state, s, w, sw, controls, out):
     start's projection)."""
     initial_modes(state, s, w, sw.candidates)
     if HAS_SLIDERS:
-        law_forces(s, state.modes, w)
-        initial_slider_modes(state.x, state.modes, s, w)
+        start_sliders(state, s, w)
     status, lost, topology, _ = settle(controls.t0, state, regroup(s, state.modes, sw), s, w,
                                        sw)
     state.energy[PROJECTION] += lost
