@@ -13,7 +13,8 @@ from contact_laws import Coulomb, KelvinVoigt
 from shroudnet.engine.codes import OPEN, SLIP_POSITIVE, STICK
 from shroudnet.engine.generate import kernel_scene, load_kernel
 from shroudnet.simulate import integrate
-from tests.test_tangent import EXACT, scaled_error, settled_state
+from tests.test_tangent import (EXACT, scaled_error, settled_state,
+                                settled_through_every_switch)
 
 
 def pair_on_a_disc():
@@ -103,17 +104,11 @@ def test_the_sliders_jacobian_agrees_with_differences_of_their_vector_field(mode
 
 
 def test_monodromy_through_stick_slip_and_separation_of_2d_elastic_faces():
-    """The sliders start relaxed (the face is open at t = 0), so the map (x, ẋ) ↦ (x, ẋ)
-    is the orbit's; its saltations: closing (the stretch starts to follow ṙ_t),
-    breakaway (μN − k_t|u| = 0), sticking (λ = 0, continuous: the identity) and
-    opening (the stretch reset to 0)."""
+    """The face is open at t = 0 (its stretch relaxed); the saltations on the way:
+    closing (the stretch starts to follow ṙ_t), breakaway (μN − k_t|u| = 0), sticking
+    (λ = 0, continuous: the identity) and opening (the stretch reset to 0)."""
     scene = pair_on_a_disc()
-    y = settled_state(scene, 20)
-    counts = sn.simulate(scene, 1, method=EXACT, samples_per_period=1,
-                         initial=np.split(y, 2)).events.counts
-    assert all(counts[kind] > 0 for kind in ("closing", "separation", "sticking",
-                                             "breakaway")), counts
-    y = np.concatenate([y, np.zeros(2)])  # relaxed: the face opens every period
+    y = np.concatenate([settled_through_every_switch(scene, 20), np.zeros(2)])
     scale = full_scale(scene, y)
     matrix = sn.monodromy(scene, 1, initial=sn.stability.state_parts(scene, y), method=EXACT)
     reference = differenced_map(scene, y, scale)

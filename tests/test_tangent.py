@@ -87,6 +87,16 @@ def settled_state(scene, periods):
     return np.concatenate([run.x[-1], run.v[-1]])
 
 
+def settled_through_every_switch(scene, periods):
+    """``settled_state``, whose next period closes, separates, sticks and breaks away."""
+    y = settled_state(scene, periods)
+    counts = simulate(scene, 1, method=EXACT, samples_per_period=1,
+                      initial=np.split(y, 2)).events.counts
+    assert all(counts[kind] > 0 for kind in ("closing", "separation", "sticking",
+                                             "breakaway")), counts
+    return y
+
+
 def free_oscillators(scene, blades=None):
     """The monodromy of blades without contact: exp(A T_e), A = [[0, I], [−k/m, −c/m]]."""
     a = scene.arrays
