@@ -1,6 +1,7 @@
 """Families of periodic orbits in one parameter: pseudo-arclength continuation.
 
-The unknowns are u = (y, p): the orbit's start y = (x, ẋ) at t = 0 mod T_e and the
+The unknowns are u = (y, p): the orbit's start y = (x, ẋ) at t = 0 mod T_e (with
+elastic contacts, their springs' stretches too: ``stability.state_parts``) and the
 parameter p. Each step predicts along the branch's tangent τ (the kernel of
 [M − I, ∂φ/∂p], DESIGN §6) and corrects by Newton on
 
@@ -41,12 +42,12 @@ from .linear_response import frequency_response
 from .methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
 from .orbits import (ORBIT_TOLERANCE, SMALLEST_TOLERANCE, UNIT_CIRCLE, ConvergenceError,
                      PeriodicOrbit, least_squares, orbit_at, periodic_orbit, state_weights,
-                     refuse_sliders, symmetry_of)
+                     symmetry_of)
 from .parametric import checked_scene_at
 from .scene import Scene
 from .simulate import MAX_PERIODS, integrate
 from .simulation import SimulationError
-from .stability import TANGENT_METHOD, stroboscopic_step
+from .stability import TANGENT_METHOD, state_parts, stroboscopic_step
 from .vertex import parabola_vertex
 
 #: Bifurcation kinds.
@@ -351,7 +352,6 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
             raise
         raise type(error)(f"continuation: scene_at refused the range start = {start:g} … "
                           f"stop = {stop:g}: {error}") from error
-    refuse_sliders(scene_at(start), "continuation")
     cyclic = None if from_bifurcation is not None and symmetry is None else symmetry_of(
         scene_at(start), periods, symmetry, "continuation")
     if cyclic is not None and from_bifurcation is not None:
@@ -423,8 +423,8 @@ class Solver:
         ``rate`` is given)."""
         scene = self.scene_at(p)
         if self.cyclic is None:
-            step = stroboscopic_step(scene, periods, np.split(y, 2), method=self.method,
-                                     event_tolerance=self.event_tolerance)
+            step = stroboscopic_step(scene, periods, state_parts(scene, y),
+                                     method=self.method, event_tolerance=self.event_tolerance)
         else:
             step = reduced_step(scene, self.symmetric(scene, p), np.split(y, 2),
                                 method=self.method, event_tolerance=self.event_tolerance)
@@ -433,11 +433,11 @@ class Solver:
             shifted = self.scene_at(p + h)
             until = None if self.cyclic is None else \
                 self.cyclic.fraction * shifted.excitation_period
-            run = integrate(shifted, periods, method=self.method,
-                            samples_per_period=1, event_tolerance=self.event_tolerance,
-                            initial=np.split(y, 2), event_capacity=0,
-                            until=until).run.output
-            end = np.concatenate([run.x[-1], run.v[-1]])
+            done = integrate(shifted, periods, method=self.method,
+                             samples_per_period=1, event_tolerance=self.event_tolerance,
+                             initial=state_parts(shifted, y), event_capacity=0, until=until)
+            end = np.concatenate([done.run.output.x[-1], done.run.output.v[-1],
+                                  done.stretches[-1]])
             if self.cyclic is not None:
                 end = self.cyclic.shifted(end, -self.cyclic.steps)
             rate = (end - step.end) / h

@@ -303,18 +303,6 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
                         samples_per_period, history, cyclic)
 
 
-def refuse_sliders(scene: Scene, owner: str) -> None:
-    """Refuse, by name, a scene with elastic contacts: its state holds their sliders'
-    stretches too, which the continuation's state (x, ẋ, parameter) does not carry."""
-    elastic = [(left, right) for left, right, interface in scene.group.interfaces
-               if interface.elastic]
-    if elastic:
-        raise ValueError(
-            f"{owner}: the elastic contacts {elastic} (Interface.tangential_stiffness) keep "
-            "their sliders' stretches in the state, which a continuation does not carry "
-            "yet; periodic_orbit, monodromy and lyapunov take them")
-
-
 def symmetry_of(scene: Scene, periods: int, symmetry: str | None,
                 owner: str = "periodic_orbit") -> CyclicSymmetry | None:
     """The ``CyclicSymmetry`` ``owner`` solves with (``symmetry`` as ``periodic_orbit``

@@ -50,6 +50,7 @@ from .orbits import PeriodicOrbit
 from .reporting import SweepWarning
 from .methods import SimulationSettings
 from .simulation import EnergyLedger, EventLog, Simulation, Sweep, SweepPoint
+from .stability import state_parts, state_size
 
 #: Version of the file layout, stored in every file.
 FORMAT = 1
@@ -947,8 +948,8 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
             raise ResultsError(f"{path}: {len(meta['scenes'])} scene documents for {total} "
                                "orbits")
         scenes = [_scene(path, document, laws).scene for document in meta["scenes"]]
-    n = scenes[0].arrays.n_blades  # blades, or with substructures coordinates
-    sizes.update({"state variable": 2 * n, "response": len(scenes[0].responses),
+    sizes.update({"state variable": state_size(scenes[0]),  # (x, ẋ[, u])
+                  "response": len(scenes[0].responses),
                   "orbit start": total + 1, "interface": len(scenes[0].group.interfaces)})
     columns = _checked_arrays(path, arrays, _BRANCH_ARRAYS[1:], sizes)
     offsets = columns["event_offsets"]
@@ -972,7 +973,7 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
                           kind=columns["event_kind"][run], counts=meta["event_counts"][k])
         initial = columns["initial"][k]
         orbits.append(PeriodicOrbit(
-            scene=scene, initial=(initial[:n].copy(), initial[n:].copy()),
+            scene=scene, initial=tuple(part.copy() for part in state_parts(scene, initial)),
             periods=meta["periods"], multipliers=columns["multipliers"][k],
             monodromy=columns["monodromy"][k], residual=float(columns["residual"][k]),
             scale=float(columns["scale"][k]), iterations=int(columns["iterations"][k]),
