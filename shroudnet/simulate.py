@@ -54,8 +54,12 @@ def simulate(scene: Scene, periods: int, *,
         (1e-10) stays below the integrators' own.
     zeno : ZenoGuard
         When to stop a run whose switches pile up.
-    initial : (x0, v0), optional
+    initial : (x0, v0) or (x0, v0, u0), optional
         Initial displacements [m] and velocities [m/s] by blade position; default at rest.
+        With elastic contacts, u0 gives their springs' stretches [m] (two each, as
+        ``Simulation.stretches``; relaxed where not given): a closed face whose stretch
+        holds its force at the friction limit or beyond starts slipping, its stretch put
+        on the limit; an open face's is relaxed.
     event_capacity : int
         Most events kept in the log, ≥ 0 (counts stay exact beyond it).
 

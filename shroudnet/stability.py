@@ -42,7 +42,7 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
     scene : Scene
     periods : int
         Excitation periods of the map, ≥ 1.
-    initial : (x0, v0), optional
+    initial : (x0, v0) or (x0, v0, u0), optional
         The start: displacements [m] and velocities [m/s] by blade position; default at
         rest. A start with stuck interfaces has its velocities projected onto the stick
         clusters first, and M includes that projection. With elastic contacts, (x0, v0,
@@ -56,9 +56,10 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
 
     Returns
     -------
-    float array (2 n_blades, 2 n_blades)
+    float array (``state_size``, ``state_size``): (2 n_blades, 2 n_blades), and two more
+        per elastic contact
         Rows and columns: displacements by blade position, then velocities; with elastic
-        contacts, then their stretches (``state_size`` in all).
+        contacts, then their stretches.
 
     Raises
     ------

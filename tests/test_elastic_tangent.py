@@ -1,6 +1,7 @@
 """The tangent flow of elastic contacts: the Jacobian of their sliders' vector field in
 every mode, the monodromy through closing, breakaway, sticking and separation of 2-D
-Jenkins elements, runs that take up another's sliders, and Lyapunov exponents.
+Jenkins elements, runs that take up another's sliders, Lyapunov exponents, and periodic
+orbits and branches whose state holds the springs' stretches.
 
 The references are computed here: central differences of the kernel's vector field and
 of the trajectories ``simulate`` computes, and the multipliers of a monodromy matrix."""
