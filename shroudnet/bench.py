@@ -309,10 +309,9 @@ def worker_counts(cores: int) -> list[int]:
     return counts + ([cores] if counts[-1] != cores else [])
 
 
-def packet_costs(periods: int, repeats: int) -> tuple[float, float, object]:
+def packet_costs(scene, periods: int, repeats: int) -> tuple[float, float, object]:
     """(periods per second, seconds per periodic orbit from a settled guess, the orbit) of
-    ``scenes.modal_packet``."""
-    scene = modal_packet()
+    a ``scenes.modal_packet``."""
     rate = periods_per_second(scene, periods, repeats)
     orbit = periodic_orbit(scene)
     orbit_seconds, orbit = median_time(lambda: periodic_orbit(scene, guess=orbit.initial),
@@ -531,14 +530,18 @@ def main(argv=None) -> None:
           "time, for the stable orbits only")
 
     print("\n7. Substructures, one core")
-    rate, orbit_seconds, orbit = packet_costs(20 if args.quick else 200, repeats)
+    periods = 20 if args.quick else 200
+    rate, orbit_seconds, orbit = packet_costs(modal_packet(), periods, repeats)
     print(f"   packet of 6 blades of 3 modes (18 coordinates, 5 interfaces): {rate:,.0f} "
           f"periods/s; a periodic orbit with its {len(orbit.multipliers)} multipliers from a "
           f"settled guess {orbit_seconds * 1e3:.0f} ms ({orbit.iterations} Newton steps)")
-    elastic = periods_per_second(modal_packet(**ELASTIC_PACKET), 20 if args.quick else 200,
-                                 repeats)
+    elastic, elastic_seconds, elastic_orbit = packet_costs(modal_packet(**ELASTIC_PACKET),
+                                                           periods, repeats)
     print(f"   the packet's contacts: 1-D contacts, rigid stick {rate:,.0f} periods/s; 3-D "
           f"contacts, elastic stick, 2-D friction {elastic:,.0f} periods/s")
+    print(f"   with the 3-D elastic contacts (their stretches in the state), a periodic orbit "
+          f"with its {len(elastic_orbit.multipliers)} multipliers from a settled guess "
+          f"{elastic_seconds * 1e3:.0f} ms ({elastic_orbit.iterations} Newton steps)")
     seconds, branch = packet_curve(20 if args.quick else 300)
     print(f"   its forced-response curve up from 2600 rpm: {len(branch)} orbits with their "
           f"multipliers in {seconds:.1f} s ({branch.ended} at "

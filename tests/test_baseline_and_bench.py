@@ -149,6 +149,10 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
     ((rigid, elastic),) = figures(rf"rigid stick {N} periods/s; 3-D contacts, elastic "
                                   rf"stick, 2-D friction {N} periods/s", out, 1)
     assert rigid > 0.0 and elastic > 0.0
+    ((multipliers, milliseconds, steps),) = figures(
+        rf"their stretches in the state\), a periodic orbit with its {N} multipliers from a "
+        rf"settled guess {N} ms \({N} Newton steps\)", out, 1)
+    assert multipliers == 2 * 18 + 2 * 5 and milliseconds > 0.0 and steps <= 2
 
     # 8. tuned rings: the speed-ups are the quotients of the times
     for full, symmetric, ratio in figures(
