@@ -78,6 +78,7 @@ from .motion import ConstantVelocity as ConstantVelocity
 from .motion import HarmonicMotion as HarmonicMotion
 from .motion import MotionTable as MotionTable
 from .methods import Adaptive as Adaptive
+from .methods import Exponential as Exponential
 from .methods import FixedStep as FixedStep
 from .methods import ZenoGuard as ZenoGuard
 from .engine.codes import Mode as Mode
@@ -152,6 +153,7 @@ __all__ = [
     "HarmonicMotion",
     "MotionTable",
     "Adaptive",
+    "Exponential",
     "FixedStep",
     "ZenoGuard",
     "Mode",

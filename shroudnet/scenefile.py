@@ -48,7 +48,8 @@ A scene file holds one document (SI units; speeds in rev/min)::
                                       # sector by sector (``linear_modes``)
 
     [run]                             # optional: how ``shroudnet run`` integrates it
-    method = "adaptive"               # or "fixed" (steps_per_period) or "accuracy" (target)
+    method = "adaptive"               # or "fixed" or "exponential" (steps_per_period), or
+                                      # "accuracy" (target)
     periods = 400
     transient = 300                   # periods left out of summaries and figures
     blade = "blade2"                  # the blade they are about (with substructures,
@@ -168,7 +169,7 @@ from .excitation import (NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation,
 from .footprint import check_group_size
 from .group import BladeGroup
 from .interface import Interface
-from .methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive, FixedStep
+from .methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive, Exponential, FixedStep
 from .motion import ConstantVelocity, HarmonicMotion, MotionTable
 from .reduction import craig_bampton, modal_truncation
 from .scene import Scene
@@ -183,7 +184,7 @@ class SceneFileError(ValueError):
 class RunSettings:
     """How to run a scene: the ``[run]`` table of a scene file."""
 
-    method: FixedStep | Adaptive | Accuracy = Adaptive()
+    method: FixedStep | Adaptive | Exponential | Accuracy = Adaptive()
     periods: int = 400
     transient: int = TRANSIENT
     samples_per_period: int = 100
@@ -191,9 +192,9 @@ class RunSettings:
     blade: str | int | tuple = 1
 
     def __post_init__(self):
-        if not isinstance(self.method, FixedStep | Adaptive | Accuracy):
-            raise TypeError(f"run.method must be FixedStep(...), Adaptive(...) or "
-                            f"Accuracy(...), got {self.method!r}")
+        if not isinstance(self.method, FixedStep | Adaptive | Exponential | Accuracy):
+            raise TypeError(f"run.method must be FixedStep(...), Adaptive(...), "
+                            f"Exponential(...) or Accuracy(...), got {self.method!r}")
         for name in ("periods", "samples_per_period"):
             check_int("run", name, getattr(self, name), low=1)
         if isinstance(self.transient, bool) or not isinstance(self.transient, int) \
@@ -1028,6 +1029,7 @@ def _excitation(table: dict) -> Excitation:
 
 _METHODS = {"adaptive": (Adaptive, dict.fromkeys(("rtol", "atol", "max_step"), _NUMBER)),
             "fixed": (FixedStep, {"steps_per_period": _INTEGER}),
+            "exponential": (Exponential, {"steps_per_period": _INTEGER}),
             "accuracy": (Accuracy, {"target": _NUMBER})}
 _RUN_KEYS = {"method": _TEXT, "periods": _INTEGER, "transient": _INTEGER,
              "samples_per_period": _INTEGER, "event_tolerance": _NUMBER, "blade": _RESPONSE}

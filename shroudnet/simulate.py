@@ -14,10 +14,10 @@ from .engine.codes import EventKind, Mode, Status, WorkColumn
 from .engine.dynamics import interface_kinematics
 from .engine.controller import SMALLEST_STEP, first_step, smallest_step
 from .engine.generate import compiled, kernel_scene, load_kernel
-from .engine.records import Controls, Run, allocate, finish
+from .engine.records import Controls, Run, allocate, finish, new_propagation
 from .footprint import check_footprint
-from .methods import (EVENT_TOLERANCE, Accuracy, Adaptive, FixedStep, SimulationSettings,
-                      ZenoGuard, check_event_tolerance)
+from .methods import (EVENT_TOLERANCE, Accuracy, Adaptive, Exponential, FixedStep,
+                      SimulationSettings, ZenoGuard, check_event_tolerance)
 from .motion import motion_span
 from .scales import check_scales
 from .scene import Scene, edge_matrix
@@ -25,7 +25,7 @@ from .simulation import EnergyLedger, EventLog, Simulation, SimulationError
 
 
 def simulate(scene: Scene, periods: int, *,
-             method: FixedStep | Adaptive | Accuracy = Adaptive(),
+             method: FixedStep | Adaptive | Exponential | Accuracy = Adaptive(),
              samples_per_period: int = 100,
              event_tolerance: float = EVENT_TOLERANCE,
              zeno: ZenoGuard = ZenoGuard(), initial=None,
@@ -41,13 +41,15 @@ def simulate(scene: Scene, periods: int, *,
     scene : Scene
     periods : int
         Number of excitation periods, ≥ 1.
-    method : FixedStep, Adaptive or Accuracy
+    method : FixedStep, Adaptive, Exponential or Accuracy
         The integrator and its accuracy knobs, or the accuracy asked for. The default,
         ``Adaptive()`` (rtol = 1e-8), keeps Poincaré points and E_ρ of the paper's group
         to about 1e-7 at a quarter of the cost of ``FixedStep(steps_per_period=1000)``,
-        which reaches 1e-9 (README, "What accuracy costs").
+        which reaches 1e-9 (README, "What accuracy costs"). ``Exponential()`` carries the
+        motion between switches exactly, for scenes whose phases are linear.
     samples_per_period : int
-        Output samples per period; with ``FixedStep`` it must divide the steps per period.
+        Output samples per period; with ``FixedStep`` or ``Exponential`` it must divide the
+        steps per period.
     event_tolerance : float
         Width of the time bracket of each located switch, in excitation periods. Its
         error on the results is 0.3–6 times this; the default ``EVENT_TOLERANCE``
@@ -126,7 +128,7 @@ class Integration:
     leaves out."""
 
     run: Run
-    method: FixedStep | Adaptive
+    method: FixedStep | Adaptive | Exponential
     event_tolerance: float
     zeno_window: float
     compile_seconds: float
@@ -134,7 +136,7 @@ class Integration:
 
 
 def integrate(scene: Scene, periods: int, *,
-              method: FixedStep | Adaptive | Accuracy = Adaptive(),
+              method: FixedStep | Adaptive | Exponential | Accuracy = Adaptive(),
               samples_per_period: int = 100, event_tolerance: float = EVENT_TOLERANCE,
               zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
               tangent: np.ndarray | None = None,
@@ -152,17 +154,21 @@ def integrate(scene: Scene, periods: int, *,
     """
     check_instance("simulate", "scene", scene, Scene, expected="a shroudnet.Scene")
     periods = check_int("simulate", "periods", periods, low=1, most=MAX_PERIODS)
-    check_instance("simulate", "method", method, (FixedStep, Adaptive, Accuracy),
-                   expected="FixedStep(...), Adaptive(...) or Accuracy(...)")
+    check_instance("simulate", "method", method, (FixedStep, Adaptive, Exponential, Accuracy),
+                   expected="FixedStep(...), Adaptive(...), Exponential(...) or Accuracy(...)")
     check_instance("simulate", "zeno", zeno, ZenoGuard, expected="a ZenoGuard(...)")
     check_event_tolerance("simulate", event_tolerance)
     if isinstance(method, Accuracy):
         method, event_tolerance = method.settings(scene, event_tolerance)
     samples_per_period = check_int("simulate", "samples_per_period", samples_per_period, low=1)
     event_capacity = check_int("simulate", "event_capacity", event_capacity, low=0)
-    if isinstance(method, FixedStep) and method.steps_per_period % samples_per_period:
-        raise ValueError(f"samples_per_period must divide FixedStep.steps_per_period = "
-                         f"{method.steps_per_period}, got {samples_per_period}")
+    on_grid = isinstance(method, FixedStep | Exponential)
+    if on_grid and method.steps_per_period % samples_per_period:
+        raise ValueError(f"samples_per_period must divide {type(method).__name__}."
+                         f"steps_per_period = {method.steps_per_period}, got "
+                         f"{samples_per_period}")
+    if isinstance(method, Exponential):
+        check_linear_phases(scene)
     n = scene.arrays.n_blades  # coordinates, with substructures
     initial, stretches = split_stretches(scene, initial)
     x0, v0 = initial_state(initial, n)
@@ -174,9 +180,9 @@ def integrate(scene: Scene, periods: int, *,
     _check_motions(scene, periods * period)
 
     n_columns = 0 if tangent is None else tangent.shape[1]
-    if tangent is not None and isinstance(method, FixedStep):
+    if tangent is not None and on_grid:
         raise ValueError("the tangent flow is integrated by the adaptive method only: use "
-                         "method=Adaptive(...) or Accuracy(...), not FixedStep")
+                         f"method=Adaptive(...) or Accuracy(...), not {type(method).__name__}")
     tangent0 = np.zeros((2 * n, n_columns)) if tangent is None else np.array(
         tangent, dtype=float)
     tangent0, stretch_rows = tangent0[:2 * n], tangent0[2 * n:]  # rows δx, δẋ[, δu]
@@ -187,19 +193,18 @@ def integrate(scene: Scene, periods: int, *,
     x0, v0, tangent0 = _with_sliders(arrays, x0, v0, tangent0, n, stretches,
                                      stretch_rows if len(stretch_rows) else None)
 
-    kernel = load_kernel(scene, tangent=tangent is not None,
-                         adaptive=not isinstance(method, FixedStep))
+    kernel = load_kernel(scene, tangent=tangent is not None, method=_KERNEL_METHODS[type(method)])
     zeno_window = zeno.window_at(event_tolerance)
     n_samples = periods * samples_per_period + 1
     sample_step = period / samples_per_period
     if until is not None:
-        if isinstance(method, FixedStep):
+        if on_grid:
             raise ValueError("simulate: a run to a given time (until=) takes the adaptive "
                              "method")
         sample_step = check_real("simulate", "until", until, low=0.0, low_open=True,
                                  high=periods * period, unit="s")
         n_samples = 2
-    if isinstance(method, FixedStep):
+    if on_grid:
         step, rtol, atol = period / method.steps_per_period, 0.0, 0.0
         steps_per_sample = method.steps_per_period // samples_per_period
     else:
@@ -215,8 +220,11 @@ def integrate(scene: Scene, periods: int, *,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
         orthonormalise=orthonormalise,
         exponentials=not orthonormalise and scene.arrays.linear_phases)
+    propagation = new_propagation(arrays, scene.arrays, step) \
+        if isinstance(method, Exponential) else None
     state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
-                                                      flow=tangent is not None)
+                                                      flow=tangent is not None,
+                                                      propagation=propagation)
     arguments = (state, arrays, work, switching, events, controls, output)
     driver, compile_seconds = compiled(kernel.run, arguments)
     run = finish(driver(*arguments), output, events, state.tangent)
@@ -229,6 +237,37 @@ def integrate(scene: Scene, periods: int, *,
     return Integration(run=run, method=method, event_tolerance=event_tolerance,
                        zeno_window=zeno_window, compile_seconds=compile_seconds,
                        stretches=stretches)
+
+
+#: The kernel of each method (``engine.generate.METHODS``).
+_KERNEL_METHODS = {Adaptive: "adaptive", FixedStep: "fixed_step", Exponential: "exponential"}
+
+
+def check_linear_phases(scene: Scene) -> None:
+    """Refuse ``Exponential`` on a scene whose vector field is not linear between switches,
+    naming what makes it so."""
+    a = scene.arrays
+    why = None
+    if not a.is_structure:
+        why = "a scene of blades alone (add a Substructure, or use Adaptive)"
+    elif a.n_prescribed:
+        why = "prescribed motions, whose accelerations are not harmonics of the excitation"
+    elif np.isfinite(a.tangential_stiffness).any():
+        why = "elastic contacts, whose sliders turn with the stretch's direction"
+    else:
+        for (left, right, _), normal, friction in zip(scene.group.interfaces, a.normal_laws,
+                                                      a.friction_laws):
+            for law in (normal, friction):
+                if law is not None and not type(law).constant_slopes:
+                    why = (f"interface ({left!r}, {right!r}) has a {type(law).__name__}, "
+                           "not a law of constant slopes (LinearSpring, ConstantLoad, "
+                           "Coulomb)")
+                    break
+            if why:
+                break
+    if why:
+        raise ValueError("method=Exponential() takes scenes whose motion is linear between "
+                         f"switches, but this one has {why}")
 
 
 def _check_motions(scene, duration):

@@ -43,7 +43,7 @@ from .analysis import classify, friction_loss_per_cycle
 from .stability import LYAPUNOV_BLOCKS, lyapunov
 from .classification import REPEAT_TOLERANCE
 from .extremes import sampled_peaks
-from .methods import TRANSIENT, Accuracy, Adaptive, FixedStep
+from .methods import TRANSIENT, Accuracy, Adaptive, Exponential, FixedStep
 from .parametric import checked_scene_at
 from .reporting import ProgressReporter, SweepWarning
 from .scene import Scene
@@ -149,7 +149,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     scene_at : callable
         value ↦ Scene; a lambda or a function defined in a notebook will do (it travels to
         the workers by cloudpickle).
-    method : FixedStep, Adaptive or Accuracy
+    method : FixedStep, Adaptive, Exponential or Accuracy
         As for ``simulate``; the default ``Adaptive()`` keeps each point's Poincaré points
         and E_ρ to about 1e-7 in periodic regimes.
     workers : int, optional
@@ -293,12 +293,14 @@ def _check_arguments(scene_at, parameter, method, samples_per_period, workers, e
     for name, flag in flags.items():
         if not isinstance(flag, bool):
             raise TypeError(f"sweep.{name} must be True or False, got {flag!r}")
-    if not isinstance(method, FixedStep | Adaptive | Accuracy):
-        raise TypeError("sweep.method must be FixedStep(...), Adaptive(...) or Accuracy(...), "
-                        f"got {method!r}")
-    if isinstance(method, FixedStep) and method.steps_per_period % samples_per_period:
-        raise ValueError(f"sweep.samples_per_period must divide FixedStep.steps_per_period "
-                         f"= {method.steps_per_period}, got {samples_per_period}")
+    if not isinstance(method, FixedStep | Adaptive | Exponential | Accuracy):
+        raise TypeError("sweep.method must be FixedStep(...), Adaptive(...), Exponential(...) "
+                        f"or Accuracy(...), got {method!r}")
+    if isinstance(method, FixedStep | Exponential) \
+            and method.steps_per_period % samples_per_period:
+        raise ValueError(f"sweep.samples_per_period must divide {type(method).__name__}."
+                         f"steps_per_period = {method.steps_per_period}, got "
+                         f"{samples_per_period}")
     if executor is not None and workers is not None:
         raise ValueError("sweep: give workers (a pool of our own) or executor, not both")
     if flags["continuation"] and (executor is not None or (workers or 1) > 1):

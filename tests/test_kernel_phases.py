@@ -63,13 +63,13 @@ def test_no_built_in_law_compiles_a_kernel_of_its_own(law):
 def test_each_method_has_its_kernel_and_shares_the_method_free_phases():
     scene = three_blade_paper()
     adaptive = generate.load_kernel(scene)
-    fixed = generate.load_kernel(scene, adaptive=False)
+    fixed = generate.load_kernel(scene, method="fixed_step")
     assert adaptive.ADAPTIVE and not fixed.ADAPTIVE and adaptive is not fixed
     assert adaptive.switch is fixed.switch and adaptive.advance is not fixed.advance
     method_free = sys.modules[fixed.switch.py_func.__module__]
     assert not {"ADAPTIVE", "advance", "locate", "motion_inside"} & set(vars(method_free))
     with pytest.raises(ValueError, match="adaptive method only"):
-        generate.load_kernel(scene, tangent=True, adaptive=False)
+        generate.load_kernel(scene, tangent=True, method="fixed_step")
 
 
 def test_a_kernel_function_is_named_by_its_phase_module_and_line(monkeypatch):

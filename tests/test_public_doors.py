@@ -215,6 +215,7 @@ VALID = {
     "MotionTable": call(times=(0.0, 1.0), displacements=(0.0, 1e-3)),
     "Adaptive": call(rtol=1e-8),
     "FixedStep": call(steps_per_period=100),
+    "Exponential": call(steps_per_period=100),
     "ZenoGuard": call(events=200),
     "Mode": call(0),
     "ConvergenceError": call("no orbit"),

@@ -317,7 +317,7 @@ def test_the_settings_of_a_run_are_a_record_every_knob_resolved_that_reads_as_it
 
 @pytest.mark.parametrize("change, error, message", [
     (lambda t: {**t, "method": "Euler"}, ValueError,
-     r"settings\.method must be one of \['Adaptive', 'FixedStep'\], got 'Euler'"),
+     r"settings\.method must be one of \['Adaptive', 'Exponential', 'FixedStep'\], got 'Euler'"),
     (lambda t: {k: v for k, v in t.items() if k != "rtol"}, ValueError, r"missing \['rtol'\]"),
     (lambda t: {**t, "steps_per_period": 100}, ValueError, r"unknown \['steps_per_period'\]"),
     (lambda t: {**t, "zeno": 200}, ValueError, r"settings\.zeno must be a table"),

@@ -27,7 +27,7 @@ SLOTS = 7
 
 
 @njit_inlined
-def _product(a, b, out):
+def product(a, b, out):
     """out ← a b (square matrices, out distinct from both)."""
     n = a.shape[0]
     for i in range(n):
@@ -103,14 +103,14 @@ def exponential(work):
     for i in range(n):
         for j in range(n):
             a[i, j] *= scale
-    _product(a, a, a2)
-    _product(a2, a2, a4)
-    _product(a4, a2, a6)
+    product(a, a, a2)
+    product(a2, a2, a4)
+    product(a4, a2, a6)
     # ‖A‖₁ overstates the growth of a non-normal A's powers, which the approximant's
     # error follows: with η = max(‖A⁵‖^{1/5}, ‖A⁶‖^{1/6}) ≤ ‖A‖₁ (Al-Mohy and Higham,
     # SIAM J. Matrix Anal. Appl. 31, 2009) fewer squarings do, and each one saved
     # halves the rounding they amplify
-    _product(a4, a, t)
+    product(a4, a, t)
     growth = max(_norm(t) ** 0.2, _norm(a6) ** (1.0 / 6.0))
     saved = 0
     while saved < squarings and growth * 2.0 ** (saved + 1) <= THETA:
@@ -126,14 +126,14 @@ def exponential(work):
                 a6[i, j] *= factor**6
     b = PADE
     _combine(t, b[13], a6, b[11], a4, b[9], a2, 0.0)
-    _product(a6, t, v)
+    product(a6, t, v)
     for i in range(n):
         for j in range(n):
             v[i, j] += b[7] * a6[i, j] + b[5] * a4[i, j] + b[3] * a2[i, j]
         v[i, i] += b[1]
-    _product(a, v, u)                                   # U, the odd part
+    product(a, v, u)                                   # U, the odd part
     _combine(t, b[12], a6, b[10], a4, b[8], a2, 0.0)
-    _product(a6, t, v)
+    product(a6, t, v)
     for i in range(n):
         for j in range(n):
             v[i, j] += b[6] * a6[i, j] + b[4] * a4[i, j] + b[2] * a2[i, j]
@@ -144,7 +144,7 @@ def exponential(work):
             a[i, j] = v[i, j] + u[i, j]
     _solve(t, a)                                        # a ← (V − U)⁻¹ (V + U)
     for _ in range(squarings):
-        _product(a, a, t)
+        product(a, a, t)
         for i in range(n):
             for j in range(n):
                 a[i, j] = t[i, j]

@@ -17,8 +17,8 @@ numba keys that cache by a function's file, name and line, and a phase module ru
 many kernels, so each phase function's name carries a key of everything its code is made
 of (``compiled``): the phase modules, the engine's modules, the header, the method, and
 the modules of each law class and of the functions its law calls. The phases that are the
-same for both methods (``METHOD_FREE``) run once for the laws, in a module of their own
-that both methods' kernels call into, so a second method compiles only its own phases.
+same for every method (``METHOD_FREE``) run once for the laws, in a module of their own
+that each method's kernel calls into, so another method compiles only its own phases.
 """
 
 from __future__ import annotations
@@ -50,8 +50,8 @@ from .regroup import fill_groups
 _ENGINE = Path(__file__).parent
 _PHASES = [_ENGINE / "kernel" / f"{phase}.py" for phase in PHASES]
 
-#: The phase modules whose code is the same for both methods: they never read ``ADAPTIVE``
-#: nor call a function of another phase (which their module does not hold).
+#: The phase modules whose code is the same for every method: they never read ``ADAPTIVE``
+#: or ``EXPONENTIAL``, nor call a function of another phase (which their module lacks).
 METHOD_FREE = ("forces", "tangent", "resolve")
 
 #: About how long compiling one driver of a kernel takes on a 2-core machine [s], with
@@ -151,11 +151,11 @@ def law_sources(law_class, kind: str) -> str:
     return "\n".join(f"# {name}\n{source}" for name, source in sorted(sources.items()))
 
 
-def load_kernel(scene: Scene, tangent: bool = False, adaptive: bool = True) -> ModuleType:
-    """The kernel module for the law classes of ``scene`` and a method (adaptive or fixed
-    steps); with ``tangent``, the one that integrates the tangent flow too (adaptive
-    steps only)."""
-    if tangent and not adaptive:
+def load_kernel(scene: Scene, tangent: bool = False, method: str = "adaptive") -> ModuleType:
+    """The kernel module for the law classes of ``scene`` and a method ("adaptive",
+    "fixed_step" or "exponential"); with ``tangent``, the one that integrates the tangent
+    flow too (adaptive steps only)."""
+    if tangent and method != "adaptive":
         raise ValueError("the tangent flow is integrated by the adaptive method only")
     arrays = scene.arrays
     if tangent:
@@ -167,7 +167,7 @@ def load_kernel(scene: Scene, tangent: bool = False, adaptive: bool = True) -> M
             "HAS_TANGENT": tangent, "HAS_STRUCTURES": arrays.is_structure,
             "HAS_SLIDERS": has_sliders(arrays)}
     return _kernel(tuple(normal_classes), tuple(friction_classes), tuple(effects.items()),
-                   adaptive)
+                   method)
 
 
 def _check_slider_laws(scene: Scene) -> None:
@@ -190,18 +190,19 @@ def _digest(*parts: str) -> str:
 
 
 @functools.cache
-def _kernel(normal_classes, friction_classes, effect_flags, adaptive) -> ModuleType:
+def _kernel(normal_classes, friction_classes, effect_flags, method) -> ModuleType:
     """The kernel of one combination of law classes, effect flags and method (once per
     process): the method's phases, run in a namespace that holds the method-free kernel
-    of the same laws (``_method_free``) and ``ADAPTIVE``."""
+    of the same laws (``_method_free``), ``ADAPTIVE`` and ``EXPONENTIAL``."""
     laws = _method_free(normal_classes, friction_classes, effect_flags)
     phases, _ = phase_sources()
-    key = _digest(laws.CACHE_KEY, f"ADAPTIVE = {adaptive}")
+    adaptive, exponential = method == "adaptive", method == "exponential"
+    key = _digest(laws.CACHE_KEY, "EXPONENTIAL = True" if exponential else f"ADAPTIVE = {adaptive}")
     module = ModuleType(f"shroudnet_kernel_{key}")
     module.__dict__.update({name: value for name, value in vars(laws).items()
                             if not name.startswith("__")})
     module.__file__ = laws.__file__
-    module.ADAPTIVE = adaptive
+    module.ADAPTIVE, module.EXPONENTIAL, module.METHOD = adaptive, exponential, method
     _run_phases(module, key, [phase for phase in PHASES if phase not in METHOD_FREE], phases)
     return module
 
@@ -269,8 +270,7 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
             flow = " with its tangent flow" if module.TANGENT else ""
             laws = "every built-in contact law (once" if module.SHARED else \
                 f"{' + '.join(module.LAWS)} (once for these law classes"
-            method = "adaptive" if module.ADAPTIVE else "fixed_step"
-            announce(f"shroudnet: compiling the {method} integrator{flow} for {laws}; "
+            announce(f"shroudnet: compiling the {module.METHOD} integrator{flow} for {laws}; "
                      f"about {seconds} s)")
         began = time.perf_counter()
         driver.compile(tuple(numba.typeof(a) for a in arguments))

@@ -12,6 +12,7 @@ import numpy as np
 from .codes import N_EVENT_KINDS, N_POWERS, N_WORK
 from .compiled import njit_inlined, njit_internal
 from .exponential import SLOTS
+from .propagation import WORK_SLOTS, augmented_size, levels_for, slots_for
 from .tableau import DP_STAGES
 
 #: A scene as the compiled loop sees it: the ``SceneArrays`` fields that are numbers, plus
@@ -77,10 +78,28 @@ Controls = namedtuple("Controls", [
 #: The integrator's state between steps: displacements x [m] and velocities ẋ [m/s] by
 #: blade, the cumulative work columns [J] (``codes.WorkColumn``), each interface's mode,
 #: and its contact and motion guards where the last step ended (``detect.event_guards``),
-#: the reference a switch is detected against; and its ``Tangent`` (a ``NoTangent`` unless a
-#: run asks for the tangent flow).
+#: the reference a switch is detected against; its ``Tangent`` (a ``NoTangent`` unless a
+#: run asks for the tangent flow); and its ``Propagation`` (a ``NoPropagation`` unless it
+#: propagates its phases exactly: ``methods.Exponential``).
 State = namedtuple("State", ["x", "v", "energy", "modes", "contact_before", "motion_before",
-                             "tangent"])
+                             "tangent", "propagation"])
+
+#: The exact propagation of the phases of a run (``propagation``), for the ``slots`` phases
+#: it keeps, each in the slot its modes' key (``keys``) names: its augmented matrix A
+#: (``matrix``, m × m, m = 2n + 1 + 2H) and its powers' quadratic forms Q_c
+#: (``quadratic``), then e^{A h 2^-k} (``levels``) and the works W_c of a step of
+#: h 2^-k (``forms``) at k = 0 … L − 1, h the fixed step (``step[0]``, [s]). ``slot[0]``
+#: is the phase in use, ``slot[1]`` the next slot to fill. Scratch: the exponential's
+#: storage (``work``), vectors of the augmented state's size (``z``, ``z_next``, ``term``,
+#: ``spare``), and a ``Work`` (``field``) with the state ``x``, ``v`` and
+#: ``acceleration`` at which the vector field is evaluated.
+Propagation = namedtuple("Propagation", [
+    "matrix", "quadratic", "levels", "forms", "keys", "slot", "step", "work", "z", "z_next",
+    "term", "spare", "field", "x", "v", "acceleration",
+])
+
+#: The propagation of a run that takes Runge–Kutta steps: nothing to carry.
+NoPropagation = namedtuple("NoPropagation", ["keys"])
 
 #: The tangent (variational) state of a run and its scratch (``tangent``). ``matrix``
 #: (2 n_blades × k) holds k tangent vectors, displacement rows then velocity rows;
@@ -240,23 +259,59 @@ def new_tangent(tangent0, n_interfaces, n_samples, work):
                    np.zeros((SLOTS, 2 * b, 2 * b)))
 
 
-def new_state(x0, v0, tangent, n_interfaces):
+def new_state(x0, v0, tangent, n_interfaces, propagation):
     return State(np.array(x0, dtype=float), np.array(v0, dtype=float), np.zeros(N_WORK),
                  np.zeros(n_interfaces, np.int64), np.empty(n_interfaces),
-                 np.empty(n_interfaces), tangent)
+                 np.empty(n_interfaces), tangent, propagation)
 
 
-def allocate(s, x0, v0, tangent0, controls, flow):
+def new_propagation(s, arrays, step: float) -> Propagation:
+    """The ``Propagation`` of a run of the kernel scene ``s`` (``arrays`` its
+    ``SceneArrays``) with the fixed ``step`` [s]: its levels from a bound of the scaled
+    matrix's norm, 2ω_b + max Σ|C| + Hω, ω_b² bounding the rows of K with every linear
+    contact closed (``propagation.levels_for``: the kernel scales by each phase's own ω_b,
+    and a remainder coarser than aimed at costs only Taylor terms), as many phases kept as
+    ``propagation.slots_for`` allows."""
+    n, n_interfaces = len(s.mass), len(s.gap)
+    stiffness, damping = np.zeros(n), np.zeros(n)
+    for i in range(n):
+        entries = slice(s.matrix_start[i], s.matrix_start[i + 1])
+        stiffness[i] = np.abs(s.stiffness_entry[entries]).sum()
+        damping[i] = np.abs(s.damping_entry[entries]).sum()
+    for e, law in enumerate(arrays.normal_laws):
+        row = np.abs(s.normal_rows[e])
+        stiffness += getattr(law, "stiffness", 0.0) * row * row.sum()
+    harmonics = s.amplitudes.shape[0] - 1
+    norm = 2.0 * np.sqrt(stiffness.max(initial=0.0)) + damping.max(initial=0.0) \
+        + harmonics * s.excitation_frequency
+    levels = levels_for(step, norm)
+    m = augmented_size(n, harmonics)
+    slots = slots_for(m, levels)
+    return Propagation(np.zeros((slots, m, m)), np.zeros((slots, N_POWERS, m, m)),
+                       np.zeros((slots, levels, m, m)),
+                       np.zeros((slots, levels, N_POWERS, m, m)),
+                       np.full(slots, -1, dtype=np.int64), np.zeros(2, dtype=np.int64),
+                       np.full(1, step), np.zeros((WORK_SLOTS, m, m)), np.zeros(m),
+                       np.zeros(m), np.zeros(m), np.zeros(m),
+                       plain(new_work)(n, n_interfaces, len(s.motion_amplitude)),
+                       np.zeros(n), np.zeros(n), np.zeros(n))
+
+
+def allocate(s, x0, v0, tangent0, controls, flow, propagation=None):
     """Every record a driver works in, allocated once, here in Python, so that the
     compiled loop allocates nothing and runs without reference counting: (state, work
     arrays, the switches' storage, event log, output), with the tangent from ``tangent0``
-    (2 n_nodes × k) for a kernel with the tangent ``flow``, else a ``NoTangent``."""
+    (2 n_nodes × k) for a kernel with the tangent ``flow``, else a ``NoTangent``, and the
+    ``propagation`` of a run that propagates its phases exactly (else a
+    ``NoPropagation``)."""
     n_nodes, n_interfaces, n_prescribed = len(s.mass), len(s.gap), len(s.motion_amplitude)
     tangent = plain(new_tangent)(
         tangent0, n_interfaces, controls.n_samples,
         plain(new_work)(n_nodes, n_interfaces, n_prescribed)) if flow \
         else NoTangent(tangent0.copy())
-    return (new_state(x0, v0, tangent, n_interfaces),
+    if propagation is None:
+        propagation = NoPropagation(np.zeros(0, dtype=np.int64))
+    return (new_state(x0, v0, tangent, n_interfaces, propagation),
             plain(new_work)(n_nodes, n_interfaces, n_prescribed),
             plain(new_switching)(n_nodes, n_interfaces, square_size(s)),
             new_events(controls.event_capacity, controls.zeno_events),

@@ -9,12 +9,14 @@ see the header's names, and each other's, as module globals. Each module can als
 imported on its own, to be read and linted; its functions are compiled only in a kernel.
 
 A step reads as: ``forces`` (the right-hand side and the guards), ``step`` (one step, and
-what the method decides), ``tangent`` (the tangent flow, in kernels that carry it),
+what the method decides), ``propagation`` (the exact step of a linear phase, in kernels
+that propagate them), ``tangent`` (the tangent flow, in kernels that carry it),
 ``detect`` (switches hidden inside a step), ``locate`` (the switch inside a step),
 ``resolve`` (the new modes, the switch and the start) and ``drive`` (the loop).
 """
 
 #: The phase modules in the order a kernel runs them. ``forces``, ``tangent`` and
-#: ``resolve`` are the same for both methods: their compiled code is cached once for
-#: both (``generate.METHOD_FREE``).
-PHASES = ("forces", "step", "tangent", "detect", "locate", "resolve", "drive")
+#: ``resolve`` are the same for every method: their compiled code is cached once for
+#: all (``generate.METHOD_FREE``).
+PHASES = ("forces", "step", "propagation", "tangent", "detect", "locate", "resolve",
+          "drive")

@@ -4,9 +4,10 @@ A guard that has crossed by the end of a step is seen there. One that crosses an
 back within the step is not: a contact that closes and opens again, a static friction that
 passes μ_s N and falls back. ``first_inside`` looks for them, on states inside the step
 that the method provides (``step.motion_inside``): the dense output of an adaptive step,
-cheap enough to check the kinematic guards at ``DIP_POINTS`` every step; a fixed step's
-states integrated anew, checked where a contact may graze or a stuck interface's margin
-may dip (``graze``, ``breakaway``).
+cheap enough to check the kinematic guards at ``DIP_POINTS`` every step; the exact states
+of an exponential step, checked there too (``exact_dip``); a fixed step's states
+integrated anew, checked where a contact may graze or a stuck interface's margin may dip
+(``graze``, ``breakaway``).
 """
 
 from typing import TYPE_CHECKING
@@ -14,13 +15,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from shroudnet.engine.compiled import njit_step, njit_step_merged
+from shroudnet.engine.codes import STICK
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard, crossed,
-                                     kinematic_dip, mark_grazing, predicted_low, stuck_crossed)
+                                     kinematic_dip, kinematic_guards, mark_grazing,
+                                     predicted_low, stuck_crossed)
 from shroudnet.engine.tableau import DIP_POINTS
 
 if TYPE_CHECKING:
     from .forces import stuck_forces
-    from .generated import ADAPTIVE, HAS_CONTACT_EVENTS, HAS_STICK
+    from .generated import ADAPTIVE, EXPONENTIAL, HAS_CONTACT_EVENTS, HAS_STICK
     from .step import motion_inside, step_apart
 
 #: Where a fixed step's breakaway margins are sampled: its middle (each state inside a
@@ -38,11 +41,29 @@ def first_inside(t, h, state, topology, s, w, controls):
     theta = 1.0 if any_crossed(state, w) else 2.0
     if ADAPTIVE:
         theta = min(theta, kinematic_dip(h, state, s, w))
+    if EXPONENTIAL:
+        theta = min(theta, exact_dip(t, h, state, topology, s, w))
     if HAS_CONTACT_EVENTS and mark_grazing(h, state, s, w):
         theta = min(theta, graze(t, h, state, topology, s, w, controls))
     if HAS_STICK and len(topology.stuck_interfaces) > 0:
         theta = min(theta, breakaway(t, h, state, topology, s, w, controls))
     return theta
+
+
+@njit_step
+def exact_dip(t, h, state, topology, s, w):
+    """``detect.kinematic_dip`` of an exponential step: the contact and slip guards at
+    ``DIP_POINTS`` of the step of size h from t, on its exact states (each a level or two
+    of the phase's propagation, the points being binary fractions), else 2."""
+    modes = state.modes
+    for theta in DIP_POINTS:
+        motion_inside(t, h, theta, state, topology, s, w)
+        kinematic_guards(w.xt, w.vt, modes, s, w, w.contact_trial, w.motion_trial)
+        for e in range(len(modes)):
+            if crossed(state.contact_before[e], w.contact_trial[e]) or (
+                    modes[e] != STICK and crossed(state.motion_before[e], w.motion_trial[e])):
+                return theta
+    return 2.0
 
 
 @njit_step
@@ -58,7 +79,7 @@ def breakaway(t, h, state, topology, s, w, controls):
     on its own: it runs only while something is stuck, and costs force evaluations then.
     """
     modes, before = state.modes, state.motion_before
-    points = DIP_POINTS if ADAPTIVE else MIDDLE
+    points = DIP_POINTS if ADAPTIVE or EXPONENTIAL else MIDDLE
     kept = (w.contact_trial, w.motion_trial)
     for k in range(len(points)):
         theta = points[k]
@@ -73,7 +94,7 @@ def breakaway(t, h, state, topology, s, w, controls):
     first = 2.0
     for e in topology.stuck_interfaces:
         last = breakaway_margin(s.static_mu[e], w.normal[e], w.friction[e])
-        if ADAPTIVE:
+        if ADAPTIVE or EXPONENTIAL:
             theta, value = predicted_low((before[e], w.contact_trial[e], w.motion_trial[e],
                                           last, w.motion[e]))
         else:
@@ -85,7 +106,7 @@ def breakaway(t, h, state, topology, s, w, controls):
         stuck_forces(t + first * h, w.xt, w.vt, modes, topology, s, w)
         if stuck_crossed(topology, state, s, w):
             return first
-    if not ADAPTIVE:  # the states inside overwrote the step's end
+    if not ADAPTIVE and not EXPONENTIAL:  # the states inside overwrote the step's end
         step_apart(t, h, state, topology, s, w, controls)
     return 2.0
 
@@ -115,6 +136,7 @@ def graze(t, h, state, topology, s, w, controls):
         motion_inside(t, h, hi, state, topology, s, w)
         if contact_guard(e, w.xt, w.vt, modes, s)[0] < 0.0:
             first = min(first, hi)
-    if not ADAPTIVE and first > 1.0:  # the states inside overwrote the step's end
+    if not ADAPTIVE and not EXPONENTIAL and first > 1.0:  # the states inside overwrote
+        # the step's end
         step_apart(t, h, state, topology, s, w, controls)
     return first

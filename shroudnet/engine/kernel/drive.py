@@ -1,10 +1,12 @@
-"""Drive: the loop of a run, the same for both methods.
+"""Drive: the loop of a run, the same for every method.
 
 ``advance`` takes steps until a guard crosses; ``run`` alternates it with ``switch``.
-The method (``ADAPTIVE``, a constant of each kernel) decides only how a step is taken
-and sized (``step.trial_step``, ``controller``), how the state inside it is obtained
-(``step.motion_inside``), and where samples are taken: on the fixed grid t0 + k·step
-every ``steps_per_sample`` steps, or on an adaptive step's dense output.
+The method (``ADAPTIVE`` and ``EXPONENTIAL``, constants of each kernel) decides only how
+a step is taken and sized (``step.trial_step``, ``controller``), how the state inside it
+is obtained (``step.motion_inside``), and where samples are taken: on the fixed grid
+t0 + k·step every ``steps_per_sample`` steps, or on an adaptive step's dense output. An
+exponential run puts each phase's propagation in use as it starts
+(``propagation.prepare_phase``).
 """
 
 import math
@@ -22,9 +24,10 @@ from shroudnet.engine.tangent import commit_tangent
 
 if TYPE_CHECKING:
     from .detect import first_inside
-    from .generated import ADAPTIVE, HAS_CONTACT_EVENTS, HAS_STICK, HAS_TANGENT
+    from .generated import ADAPTIVE, EXPONENTIAL, HAS_CONTACT_EVENTS, HAS_STICK, HAS_TANGENT
     from .locate import locate, record_dense
     from .resolve import begin, switch
+    from .propagation import prepare_phase
     from .step import trial_step
     from .tangent import by_phase, carry_phase, stepwise
 
@@ -114,6 +117,8 @@ def run(state, s, w, sw, events, controls, out):
     run.
     """
     status, topology = begin(state, s, w, sw, controls, out)
+    if EXPONENTIAL:
+        prepare_phase(state, topology, s)
     # np.int64, not literals: a literal argument would compile the callee twice
     t, h = controls.t0, min(controls.step, controls.h_max)
     k, sample, steps = np.int64(0), np.int64(1), np.int64(0)
@@ -129,6 +134,8 @@ def run(state, s, w, sw, events, controls, out):
             phase_start = t
         status, stop_interface, topology = switch(t, state, topology, s, w, sw, events,
                                                   controls)
+        if EXPONENTIAL:
+            prepare_phase(state, topology, s)
         if not ADAPTIVE and t == controls.t0 + (k + 1) * controls.step:
             k, sample = next_on_grid(k, t, state, w, controls, out, sample)
     if HAS_TANGENT and by_phase(state, controls) and status == FINISHED:

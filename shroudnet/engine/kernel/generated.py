@@ -36,6 +36,9 @@ HAS_TANGENT: bool = False
 #: or classical Runge–Kutta 4 on a fixed grid (False). It decides only how the state
 #: inside a step is obtained (``step.motion_inside``) and how steps are sized and recorded.
 ADAPTIVE: bool = True
+#: The kernel propagates each phase exactly on a fixed grid (``step.exact_step``, for
+#: scenes whose phases are linear: ``methods.Exponential``); ``ADAPTIVE`` is then False.
+EXPONENTIAL: bool = False
 #: The key of what a phase's code is made of, which its compiled functions' names carry,
 #: and the folder numba caches them in (``compiled``): set by ``generate`` before each
 #: phase runs, read by the compile flavours, never by the phases themselves.

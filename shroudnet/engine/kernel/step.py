@@ -1,10 +1,12 @@
-"""Step: one Runge–Kutta step with fixed modes, and what the method decides.
+"""Step: one step with fixed modes, and what the method decides.
 
 Fixed steps are classical RK4 (``rk4_step``), adaptive ones Dormand–Prince 5(4)
-(``dp5_step``). Everything else in the loop is the same for both methods (``ADAPTIVE``,
-a constant of each kernel): a step is taken and sized here (``trial_step``), and the
-state inside a step just taken is read off the dense output of an adaptive one, or
-integrated anew from the start of a fixed one (``motion_inside``).
+(``dp5_step``), exponential ones the exact propagation of a linear phase
+(``exact_step``). Everything else in the loop is the same for every method (``ADAPTIVE``
+and ``EXPONENTIAL``, constants of each kernel): a step is taken and sized here
+(``trial_step``), and the state inside a step just taken is read off the dense output of
+an adaptive one, integrated anew from the start of a fixed one, or propagated exactly
+(``motion_inside``).
 """
 
 from typing import TYPE_CHECKING
@@ -12,13 +14,15 @@ from typing import TYPE_CHECKING
 from shroudnet.engine.advance import dense_motion, set_powers
 from shroudnet.engine.codes import N_POWERS, PROJECTION
 from shroudnet.engine.compiled import njit_step, njit_step_merged
+from shroudnet.engine.propagation import load_state, propagate, store_state
 from shroudnet.engine.controller import accepted, scaled_error
 from shroudnet.engine.sliders import first_order_rk4_end, first_order_rk4_stage, first_order_stage
 from shroudnet.engine.tableau import DP_A, DP_B, DP_C, DP_STAGES, stage_sum
 
 if TYPE_CHECKING:
     from .forces import derivative, evaluate_guards
-    from .generated import ADAPTIVE, HAS_SLIDERS, HAS_TANGENT
+    from .generated import ADAPTIVE, EXPONENTIAL, HAS_SLIDERS, HAS_TANGENT
+    from .propagation import exact_step
     from .tangent import stepwise, tangent_step
 
 
@@ -133,6 +137,9 @@ def trial_step(t, h, state, topology, s, w, controls):
     forces and guards at its end (w.a_end, w.contact, w.motion). Returns its scaled error
     (``controller.scaled_error``, the tangent's included where one is carried; always 0
     for a fixed step, which is never rejected)."""
+    if EXPONENTIAL:
+        exact_step(t, h, state, topology, s, w)
+        return 0.0
     if not ADAPTIVE:
         rk4_guarded(t, h, state, topology, s, w)
         return 0.0
@@ -146,7 +153,9 @@ def trial_step(t, h, state, topology, s, w, controls):
 def step_apart(t, h, state, topology, s, w, controls):
     """``trial_step`` without the tangent, compiled on its own: the step to a located
     switch, or again to the end of a step whose inside a fixed step overwrote."""
-    if ADAPTIVE:
+    if EXPONENTIAL:
+        exact_step(t, h, state, topology, s, w)
+    elif ADAPTIVE:
         dp5_step(t, h, state, topology, s, w, controls)
     else:
         rk4_guarded(t, h, state, topology, s, w)
@@ -155,8 +164,15 @@ def step_apart(t, h, state, topology, s, w, controls):
 @njit_step_merged
 def motion_inside(t, h, theta, state, topology, s, w):
     """x and ẋ at t + θh, inside the step of size h just taken from t, into w.xt, w.vt: on
-    the dense output of an adaptive step; integrated anew from the start of a fixed one
-    (which overwrites the step's end state in w: ``step_apart`` takes it again)."""
+    the dense output of an adaptive step; propagated exactly from the start of an
+    exponential one; integrated anew from the start of a fixed one (which overwrites the
+    step's end state in w: ``step_apart`` takes it again)."""
+    if EXPONENTIAL:
+        p = state.propagation
+        load_state(t, state.x, state.v, s.excitation_frequency, p)
+        propagate(p, theta * h, w.e_sample, False)
+        store_state(p, w.xt, w.vt)
+        return
     if ADAPTIVE:
         dense_motion(theta, h, state, w, w.xt, w.vt)
         return
