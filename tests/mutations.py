@@ -69,6 +69,8 @@ PHYSICS_TESTS = (
     "tests/test_baseline_and_bench.py",
 )
 
+#: The tests aimed at the exact propagation of linear phases (``methods.Exponential``).
+PROPAGATION = "tests/test_exponential.py"
 #: The tests aimed at the tangent flow, the orbits and the continuation.
 MONODROMY = "tests/test_tangent.py::test_monodromy_agrees_with_differences_of_the_trajectory"
 #: Its cases, each run alone: a mutation of the engine compiles the kernels of those it
@@ -216,6 +218,29 @@ MUTATIONS = (
     Mutation("static-friction-normal-push-sign", "loop",
              "            imbalance[left[e]] -= push", "            imbalance[left[e]] += push",
              "the normal force's push is added, not taken, in the stuck equilibrium"),
+    # ---- loop: the exact propagation of linear phases (``Exponential``) -------------------
+    Mutation("propagation-harmonic-sine-sign", "loop",
+             "        row[one + 2 * h] += factor * 2.0 / count * value * math.sin(angle)",
+             "        row[one + 2 * h] -= factor * 2.0 / count * value * math.sin(angle)",
+             "the excitation's sine parts enter the augmented matrix with the wrong sign: the "
+             "forcing runs backwards in its phase", (PROPAGATION,)),
+    Mutation("propagation-anchor-at-half-its-span", "loop",
+             "            span = step * 0.5**k\n", "            span = step * 0.5**(k + 1)\n",
+             "the levels computed by the exponential are those of half their step",
+             (PROPAGATION,)),
+    Mutation("propagation-remainder-dropped", "loop",
+             "    if remaining <= step * WHOLE:\n        return\n    a = p.matrix[slot]",
+             "    if remaining <= step * 1e-6:\n        return\n    a = p.matrix[slot]",
+             "a span's remainder below the finest level is dropped: switches land up to "
+             "h 2^{1-L} early", (PROPAGATION,)),
+    Mutation("propagation-dips-unseen", "loop",
+             "        theta = min(theta, exact_dip(t, h, state, topology, s, w))",
+             "        theta = min(theta, 2.0 + 0.0 * h)",
+             "an exponential step looks for switches at its ends only", (PROPAGATION,)),
+    Mutation("propagation-work-doubled-untransposed", "ledger",
+             "            _transposed_product(levels[k], first, second)",
+             "            product(levels[k], first, second)",
+             "the works double as W + P W P instead of W + Pᵀ W P", (PROPAGATION,)),
     # ---- ledger --------------------------------------------------------------------------
     Mutation("contact-strain-energy-doubled", "ledger",
              "return 0.5 * penetration * sum(", "return penetration * sum(",

@@ -98,8 +98,9 @@ Propagation = namedtuple("Propagation", [
     "term", "spare", "field", "x", "v", "acceleration",
 ])
 
-#: The propagation of a run that takes Runge–Kutta steps: nothing to carry.
-NoPropagation = namedtuple("NoPropagation", ["keys"])
+#: The propagation of a run that takes Runge–Kutta steps: nothing to carry, and nothing
+#: to pass (an array would add its machine words to every call that takes the state).
+NoPropagation = namedtuple("NoPropagation", [])
 
 #: The tangent (variational) state of a run and its scratch (``tangent``). ``matrix``
 #: (2 n_blades × k) holds k tangent vectors, displacement rows then velocity rows;
@@ -265,6 +266,10 @@ def new_state(x0, v0, tangent, n_interfaces, propagation):
                  np.empty(n_interfaces), tangent, propagation)
 
 
+#: The most memory one phase's propagation may take [bytes].
+LARGEST_PHASE_BYTES = 2**30
+
+
 def new_propagation(s, arrays, step: float) -> Propagation:
     """The ``Propagation`` of a run of the kernel scene ``s`` (``arrays`` its
     ``SceneArrays``) with the fixed ``step`` [s]: its levels from a bound of the scaled
@@ -286,6 +291,13 @@ def new_propagation(s, arrays, step: float) -> Propagation:
         + harmonics * s.excitation_frequency
     levels = levels_for(step, norm)
     m = augmented_size(n, harmonics)
+    slot_bytes = 8 * m * m * (1 + N_POWERS) * (levels + 1)
+    if slot_bytes > LARGEST_PHASE_BYTES:
+        raise ValueError(f"method=Exponential(): a phase of {n} coordinates and {harmonics} "
+                         f"harmonics keeps {levels} levels of {m} × {m} matrices, "
+                         f"{slot_bytes / 2**30:.1f} GiB, above {LARGEST_PHASE_BYTES / 2**30:g} "
+                         "GiB: reduce the model (craig_bampton, modal_truncation) or use "
+                         "Adaptive")
     slots = slots_for(m, levels)
     return Propagation(np.zeros((slots, m, m)), np.zeros((slots, N_POWERS, m, m)),
                        np.zeros((slots, levels, m, m)),
@@ -310,7 +322,7 @@ def allocate(s, x0, v0, tangent0, controls, flow, propagation=None):
         plain(new_work)(n_nodes, n_interfaces, n_prescribed)) if flow \
         else NoTangent(tangent0.copy())
     if propagation is None:
-        propagation = NoPropagation(np.zeros(0, dtype=np.int64))
+        propagation = NoPropagation()
     return (new_state(x0, v0, tangent, n_interfaces, propagation),
             plain(new_work)(n_nodes, n_interfaces, n_prescribed),
             plain(new_switching)(n_nodes, n_interfaces, square_size(s)),
