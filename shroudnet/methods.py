@@ -44,7 +44,19 @@ TRANSIENT = 300
 
 
 @dataclass(frozen=True, kw_only=True)
-class FixedStep:
+class _OnGrid:
+    """A method whose steps lie on the grid t0 + k T_e / ``steps_per_period`` (≥ 8)."""
+
+    steps_per_period: int
+
+    def __post_init__(self):
+        object.__setattr__(self, "steps_per_period",
+                           check_int(type(self).__name__, "steps_per_period",
+                                     self.steps_per_period, low=8))
+
+
+@dataclass(frozen=True, kw_only=True)
+class FixedStep(_OnGrid):
     """Classical fourth-order Runge–Kutta on a fixed grid, switches located by bisection.
 
     This is the paper's scheme. The global error falls as h⁴ between switches.
@@ -56,11 +68,6 @@ class FixedStep:
     """
 
     steps_per_period: int = 1000
-
-    def __post_init__(self):
-        object.__setattr__(self, "steps_per_period",
-                           check_int("FixedStep", "steps_per_period", self.steps_per_period,
-                                     low=8))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -107,7 +114,7 @@ class Adaptive:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Exponential:
+class Exponential(_OnGrid):
     """The exact motion between switches, on a fixed grid; switches located as by the
     other methods.
 
@@ -129,15 +136,12 @@ class Exponential:
     Parameters
     ----------
     steps_per_period : int
-        Steps per excitation period T_e, ≥ 8.
+        Steps per excitation period T_e, ≥ 8; each step is checked for switches at its
+        ends and quarters. The default, 400, finds a stick of 11 µs in a period of 4 ms
+        that 128 step over (``tests/test_exponential.py``).
     """
 
     steps_per_period: int = 400
-
-    def __post_init__(self):
-        object.__setattr__(self, "steps_per_period",
-                           check_int("Exponential", "steps_per_period", self.steps_per_period,
-                                     low=8))
 
 
 #: The displacement scale [m] of the default atol when nothing excites the group.

@@ -238,7 +238,7 @@ MUTATIONS = (
              "        theta = min(theta, 2.0 + 0.0 * h)",
              "an exponential step looks for switches at its ends only", (PROPAGATION,)),
     Mutation("propagation-work-doubled-untransposed", "ledger",
-             "            _transposed_product(levels[k], first, second)",
+             "            product(levels[k].T, first, second)",
              "            product(levels[k], first, second)",
              "the works double as W + P W P instead of W + Pᵀ W P", (PROPAGATION,)),
     # ---- ledger --------------------------------------------------------------------------

@@ -174,7 +174,8 @@ def broken_files(folder: Path):
                        r'excitation\.phases: must be "anti-phase", "engine-order", '
                        r'\{travelling_wave = nd\}'),
         "bad method": (paper.replace('method = "adaptive"', 'method = "rk45"'),
-                       r"run\.method: must be one of 'adaptive', 'fixed', 'accuracy'"),
+                       r"run\.method: must be one of 'adaptive', 'fixed', 'exponential', "
+                       r"'accuracy'"),
         "knob of another method": (paper.replace("rtol = 1e-8", "steps_per_period = 500"),
                                    r"run\.steps_per_period: does not apply to method = "
                                    r"'adaptive'; it takes atol, max_step, rtol"),

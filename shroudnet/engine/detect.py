@@ -196,12 +196,22 @@ def kinematic_dip(h, state, s, w):
     evaluating forces: the guards go into w.contact_trial / w.motion_trial, and the
     breakaway margins of stuck interfaces, which would need the forces, are not read.
     """
-    modes = state.modes
     for theta in DIP_POINTS:
         dense_motion(theta, h, state, w, w.xt, w.vt)
-        kinematic_guards(w.xt, w.vt, modes, s, w, w.contact_trial, w.motion_trial)
-        for e in range(len(modes)):
-            if crossed(state.contact_before[e], w.contact_trial[e]) or (
-                    modes[e] != STICK and crossed(state.motion_before[e], w.motion_trial[e])):
-                return theta
+        if kinematic_crossing(state, s, w):
+            return theta
     return 2.0
+
+
+@njit_inlined
+def kinematic_crossing(state, s, w):
+    """Whether a contact or slip guard has crossed at the state in w.xt, w.vt, whose
+    guards are left in w.contact_trial / w.motion_trial (``kinematic_guards``: no force
+    is evaluated, and stuck interfaces' breakaway margins are not read)."""
+    modes = state.modes
+    kinematic_guards(w.xt, w.vt, modes, s, w, w.contact_trial, w.motion_trial)
+    for e in range(len(modes)):
+        if crossed(state.contact_before[e], w.contact_trial[e]) or (
+                modes[e] != STICK and crossed(state.motion_before[e], w.motion_trial[e])):
+            return True
+    return False

@@ -216,21 +216,6 @@ def propagate(p, span, energy, with_energy):
 
 
 @njit_inlined
-def _transposed_product(a, b, out):
-    """out ← aᵀ b (square matrices, out distinct from both)."""
-    n = a.shape[0]
-    for i in range(n):
-        for j in range(n):
-            out[i, j] = 0.0
-    for k in range(n):
-        for i in range(n):
-            factor = a[k, i]
-            if factor != 0.0:
-                for j in range(n):
-                    out[i, j] += factor * b[k, j]
-
-
-@njit_inlined
 def scaling(a, n, scale):
     """D's diagonal into ``scale``: 1 on x and the forcing, 1/ω_b on ẋ, ω_b² the largest
     row sum of |∂ẍ/∂x| (1 where there is none)."""
@@ -283,7 +268,7 @@ def fill_levels(p, slot, step, n):
                     work[0])
         for k in range(finest, 0, -1):  # W(2τ) = W(τ) + P(τ)ᵀ W(τ) P(τ)
             product(forms[k, c], levels[k], first)
-            _transposed_product(levels[k], first, second)
+            product(levels[k].T, first, second)
             for i in range(m):
                 for j in range(m):
                     forms[k - 1, c, i, j] = forms[k, c, i, j] + second[i, j]
@@ -307,7 +292,7 @@ def finest_work(quadratic, scaled, scale, span, out, term, following, spare):
     factor = span
     for power in range(1, MOST_TERMS):
         product(term, scaled, following)
-        _transposed_product(scaled, term, spare)
+        product(scaled.T, term, spare)
         factor *= span / (power + 1)
         size = 0.0
         largest = 0.0

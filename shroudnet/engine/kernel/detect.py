@@ -15,9 +15,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from shroudnet.engine.compiled import njit_step, njit_step_merged
-from shroudnet.engine.codes import STICK
 from shroudnet.engine.detect import (any_crossed, breakaway_margin, contact_guard, crossed,
-                                     kinematic_dip, kinematic_guards, mark_grazing,
+                                     kinematic_crossing, kinematic_dip, mark_grazing,
                                      predicted_low, stuck_crossed)
 from shroudnet.engine.tableau import DIP_POINTS
 
@@ -55,14 +54,10 @@ def exact_dip(t, h, state, topology, s, w):
     """``detect.kinematic_dip`` of an exponential step: the contact and slip guards at
     ``DIP_POINTS`` of the step of size h from t, on its exact states (each a level or two
     of the phase's propagation, the points being binary fractions), else 2."""
-    modes = state.modes
     for theta in DIP_POINTS:
         motion_inside(t, h, theta, state, topology, s, w)
-        kinematic_guards(w.xt, w.vt, modes, s, w, w.contact_trial, w.motion_trial)
-        for e in range(len(modes)):
-            if crossed(state.contact_before[e], w.contact_trial[e]) or (
-                    modes[e] != STICK and crossed(state.motion_before[e], w.motion_trial[e])):
-                return theta
+        if kinematic_crossing(state, s, w):
+            return theta
     return 2.0
 
 
