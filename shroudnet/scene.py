@@ -108,9 +108,20 @@ class SceneArrays:
         constraints and excitation are so already), so that the tangent flow of a phase
         is the matrix exponential of its Jacobian. An elastic contact's slip turns its
         slider with the stretch's direction, which is not linear."""
-        return self.is_structure and not np.isfinite(self.tangential_stiffness).any() and all(
+        return self.is_structure and not self.n_stretches and all(
             type(law).constant_slopes for law in self.normal_laws) and all(
             law is None or type(law).constant_slopes for law in self.friction_laws)
+
+    @property
+    def elastic_interfaces(self) -> np.ndarray:
+        """The positions of the elastic contacts (finite k_t), in interface order."""
+        return np.flatnonzero(np.isfinite(self.tangential_stiffness))
+
+    @property
+    def n_stretches(self) -> int:
+        """The elastic contacts' springs' stretches a state carries: two each, along t₁
+        and t₂ (``Simulation.stretches``)."""
+        return 2 * len(self.elastic_interfaces)
 
     @property
     def n_blades(self) -> int:

@@ -110,7 +110,7 @@ def _second_friction(scene, stretches) -> np.ndarray | None:
     the others: u₂ stays 0 on a face of one direction, u on an open contact), from the
     springs' ``stretches`` (``Integration.stretches``); None without elastic contacts."""
     stiffness = scene.arrays.tangential_stiffness
-    elastic = np.flatnonzero(np.isfinite(stiffness))
+    elastic = scene.arrays.elastic_interfaces
     if len(elastic) == 0:
         return None
     force = np.zeros((len(stretches), len(stiffness)))
@@ -190,7 +190,7 @@ def integrate(scene: Scene, periods: int, *,
     x0, v0 = np.concatenate([x0, x_p]), np.concatenate([v0, v_p])
     tangent0 = _with_prescribed(tangent0, n, len(x_p))
     arrays = kernel_scene(scene)
-    x0, v0, tangent0 = _with_sliders(arrays, x0, v0, tangent0, n, stretches,
+    x0, v0, tangent0 = _with_sliders(scene.arrays.n_stretches, x0, v0, tangent0, n, stretches,
                                      stretch_rows if len(stretch_rows) else None)
 
     kernel = load_kernel(scene, tangent=tangent is not None, method=_KERNEL_METHODS[type(method)])
@@ -229,7 +229,7 @@ def integrate(scene: Scene, periods: int, *,
     driver, compile_seconds = compiled(kernel.run, arguments)
     run = finish(driver(*arguments), output, events, state.tangent)
     stretches = run.output.x[:, n:len(x0) - len(x_p)]
-    run = _blades_only(run, n, _slider_count(arrays))
+    run = _blades_only(run, n, scene.arrays.n_stretches)
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
@@ -252,7 +252,7 @@ def check_linear_phases(scene: Scene) -> None:
         why = "a scene of blades alone (add a Substructure, or use Adaptive)"
     elif a.n_prescribed:
         why = "prescribed motions, whose accelerations are not harmonics of the excitation"
-    elif np.isfinite(a.tangential_stiffness).any():
+    elif a.n_stretches:
         why = "elastic contacts, whose sliders turn with the stretch's direction"
     else:
         for (left, right, _), normal, friction in zip(scene.group.interfaces, a.normal_laws,
@@ -291,12 +291,12 @@ def _with_prescribed(tangent, n, n_prescribed):
     return rows
 
 
-def _with_sliders(arrays, x0, v0, tangent0, n, stretches=None, stretch_rows=None):
+def _with_sliders(sliders, x0, v0, tangent0, n, stretches=None, stretch_rows=None):
     """The start (x0, v0, tangent columns) in the integrator's coordinates: the elastic
-    contacts' stretches u (``engine.sliders``) after the n free coordinates, each relaxed
+    contacts' ``sliders`` stretches u (``engine.sliders``, ``SceneArrays.n_stretches``)
+    after the n free coordinates, each relaxed
     (u = 0: no friction force) or as ``stretches`` give them, and their tangent rows
     ``stretch_rows`` (0 where None); their velocity slots at rest and without variation."""
-    sliders = _slider_count(arrays)
     if sliders == 0:
         return x0, v0, tangent0
     nodes = len(x0)
@@ -306,12 +306,6 @@ def _with_sliders(arrays, x0, v0, tangent0, n, stretches=None, stretch_rows=None
                          0.0 if stretch_rows is None else stretch_rows, axis=0)
     tangent0 = np.insert(tangent0, [nodes + sliders + n] * sliders, 0.0, axis=0)
     return x0, v0, tangent0
-
-
-def _slider_count(arrays) -> int:
-    """The coordinates the elastic contacts' stretches take: two each."""
-    index = getattr(arrays, "slider_index", np.zeros(0, dtype=np.int64))
-    return 2 * int(np.sum(index >= 0))
 
 
 def _blades_only(run: Run, n: int, sliders: int) -> Run:
@@ -402,15 +396,15 @@ def split_stretches(scene: Scene, initial, owner: str = "simulate",
     """(x0, v0) of ``initial`` and the stretches u0 its third member gives the sliders of a
     scene with elastic contacts (2 per elastic contact [m], as ``Simulation.stretches``),
     or None where it has none: relaxed sliders."""
-    count = 2 * int(np.isfinite(scene.arrays.tangential_stiffness).sum())
+    count = scene.arrays.n_stretches
     if count == 0 or not isinstance(initial, tuple | list) or len(initial) != 3:
         return initial, None
     try:
         stretches = check_array(owner, f"{field} u0", initial[2], shape=(count,))
     except ValueError:
         raise ValueError(f"{owner}.{field} must be (x0, v0) or (x0, v0, u0): u0 must hold "
-                         f"the {count} stretches [m] of the elastic contacts' springs (two "
-                         f"each), got {initial[2]!r:.200}") from None
+                         f"the {count} finite stretches [m] of the elastic contacts' springs "
+                         f"(two each), got {initial[2]!r:.200}") from None
     return tuple(initial[:2]), stretches
 
 
@@ -509,7 +503,7 @@ def _elastic_energy(scene, stretches, modes):
     ``stretches`` (u₁, u₂ of each, in interface order)."""
     stiffness = scene.arrays.tangential_stiffness
     energy = 0.0
-    for k, e in enumerate(np.flatnonzero(np.isfinite(stiffness))):
+    for k, e in enumerate(scene.arrays.elastic_interfaces):
         if modes[e] != Mode.OPEN:
             stretch = stretches[2 * k:2 * k + 2]
             energy += 0.5 * stiffness[e] * float(stretch @ stretch)

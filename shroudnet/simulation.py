@@ -182,7 +182,7 @@ class Simulation:
         back from their forces f = k_t u; with the last row as the third member of
         ``initial``, a run takes up the sliders where this one left them."""
         stiffness = self.scene.arrays.tangential_stiffness
-        elastic = np.flatnonzero(np.isfinite(stiffness))
+        elastic = self.scene.arrays.elastic_interfaces
         values = np.empty((len(self.t), 2 * len(elastic)))
         values[:, 0::2] = self.friction_force[:, elastic] / stiffness[elastic]
         values[:, 1::2] = (0.0 if self.friction_force_second is None else

@@ -80,8 +80,7 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
 def state_size(scene: Scene) -> int:
     """The size of the state the stroboscopic map acts on: y = (x, ẋ), and with elastic
     contacts their springs' stretches u too (two each: ``Simulation.stretches``)."""
-    return 2 * (scene.arrays.n_blades + int(np.isfinite(
-        scene.arrays.tangential_stiffness).sum()))
+    return 2 * scene.arrays.n_blades + scene.arrays.n_stretches
 
 
 def state_parts(scene: Scene, y: np.ndarray) -> tuple:

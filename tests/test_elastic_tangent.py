@@ -137,6 +137,16 @@ def test_a_run_takes_up_the_sliders_where_another_left_them():
         <= 1e-8 * np.abs(whole.stretches).max()
 
 
+def test_stretches_of_the_wrong_length_or_not_finite_are_refused_by_name():
+    scene = sn.scenes.modal_packet(tangential_stiffness=3e5, speed_rpm=2800.0)
+    n = scene.arrays.n_blades
+    assert scene.arrays.n_stretches == 2 * len(scene.arrays.elastic_interfaces) == 10
+    for u0 in (np.zeros(3), np.full(10, np.nan)):
+        with pytest.raises(ValueError, match=r"simulate\.initial must be .*u0 must hold the "
+                                             r"10 finite stretches \[m\]"):
+            sn.simulate(scene, 1, initial=(np.zeros(n), np.zeros(n), u0))
+
+
 def test_largest_lyapunov_exponent_of_a_stable_elastic_orbit_is_its_largest_multipliers_log():
     """The pair's orbit is stable: λ_max = ln|μ_max| per period (the transient hands its
     sliders on to the measured run)."""

@@ -112,7 +112,7 @@ def flags(arrays, tangent: bool = False) -> dict[str, bool]:
 
 def has_sliders(arrays) -> bool:
     """Whether a scene has elastic contacts (finite k_t), whose sliders the state carries."""
-    return bool(np.isfinite(arrays.tangential_stiffness).any())
+    return arrays.n_stretches > 0
 
 
 @functools.cache
@@ -175,7 +175,7 @@ def _check_slider_laws(scene: Scene) -> None:
     variation of its slipping stretch's rate takes δṄ from constant slopes
     (``slider_tangent``)."""
     a = scene.arrays
-    for e in np.flatnonzero(np.isfinite(a.tangential_stiffness)):
+    for e in a.elastic_interfaces:
         law = a.normal_laws[e]
         if not type(law).constant_slopes:
             left, right, _ = scene.group.interfaces[e]
@@ -304,7 +304,7 @@ def kernel_scene(scene: Scene) -> KernelScene | StructureScene:
 def _lowered(scene: Scene) -> KernelScene | StructureScene:
     """``kernel_scene``, made afresh."""
     a = scene.arrays
-    for e in np.flatnonzero(np.isfinite(a.tangential_stiffness)):
+    for e in a.elastic_interfaces:
         if type(a.friction_laws[e]) is not Coulomb:
             left, right, _ = scene.group.interfaces[e]
             raise ValueError(
