@@ -26,8 +26,8 @@ if TYPE_CHECKING:
     from .detect import first_inside
     from .generated import ADAPTIVE, EXPONENTIAL, HAS_CONTACT_EVENTS, HAS_STICK, HAS_TANGENT
     from .locate import locate, record_dense
-    from .resolve import begin, switch
     from .propagation import prepare_phase
+    from .resolve import begin, switch
     from .step import trial_step
     from .tangent import by_phase, carry_phase, stepwise
 

@@ -14,8 +14,8 @@ from typing import TYPE_CHECKING
 from shroudnet.engine.advance import dense_motion, set_powers
 from shroudnet.engine.codes import N_POWERS, PROJECTION
 from shroudnet.engine.compiled import njit_step, njit_step_merged
-from shroudnet.engine.propagation import load_state, propagate, store_state
 from shroudnet.engine.controller import accepted, scaled_error
+from shroudnet.engine.propagation import load_state, propagate, store_state
 from shroudnet.engine.sliders import first_order_rk4_end, first_order_rk4_stage, first_order_stage
 from shroudnet.engine.tableau import DP_A, DP_B, DP_C, DP_STAGES, stage_sum
 
