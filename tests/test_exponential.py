@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import shroudnet as sn
-from contact_laws import ConstantLoad, Coulomb, Hertz, LinearSpring
+from contact_laws import ConstantLoad, Coulomb, Hertz
 from shroudnet import baseline_structures as bs
 from shroudnet import scenes
 from shroudnet.methods import Exponential
@@ -164,13 +164,6 @@ def test_scenes_whose_phases_are_not_linear_are_refused_by_name():
         sn.monodromy(scenes.beam_pair(), 1, method=Exponential())
     with pytest.raises(ValueError, match="Exponential.steps_per_period"):
         Exponential(steps_per_period=4)
-
-
-def test_the_one_mass_scenes_kernel_is_untouched():
-    """A scene of blades alone compiles no propagation: its state carries none."""
-    sim = sn.simulate(scenes.three_blade_paper(), 1, samples_per_period=4)
-    assert sim.x.shape == (5, 3)
-    assert LinearSpring.constant_slopes and not Hertz.constant_slopes
 
 
 def test_a_scene_file_and_a_results_table_name_the_exponential_method():
