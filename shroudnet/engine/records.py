@@ -273,19 +273,20 @@ LARGEST_PHASE_BYTES = 2**30
 def new_propagation(s, arrays, step: float) -> Propagation:
     """The ``Propagation`` of a run of the kernel scene ``s`` (``arrays`` its
     ``SceneArrays``) with the fixed ``step`` [s]: its levels from a bound of the scaled
-    matrix's norm, 2ω_b + max Σ|C| + Hω, ω_b² bounding the rows of K with every linear
-    contact closed (``propagation.levels_for``: the kernel scales by each phase's own ω_b,
+    matrix's norm, 2ω_b + max Σ|M⁻¹C| + Hω, ω_b² bounding the rows of M⁻¹K with every
+    linear contact closed (``propagation.levels_for``: the kernel scales by each phase's own ω_b,
     and a remainder coarser than aimed at costs only Taylor terms), as many phases kept as
     ``propagation.slots_for`` allows."""
     n, n_interfaces = len(s.mass), len(s.gap)
     stiffness, damping = np.zeros(n), np.zeros(n)
+    mass = np.asarray(s.mass, dtype=float)
     for i in range(n):
         entries = slice(s.matrix_start[i], s.matrix_start[i + 1])
-        stiffness[i] = np.abs(s.stiffness_entry[entries]).sum()
-        damping[i] = np.abs(s.damping_entry[entries]).sum()
+        stiffness[i] = np.abs(s.stiffness_entry[entries]).sum() / mass[i]
+        damping[i] = np.abs(s.damping_entry[entries]).sum() / mass[i]
     for e, law in enumerate(arrays.normal_laws):
         row = np.abs(s.normal_rows[e])
-        stiffness += getattr(law, "stiffness", 0.0) * row * row.sum()
+        stiffness += getattr(law, "stiffness", 0.0) * row * row.sum() / mass
     harmonics = s.amplitudes.shape[0] - 1
     norm = 2.0 * np.sqrt(stiffness.max(initial=0.0)) + damping.max(initial=0.0) \
         + harmonics * s.excitation_frequency
