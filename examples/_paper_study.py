@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 
 from shroudnet import Adaptive, classify, simulate, sweep
-from shroudnet.analysis import Classification
-from shroudnet.simulation import Simulation
-from shroudnet.sweep import Sweep
+from shroudnet.analysis.readings import Classification
+from shroudnet.run.simulation import Simulation
+from shroudnet.studies.sweep import Sweep
 
 #: Where the examples save their figures unless told otherwise.
 OUTPUT = Path(__file__).resolve().parent / "output"
@@ -65,7 +65,7 @@ def compute(*, scene_at, parameter, claims, values, transient, record, steady) -
 def save_figures(result: PaperStudy, output: Path, *, label, unit, first_figure,
                  diagram_figure) -> list[Path]:
     """A response panel per claim and the bifurcation diagram, saved in ``output``."""
-    from shroudnet.figures import bifurcation_diagram, response_panel
+    from shroudnet.front.figures import bifurcation_diagram, response_panel
     output = Path(output)
     output.mkdir(parents=True, exist_ok=True)
     saved = []

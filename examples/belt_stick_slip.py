@@ -72,7 +72,7 @@ def report(cycle: Cycle) -> None:
 
 def main(periods=60, transient=30, samples_per_period=400, output=OUTPUT):
     """Compute, print, save the figure in ``output``; returns the ``Cycle``."""
-    from shroudnet.figures import stick_slip_cycle
+    from shroudnet.front.figures import stick_slip_cycle
     cycle = compute(periods, transient, samples_per_period)
     report(cycle)
     output = Path(output)

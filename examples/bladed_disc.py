@@ -26,8 +26,16 @@ from pathlib import Path
 
 import numpy as np
 
-from shroudnet import (Branch, LinearModes, MistuningStudy, PeriodicOrbit, continuation,
-                       linear_modes, mistuning_study, periodic_orbit)
+from shroudnet import (
+    Branch,
+    LinearModes,
+    MistuningStudy,
+    PeriodicOrbit,
+    continuation,
+    linear_modes,
+    mistuning_study,
+    periodic_orbit,
+)
 from shroudnet.scenes import bladed_disc_24
 
 OUTPUT = Path(__file__).resolve().parent / "output"
@@ -108,8 +116,12 @@ def report(result: Result):
 
 def main(max_points=150, samples=40, speeds=9, transient=200, record=10, output=OUTPUT):
     """Compute, print the tables, save the figures in ``output``; returns the ``Result``."""
-    from shroudnet.figures import (forced_response, mistuning_histogram, sector_amplitudes,
-                                   zzenf_diagram)
+    from shroudnet.front.figures import (
+        forced_response,
+        mistuning_histogram,
+        sector_amplitudes,
+        zzenf_diagram,
+    )
     result = compute(max_points, samples, speeds, transient, record)
     report(result)
     output = Path(output)

@@ -71,7 +71,7 @@ def report(result: Convergence) -> None:
 
 def main(decades=(6, 9), per_decade=2, output=OUTPUT) -> Convergence:
     """Compute, print, save the figures in ``output``; returns the ``Convergence``."""
-    from shroudnet.figures import hysteresis_loops
+    from shroudnet.front.figures import hysteresis_loops
     result = compute(decades, per_decade)
     report(result)
     output = Path(output)

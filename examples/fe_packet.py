@@ -40,8 +40,16 @@ from pathlib import Path
 
 import numpy as np
 
-from shroudnet import (Branch, GroupCampbell, HysteresisLoop, continuation,
-                       frequency_response, group_campbell, hysteresis_loop, simulate)
+from shroudnet import (
+    Branch,
+    GroupCampbell,
+    HysteresisLoop,
+    continuation,
+    frequency_response,
+    group_campbell,
+    hysteresis_loop,
+    simulate,
+)
 from shroudnet.scenes import modal_packet
 
 OUTPUT = Path(__file__).resolve().parent / "output"
@@ -167,8 +175,12 @@ def report(packet: Packet):
 
 def main(speeds=41, max_points=600, max_step=0.05, output=OUTPUT):
     """Compute, print and save the figures in ``output``; returns the ``Packet``."""
-    from shroudnet.figures import (branch_content, forced_response, group_campbell_diagram,
-                                   hysteresis_loops)
+    from shroudnet.front.figures import (
+        branch_content,
+        forced_response,
+        group_campbell_diagram,
+        hysteresis_loops,
+    )
     packet = compute(speeds, max_points, max_step)
     report(packet)
     output = Path(output)

@@ -106,7 +106,7 @@ def report(packet: Packet) -> None:
 
 def main(speeds=36, transient=60, record=10, loop_transient=200, output=OUTPUT) -> Packet:
     """Compute, print, save the figures in ``output``; returns the ``Packet``."""
-    from shroudnet.figures import curves, hysteresis_loops
+    from shroudnet.front.figures import curves, hysteresis_loops
     packet = compute(speeds, transient, record, loop_transient)
     report(packet)
     output = Path(output)

@@ -23,7 +23,7 @@ def compute(speeds=np.linspace(0.0, 12000.0, 241), engine_orders=(1, 2, 3, 4)):
 
 def main(speeds=np.linspace(0.0, 12000.0, 241), engine_orders=(1, 2, 3, 4), output=OUTPUT):
     """Compute, print the crossings and save the figure in ``output``; returns the diagram."""
-    from shroudnet.figures import campbell_diagram
+    from shroudnet.front.figures import campbell_diagram
     diagram = compute(speeds, engine_orders)
     print("engine order   speed [rpm]   f_d1 = f_e [Hz]")
     for order, speed, frequency in diagram.crossings:

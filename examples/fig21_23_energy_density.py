@@ -67,7 +67,7 @@ def compute(points=16, transient=200, record=50) -> EnergyDensities:
 
 def save_figures(result: EnergyDensities, output: Path) -> None:
     """Figs. 21, 22 and 23, saved in ``output``."""
-    from shroudnet.figures import curves
+    from shroudnet.front.figures import curves
     output = Path(output)
     output.mkdir(parents=True, exist_ok=True)
     curves(result.gammas, result.by_gap, xlabel="stiffness ratio γ1",

@@ -108,7 +108,7 @@ def report(curves):
 def main(values=29, transient=300, record=50, max_step=0.3, output=OUTPUT):
     """Compute, print the bifurcations and the agreement, save the figures in ``output``;
     returns (speed curves, q1 curves)."""
-    from shroudnet.figures import forced_response
+    from shroudnet.front.figures import forced_response
     speed, q1 = compute(values, transient, record, max_step)
     report(speed)
     report(q1)

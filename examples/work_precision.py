@@ -13,8 +13,8 @@ rtol = 1e-13 and an event tolerance of 1e-12. Saves work_precision.png in OUTPUT
 import sys
 from pathlib import Path
 
-from shroudnet.figures import work_precision_diagram
-from shroudnet.precision import default_settings, paper_regimes, study, summary
+from shroudnet.front.figures import work_precision_diagram
+from shroudnet.studies.precision import default_settings, paper_regimes, study, summary
 
 OUTPUT = Path(__file__).resolve().parent / "output"
 

@@ -1,5 +1,5 @@
 """``python -m shroudnet``: the same as the ``shroudnet`` command."""
 
-from .cli import main
+from .front.cli import main
 
 raise SystemExit(main())

@@ -7,19 +7,27 @@ import inspect
 import math
 from collections.abc import Sequence
 
-from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, FrictionLaw,
-                          LinearSpring, NormalLaw, Stribeck, check_int, check_real)
+from contact_laws import (
+    ConstantLoad,
+    Coulomb,
+    ExponentialFriction,
+    FrictionLaw,
+    LinearSpring,
+    NormalLaw,
+    Stribeck,
+    check_int,
+    check_real,
+)
 
-from .beam import cantilever_beam
-from .blade import Blade, Southwell
-from .coupling import Coupling
-from .excitation import (NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation,
-                         PhasePattern)
-from .group import BladeGroup
-from .interface import Interface
-from .motion import ConstantVelocity
-from .scene import Scene
-from .substructure import Substructure
+from .model.beam import cantilever_beam
+from .model.blade import Blade, Southwell
+from .model.coupling import Coupling
+from .model.excitation import NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation, PhasePattern
+from .model.group import BladeGroup
+from .model.interface import Interface
+from .model.motion import ConstantVelocity
+from .model.scene import Scene
+from .model.substructure import Substructure
 
 #: The most sectors or blades a named scene is built with.
 MAX_NODES = 100_000

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from shroudnet import Adaptive, FixedStep, simulate
-from shroudnet.baseline import solve_ivp_baseline
-from shroudnet.bench import POINT
-from shroudnet.bench import main as bench_main
+from shroudnet.front.bench import POINT
+from shroudnet.front.bench import main as bench_main
+from shroudnet.references.blades import solve_ivp_baseline
 from shroudnet.scenes import three_blade_paper
 
 

@@ -1,4 +1,4 @@
-"""The Jenkins element reference (``shroudnet.baseline_jenkins``) against what it does not
+"""The Jenkins element reference (``shroudnet.references.jenkins``) against what it does not
 compute itself: the closed-form hysteresis loop of the 1-D element under a harmonic
 displacement, the closed-form steady sliding of the 2-D element driven round a circle (and
 the closed-form steady state of the discrete return on it), the convergence of the
@@ -12,9 +12,17 @@ from collections import Counter
 import numpy as np
 import pytest
 
-from shroudnet.baseline_jenkins import (LEDGER_COLUMNS, MODES, OPEN, SLIP, STICK,
-                                        JenkinsOscillator, return_mapping, run_oscillator,
-                                        slide_path)
+from shroudnet.references.jenkins import (
+    LEDGER_COLUMNS,
+    MODES,
+    OPEN,
+    SLIP,
+    STICK,
+    JenkinsOscillator,
+    return_mapping,
+    run_oscillator,
+    slide_path,
+)
 
 # The element of the closed-form checks: a = μN/k_t = 5 mm.
 K_T, MU, N = 1000.0, 0.5, 10.0

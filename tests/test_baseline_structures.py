@@ -1,6 +1,6 @@
 """The event-driven reference for structures of many degrees of freedom
-(``shroudnet.baseline_structures``) against what it does not compute itself: the closed-form
-harmonic response of a linear system, the one-mass-blade reference ``shroudnet.baseline``,
+(``shroudnet.references.structures``) against what it does not compute itself: the closed-form
+harmonic response of a linear system, the one-mass-blade reference ``shroudnet.references.blades``,
 the closed-form decay of a Coulomb-damped oscillator, and the energy balance, the contact
 spring's energy and the projection's properties for a point in the plane whose normal and
 tangent rows are neither parallel nor orthogonal."""
@@ -11,15 +11,29 @@ import math
 import numpy as np
 import pytest
 
-from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, LinearSpring,
-                          Regularised)
-from shroudnet import (AntiPhase, Blade, BladeGroup, Excitation, ExplicitPhases, Interface,
-                       Mode, Scene)
-from shroudnet.baseline import solve_ivp_baseline
-from shroudnet.baseline_structures import (WORK_COLUMNS, Contact, StructureProblem,
-                                           contact_forces, project_velocity, run_structure,
-                                           shroud_contact, strobe_structure,
-                                           structure_from_scene)
+from contact_laws import ConstantLoad, Coulomb, ExponentialFriction, LinearSpring, Regularised
+from shroudnet import (
+    AntiPhase,
+    Blade,
+    BladeGroup,
+    Excitation,
+    ExplicitPhases,
+    Interface,
+    Mode,
+    Scene,
+)
+from shroudnet.references.blades import solve_ivp_baseline
+from shroudnet.references.structures import (
+    WORK_COLUMNS,
+    Contact,
+    StructureProblem,
+    contact_forces,
+    project_velocity,
+    run_structure,
+    shroud_contact,
+    strobe_structure,
+    structure_from_scene,
+)
 from shroudnet.scenes import three_blade_paper
 
 

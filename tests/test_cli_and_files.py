@@ -12,10 +12,19 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shroudnet import (BladeGroup, Coupling, HarmonicMotion, MotionTable, Scene,
-                       continuation, results, scenefile, simulate, sweep)
-from shroudnet.cli import main
+from shroudnet import (
+    BladeGroup,
+    Coupling,
+    HarmonicMotion,
+    MotionTable,
+    Scene,
+    continuation,
+    simulate,
+    sweep,
+)
 from shroudnet import scenes as sn_scenes
+from shroudnet.front.cli import main
+from shroudnet.io import results, scenefile
 from shroudnet.scenes import block_on_belt, three_blade_paper
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -293,7 +302,7 @@ def test_command_line_continue_saves_a_branch_that_loads_back_equal_and_redraws(
 
 
 def test_the_command_line_names_its_blade_and_takes_another_by_name(tmp_path, capsys):
-    from shroudnet.cli import _about
+    from shroudnet.front.cli import _about
     scene = small_paper_scene(tmp_path, periods=22, transient=20)
     assert main(["run", str(scene), "-o", str(tmp_path), "--no-figure", "--blade",
                  "blade3"]) == 0
@@ -305,7 +314,7 @@ def test_the_command_line_names_its_blade_and_takes_another_by_name(tmp_path, ca
     assert [_about(paper, target) for target in (1, "blade1")] == ["blade2", "blade1"]
     packet = sn_scenes.modal_packet()
     assert _about(packet, ("blade2", "shroud", 1)) == "blade2.shroud[1]"
-    from shroudnet.cli import _blade_name
+    from shroudnet.front.cli import _blade_name
     assert _blade_name("blade2.shroud[1]") == ("blade2", "shroud", 1)
     assert _blade_name("tip_blade") == "tip_blade"
 

@@ -15,13 +15,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import shroudnet.bench
+import shroudnet.front.bench as bench_module
 from contact_laws import check_real
-from shroudnet import cli, continuation, scenefile, sweep
+from shroudnet import continuation, sweep
+from shroudnet.front import cli
+from shroudnet.io import scenefile
 from shroudnet.scenes import three_blade_paper
 from tests.test_cli_errors import stand_in_point
 
-sweep_module = importlib.import_module("shroudnet.sweep")
+sweep_module = importlib.import_module("shroudnet.studies.sweep")
 ROOT = Path(__file__).resolve().parents[1]
 PAPER = ROOT / "examples" / "scenes" / "paper_three_blade.toml"
 
@@ -51,7 +53,7 @@ def no_work(monkeypatch):
     """Fail the test if a command gets as far as simulating, sweeping or benchmarking."""
     for name in ("simulate", "sweep", "continuation", "linear_modes", "mistuning_study"):
         monkeypatch.setattr(cli, name, refuse)
-    monkeypatch.setattr(shroudnet.bench, "first_runs", refuse)
+    monkeypatch.setattr(bench_module, "first_runs", refuse)
     monkeypatch.delenv("SHROUDNET_TRACEBACK", raising=False)
 
 

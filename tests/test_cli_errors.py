@@ -21,11 +21,12 @@ import numpy as np
 import pytest
 
 import contact_laws as cl
-from shroudnet import cli, results, scenefile
-from shroudnet.analysis import Classification
-from shroudnet.simulation import SimulationError, SweepPoint
+from shroudnet.analysis.readings import Classification
+from shroudnet.front import cli
+from shroudnet.io import results, scenefile
+from shroudnet.run.simulation import SimulationError, SweepPoint
 
-sweep_module = importlib.import_module("shroudnet.sweep")
+sweep_module = importlib.import_module("shroudnet.studies.sweep")
 ROOT = Path(__file__).resolve().parents[1]
 PAPER = ROOT / "examples" / "scenes" / "paper_three_blade.toml"
 
@@ -388,7 +389,7 @@ def test_ctrl_c_during_a_run_is_one_line_and_status_130(tmp_path, capsys, monkey
 @pytest.fixture(scope="module")
 def results_file(tmp_path_factory) -> Path:
     """A small, valid results file (no simulation: arrays of the right shapes)."""
-    from shroudnet.simulation import EnergyLedger, EventLog, Simulation
+    from shroudnet.run.simulation import EnergyLedger, EventLog, Simulation
     loaded = scenefile.load(PAPER)
     run = replace(loaded.run, periods=4, transient=1)
     n, m, samples = 3, 2, 21
@@ -623,11 +624,11 @@ def test_ctrl_c_keeps_the_points_saved_and_says_how_to_resume(tmp_path, capsys,
 
 
 def test_ctrl_c_in_the_benchmark_is_one_line(capsys, monkeypatch):
-    import shroudnet.bench
+    import shroudnet.front.bench as bench
 
     def interrupted(options):
         raise KeyboardInterrupt
-    monkeypatch.setattr(shroudnet.bench, "main", interrupted)
+    monkeypatch.setattr(bench, "main", interrupted)
     assert cli.main(["bench", "--quick"]) == 130
     assert capsys.readouterr().err.strip() == "shroudnet bench: interrupted; nothing was saved"
 

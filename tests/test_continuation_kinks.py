@@ -21,7 +21,7 @@ import shroudnet as sn
 from shroudnet.scenes import modal_packet
 
 # the module, which the package's function of the same name hides
-continuation_module = importlib.import_module("shroudnet.continuation")
+continuation_module = importlib.import_module("shroudnet.steady.continuation")
 
 def upward(gap, max_points, crossings):
     """The branch of the packet with ``gap`` from 2600 rpm towards 3400, recording each

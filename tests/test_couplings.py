@@ -3,7 +3,7 @@
 A coupling is a linear spring and damper between two nodes. Checked against references
 computed here: the complex linear solve of the harmonic steady state (K − ω²M + iωC) X = F,
 the dissipation π ω Re(Xᴴ C X) per period it implies, the plain solve_ivp implementation
-(``shroudnet.baseline``, which builds K and C as matrices where the loop sums edges), and
+(``shroudnet.references.blades``, which builds K and C as matrices where the loop sums edges), and
 central differences of the trajectory for the monodromy matrix.
 """
 
@@ -13,13 +13,30 @@ import numpy as np
 import pytest
 
 from contact_laws import ConstantLoad, Stribeck
-from shroudnet import (Adaptive, Blade, BladeGroup, Coupling, Excitation, ExplicitPhases,
-                       Interface, Mode, Scene, assemble, monodromy, simulate)
-from shroudnet.baseline import solve_ivp_baseline
+from shroudnet import (
+    Adaptive,
+    Blade,
+    BladeGroup,
+    Coupling,
+    Excitation,
+    ExplicitPhases,
+    Interface,
+    Mode,
+    Scene,
+    assemble,
+    monodromy,
+    simulate,
+)
 from shroudnet.engine.generate import flags
+from shroudnet.references.blades import solve_ivp_baseline
 from shroudnet.scenes import three_blade_paper
-from tests.test_tangent import (EXACT, differenced_monodromy, scaled_error, settled_state,
-                                state_scale)
+from tests.test_tangent import (
+    EXACT,
+    differenced_monodromy,
+    scaled_error,
+    settled_state,
+    state_scale,
+)
 
 ROOT = Blade(mass=0.1, damping=2.0, stiffness=1e5)
 TIP = Blade(mass=0.05, damping=0.0, stiffness=0.0)  # held by its coupling alone
@@ -179,7 +196,7 @@ def test_a_group_that_could_drift_away_is_refused():
 
 
 def test_a_bladed_disc_goes_through_a_scene_file_and_back():
-    from shroudnet import scenefile
+    from shroudnet.io import scenefile
     from shroudnet.scenes import bladed_disc_24
     scene = bladed_disc_24(sectors=4)
     text = scenefile.document(scene)
@@ -205,7 +222,7 @@ def json_round_trip(value):
      r"the scene: blades \[.*\] float free"),
 ])
 def test_a_bad_coupling_in_a_scene_file_is_named(change, match):
-    from shroudnet import scenefile
+    from shroudnet.io import scenefile
     from shroudnet.scenes import bladed_disc_24
     document = scenefile.document(bladed_disc_24(sectors=4))
     change(document)

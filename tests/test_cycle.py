@@ -71,8 +71,8 @@ def test_friction_loss_per_cycle_is_den_hartogs_4fx_and_the_hysteresis_loops_are
 
 
 def test_a_branch_carries_the_content_and_the_figure_draws_any_of_it(tmp_path):
-    from shroudnet import results
-    from shroudnet.figures import forced_response
+    from shroudnet.front.figures import forced_response
+    from shroudnet.io import results
     branch = sn.continuation(lambda speed: single_blade(
         speed_rpm=speed, amplitudes=(Q0, Q1), damping=DAMPING), rpm(0.7 * NATURAL),
         rpm(0.8 * NATURAL), max_points=3)

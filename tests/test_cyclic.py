@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from shroudnet.linear.modes import nodal_diameters
 
 import shroudnet as sn
-import shroudnet.orbits as orbits_module
+import shroudnet.steady.orbits as orbits_module
 from contact_laws import LinearSpring
-from shroudnet.cyclic import cyclic_symmetry, reduced_step, whole_tangent
-from shroudnet.simulate import integrate
-from shroudnet.linear import nodal_diameters
+from shroudnet.run.simulate import integrate
 from shroudnet.scenes import bladed_disc_24, three_blade_paper
+from shroudnet.steady.cyclic import cyclic_symmetry, reduced_step, whole_tangent
 
 PAPER = three_blade_paper()
 BLADE = PAPER.group.blade("blade1")

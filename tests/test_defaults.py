@@ -9,15 +9,27 @@ from pathlib import Path
 
 import pytest
 
-from shroudnet import (classify, classify_section, cli, continuation, lyapunov,
-                       mistuning_study, monodromy, periodic_orbit, precision, scenefile,
-                       simulate, stability, sweep)
-from shroudnet.classification import REPEAT_TOLERANCE
-from shroudnet.methods import EVENT_TOLERANCE, TRANSIENT
-from shroudnet.simulate import integrate
+from shroudnet import (
+    classify,
+    classify_section,
+    continuation,
+    lyapunov,
+    mistuning_study,
+    monodromy,
+    periodic_orbit,
+    simulate,
+    sweep,
+)
+from shroudnet.analysis import stability
+from shroudnet.front import cli
+from shroudnet.io import scenefile
+from shroudnet.run.classification import REPEAT_TOLERANCE
+from shroudnet.run.methods import EVENT_TOLERANCE, TRANSIENT
+from shroudnet.run.simulate import integrate
+from shroudnet.studies import precision
 
 PACKAGE = Path(__file__).resolve().parents[1] / "shroudnet"
-sweeps = importlib.import_module("shroudnet.sweep")  # shroudnet.sweep names the function
+sweeps = importlib.import_module("shroudnet.studies.sweep")  # shroudnet.sweep names the function
 
 #: Each shared default: the parameter names that take it, and the constant.
 SHARED = {"event_tolerance": EVENT_TOLERANCE, "transient": TRANSIENT,

@@ -9,8 +9,8 @@ import pytest
 
 import shroudnet as sn
 from contact_laws import Coulomb, LinearSpring, Regularised
-from shroudnet import scenefile
-from shroudnet.substructure import Substructure
+from shroudnet.io import scenefile
+from shroudnet.model.substructure import Substructure
 
 SILENT = sn.Excitation(engine_order=1, amplitudes=(0.0, 0.0), phases=sn.AntiPhase())
 SPEED = 3000.0
@@ -196,8 +196,8 @@ def test_elastic_stick_of_blades_is_a_spring_k_t_cos2_alpha_that_tends_to_rigid_
 
 
 def test_the_baselines_refuse_an_elastic_contact_too():
-    from shroudnet.baseline import solve_ivp_baseline
-    from shroudnet.baseline_structures import structure_from_scene, structure_from_substructures
+    from shroudnet.references.blades import solve_ivp_baseline
+    from shroudnet.references.structures import structure_from_scene, structure_from_substructures
     scene = point_mass_on_ground(elastic(1e5), amplitude=1.0)
     with pytest.raises(ValueError, match="not elastic ones"):
         structure_from_substructures(scene)

@@ -1,5 +1,5 @@
 """Elastic contacts in the time-domain loop: the Jenkins element's sliders in the state,
-against ``shroudnet.baseline_jenkins`` (plain solve_ivp on the element's equations, no
+against ``shroudnet.references.jenkins`` (plain solve_ivp on the element's equations, no
 code shared with the engine), its energy ledger, and its limits: rigid stick as k_t grows,
 and what the loop refuses."""
 
@@ -11,8 +11,8 @@ import pytest
 
 import shroudnet as sn
 from contact_laws import ConstantLoad, Coulomb, ExponentialFriction, LinearSpring
-from shroudnet.baseline_jenkins import JenkinsOscillator, run_oscillator
-from shroudnet.substructure import Substructure
+from shroudnet.model.substructure import Substructure
+from shroudnet.references.jenkins import JenkinsOscillator, run_oscillator
 
 STIFFNESS = np.array([[100.0, 20.0, 5.0], [20.0, 150.0, 10.0], [5.0, 10.0, 80.0]])
 #: The oscillator's excitation [rad/s], and the speed that gives it at engine order 1.

@@ -13,10 +13,9 @@ import shroudnet as sn
 from contact_laws import Coulomb, KelvinVoigt
 from shroudnet.engine.codes import OPEN, SLIP_POSITIVE, STICK
 from shroudnet.engine.generate import kernel_scene, load_kernel
-from shroudnet.results import load_branch, save_branch
-from shroudnet.simulate import integrate
-from tests.test_tangent import (EXACT, scaled_error, settled_state,
-                                settled_through_every_switch)
+from shroudnet.io.results import load_branch, save_branch
+from shroudnet.run.simulate import integrate
+from tests.test_tangent import EXACT, scaled_error, settled_state, settled_through_every_switch
 
 
 def pair_on_a_disc():

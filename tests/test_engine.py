@@ -17,11 +17,19 @@ from hypothesis import strategies as st
 from numba import njit
 from scipy.integrate._ivp.rk import RK45
 
-from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz,
-                          LinearSpring, NormalLaw, Regularised, Stribeck, check_real)
+from contact_laws import (
+    ConstantLoad,
+    Coulomb,
+    ExponentialFriction,
+    Hertz,
+    LinearSpring,
+    NormalLaw,
+    Regularised,
+    Stribeck,
+    check_real,
+)
 from shroudnet import Mode, Simulation, simulate
-from shroudnet.engine import codes, generate, locate, tableau
-from shroudnet.engine import cache
+from shroudnet.engine import cache, codes, generate, locate, tableau
 from shroudnet.engine.cache import cache_size, clear_cache
 from shroudnet.engine.clusters import cluster_labels
 from shroudnet.engine.detect import crossed, depth, parabola_low, predicted_low

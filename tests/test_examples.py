@@ -166,7 +166,7 @@ def check_energy_density(example, result, arguments):
 
 def check_work_precision(example, result, arguments):
     """Every setting measured in the three regimes, each with a cost and a finite error."""
-    from shroudnet.precision import default_settings
+    from shroudnet.studies.precision import default_settings
     regimes = list(result.floors)
     assert len(regimes) == 3
     assert len(result.measurements) == len(regimes) * len(default_settings())

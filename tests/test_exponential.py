@@ -9,9 +9,9 @@ import pytest
 
 import shroudnet as sn
 from contact_laws import ConstantLoad, Coulomb, Hertz
-from shroudnet import baseline_structures as bs
 from shroudnet import scenes
-from shroudnet.methods import Exponential
+from shroudnet.references import structures as bs
+from shroudnet.run.methods import Exponential
 
 PERIODS = 10
 EXACT_EVENTS = 1e-13  # periods
@@ -167,8 +167,8 @@ def test_scenes_whose_phases_are_not_linear_are_refused_by_name():
 
 
 def test_a_scene_file_and_a_results_table_name_the_exponential_method():
-    from shroudnet import scenefile
-    from shroudnet.methods import SimulationSettings, ZenoGuard
+    from shroudnet.io import scenefile
+    from shroudnet.run.methods import SimulationSettings, ZenoGuard
 
     run = scenefile.RunSettings(method=Exponential(steps_per_period=256), periods=4,
                                 transient=1, samples_per_period=8)

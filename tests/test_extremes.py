@@ -69,7 +69,7 @@ def test_amplitude_is_half_the_peak_to_peak_and_peak_keeps_the_static_deflection
 
 
 def test_a_branch_reads_its_orbits_amplitudes_and_they_save_and_load(tmp_path):
-    from shroudnet import results
+    from shroudnet.io import results
     branch = sn.continuation(lambda q0: single_blade(
         speed_rpm=rpm(0.9 * NATURAL), amplitudes=(q0, 5.0), damping=4.0), 0.0, 40.0,
         max_points=3)

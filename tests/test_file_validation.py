@@ -16,18 +16,18 @@ import numpy as np
 import pytest
 
 import contact_laws as cl
-from shroudnet import (AntiPhase, Blade, BladeGroup, Excitation, Interface, Scene, footprint,
-                       results, scenefile, simulate)
-from shroudnet.classification import Classification
-from shroudnet.continuation import Bifurcation, Branch
-from shroudnet.cycle import EnergyPerCycle
-from shroudnet.orbits import PeriodicOrbit
-from shroudnet.results import ResultsError
+from shroudnet import AntiPhase, Blade, BladeGroup, Excitation, Interface, Scene, simulate
+from shroudnet.io import results, scenefile
+from shroudnet.io.results import ResultsError
+from shroudnet.run import footprint
+from shroudnet.run.classification import Classification
+from shroudnet.run.simulation import EventLog, SweepPoint
 from shroudnet.scenes import beam_pair, modal_packet, three_blade_paper
-from shroudnet.simulation import EventLog, SweepPoint
+from shroudnet.steady.continuation import Bifurcation, Branch
+from shroudnet.steady.cycle import EnergyPerCycle
+from shroudnet.steady.orbits import PeriodicOrbit
 
 from .laws import CubicSpring, RationalWeakening
-
 
 # ---- three files of each kind, the scene of three blades and two interfaces ----------------
 

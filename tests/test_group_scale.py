@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from contact_laws import Coulomb, LinearSpring
-from shroudnet import (Blade, BladeGroup, Coupling, Excitation, Interface, Scene, Substructure,
-                       footprint)
+from shroudnet import Blade, BladeGroup, Coupling, Excitation, Interface, Scene, Substructure
+from shroudnet.run import footprint
 
 BLADE = Blade(mass=0.08, damping=4.0, stiffness=1.5e5)
 SHROUD = Interface(gap=2e-5, angle=1.0, normal=LinearSpring(stiffness=3e5),

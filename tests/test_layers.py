@@ -1,5 +1,5 @@
-"""The layers of DESIGN §3 as imports: no module of shroudnet imports itself round a circle,
-and a run (what ``simulate`` returns, and the records of a sweep) knows no study.
+"""The layers of DESIGN §3 as imports: each folder of shroudnet imports only the folders
+below it, and no module imports itself round a circle.
 
 Imports are read from the source, every one of them: at the top, inside functions (the
 lazy ones) and under ``TYPE_CHECKING``, because each is a dependency all the same.
@@ -12,12 +12,48 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "shroudnet"
 
-#: The run layer: what integrates a scene and the records runs return.
-RUN = ("simulate", "simulation", "methods", "baseline", "classification", "extremes")
-#: The studies and steady states, which run simulations and read them.
-STUDIES = ("analysis", "stability", "sweep", "precision", "mistuning", "linear",
-           "linear_response", "orbits",
-           "continuation")
+_COMPUTATION = ("checked_records", "model", "engine", "run", "linear", "analysis", "steady",
+                "studies")
+#: What each part of the package may import (besides itself): its layer and the layers
+#: below it, by the first part of a module's dotted name ("" is the package itself).
+ALLOWED = {
+    "checked_records": set(),
+    "model": {"checked_records"},
+    "engine": {"checked_records", "model"},
+    "run": {"checked_records", "model", "engine"},
+    "linear": {"checked_records", "model", "engine"},
+    "analysis": {"checked_records", "model", "engine", "run"},
+    "steady": {"checked_records", "model", "engine", "run", "linear", "analysis"},
+    "studies": {"checked_records", "model", "scenes", "engine", "run", "linear", "analysis",
+                "steady"},
+    "io": {*_COMPUTATION},
+    "scenes": {"checked_records", "model"},
+    # The independent references share no code with the engine: its enums at most.
+    "references": {"model", "engine.codes"},
+    "front": {*_COMPUTATION, "io", "scenes", "references"},
+    "results": {"io"},
+    "scenefile": {"io"},
+    "__main__": {"front"},
+    "": {*_COMPUTATION, "io", "scenes", "front"},
+}
+#: The layers that compute: none of them prints, touches a file or draws but through what
+#: its caller hands it (the engine's compiled-kernel cache and its first-compile notice
+#: aside, in ``engine.cache`` and ``engine.generate``).
+COMPUTATION = ("model", "run", "linear", "analysis", "steady", "studies")
+
+
+def part(module: str) -> str:
+    """The part of the package ``module`` belongs to: its folder, or itself at the top."""
+    return module.split(".")[0]
+
+
+def allowed(importer: str, imported: str) -> bool:
+    """Whether ``importer`` may import ``imported`` by ``ALLOWED``."""
+    if part(importer) == part(imported):
+        return True
+    rule = ALLOWED[part(importer)]
+    return part(imported) in rule or any(imported == r or imported.startswith(r + ".")
+                                         for r in rule)
 
 
 def module_names(package: Path = PACKAGE) -> dict[str, Path]:
@@ -32,12 +68,16 @@ def module_names(package: Path = PACKAGE) -> dict[str, Path]:
     return names
 
 
-def imports_of(name: str, path: Path, modules: dict[str, Path]) -> set[str]:
+def imports_of(name: str, path: Path, modules: dict[str, Path],
+               tree: ast.AST | None = None) -> set[str]:
     """The modules of the package that the module ``name`` (source at ``path``) imports
-    anywhere in its source, by their names in ``module_names``."""
+    anywhere in its source, or in the part ``tree`` of it, by their names in
+    ``module_names``."""
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found = set()
-    for node in ast.walk(ast.parse(path.read_text(), filename=str(path))):
+    if tree is None:
+        tree = ast.parse(path.read_text(), filename=str(path))
+    for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom):
             if node.level:
                 base = package.split(".") if package else []
@@ -129,15 +169,52 @@ def test_cycles_finds_a_circle_and_only_circles():
 
 def test_no_module_of_shroudnet_imports_itself_round_a_circle():
     graph = import_graph()
-    assert {"simulation", "simulate", "analysis", "stability", "sweep"} <= set(graph)
+    assert {"run.simulation", "run.simulate", "analysis.readings", "studies.sweep"} <= set(graph)
     assert cycles(graph) == []
 
 
-@pytest.mark.parametrize("module", RUN)
-def test_a_run_imports_no_study(module):
-    """Not directly and not through another module: a run record is read, saved and loaded
-    without any study, and the studies are free to read runs."""
-    assert reachable(import_graph(), module).isdisjoint(STUDIES)
+def test_every_part_of_the_package_has_a_rule():
+    assert {part(module) for module in import_graph()} == set(ALLOWED)
+
+
+@pytest.mark.parametrize("folder", sorted(ALLOWED))
+def test_each_folder_imports_only_the_layers_below_it(folder):
+    """Directly, and so through any chain of imports: a run record is read, saved and
+    loaded without any study; a study never reaches files or the terminal."""
+    graph = import_graph()
+    wrong = {(module, imported) for module, imports in graph.items() if part(module) == folder
+             for imported in imports if not allowed(module, imported)}
+    assert wrong == set()
+
+
+def test_the_rules_find_an_import_up_a_layer():
+    assert not allowed("run.simulate", "steady.orbits")
+    assert not allowed("studies.sweep", "io.results")
+    assert not allowed("studies.sweep", "front.progress")
+    assert not allowed("references.blades", "engine.dynamics")
+    assert allowed("references.blades", "engine.codes")
+    assert allowed("steady.orbits", "run.simulate")
+
+
+@pytest.mark.parametrize("folder", COMPUTATION)
+def test_computation_neither_prints_nor_opens_files(folder):
+    """No ``print``, ``open``, ``sys.stdout``/``sys.stderr`` or matplotlib in the layers that
+    compute: what a computation shows or keeps goes through what its caller hands it."""
+    found = []
+    for path in sorted((PACKAGE / folder).rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
+                    and node.func.id in ("print", "open"):
+                found.append(f"{path.name}:{node.lineno} {node.func.id}()")
+            elif isinstance(node, ast.Attribute) and node.attr in ("stdout", "stderr") \
+                    and isinstance(node.value, ast.Name) and node.value.id == "sys":
+                found.append(f"{path.name}:{node.lineno} sys.{node.attr}")
+            elif isinstance(node, ast.Import | ast.ImportFrom):
+                names = [node.module or ""] if isinstance(node, ast.ImportFrom) \
+                    else [a.name for a in node.names]
+                found += [f"{path.name}:{node.lineno} {n}" for n in names
+                          if n.split(".")[0] == "matplotlib"]
+    assert found == []
 
 
 def test_importing_the_package_only_imports():

@@ -7,9 +7,19 @@ import numpy as np
 import pytest
 
 from contact_laws import Coulomb, LinearSpring
-from shroudnet import (AntiPhase, Blade, BladeGroup, Coupling, Excitation, Interface, Scene,
-                       Southwell, group_campbell, linear_modes)
-from shroudnet.linear import excited_diameter
+from shroudnet import (
+    AntiPhase,
+    Blade,
+    BladeGroup,
+    Coupling,
+    Excitation,
+    Interface,
+    Scene,
+    Southwell,
+    group_campbell,
+    linear_modes,
+)
+from shroudnet.linear.modes import excited_diameter
 
 MASS, GROUND, LINK = 0.1, 1e5, 2e4
 EXCITATION = Excitation(engine_order=1, amplitudes=(0.0, 1.0), phases=AntiPhase())
@@ -130,7 +140,7 @@ def test_engine_orders_excite_one_diameter_and_the_campbell_diagram_finds_crossi
         assert frequency == pytest.approx(order * speed / 60.0)
     # l = 2 never catches the stiffening blade (f² = f0² + 4 (Ω/60)²); ND 3 and ND 0 do.
     assert {order for order, *_ in campbell.crossings} == {3, 4, 6}
-    from shroudnet.figures import group_campbell_diagram
+    from shroudnet.front.figures import group_campbell_diagram
     axes = group_campbell_diagram(campbell, modes=4).axes[0]
     assert len(axes.lines) >= 4 + 1 + 4  # modes, legend entry, four engine orders
 

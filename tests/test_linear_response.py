@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 import shroudnet as sn
 from contact_laws import Coulomb, KelvinVoigt, LinearSpring
 from shroudnet import scenes
-from shroudnet.linear_response import ellipse_semi_major_axis
+from shroudnet.linear.response import ellipse_semi_major_axis
 
 FREQUENCIES = np.linspace(120.0, 320.0, 41)
 

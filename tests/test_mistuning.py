@@ -6,9 +6,18 @@ import math
 import numpy as np
 import pytest
 
-from shroudnet import (Blade, BladeGroup, Coupling, EngineOrderWave, Excitation,
-                       HarmonicMotion, Scene, linear_modes, mistuning_study)
-from shroudnet.mistuning import mistuned_group
+from shroudnet import (
+    Blade,
+    BladeGroup,
+    Coupling,
+    EngineOrderWave,
+    Excitation,
+    HarmonicMotion,
+    Scene,
+    linear_modes,
+    mistuning_study,
+)
+from shroudnet.studies.mistuning import mistuned_group
 
 N = 6
 

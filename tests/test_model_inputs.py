@@ -17,12 +17,27 @@ import numpy as np
 import pytest
 
 import contact_laws as cl
-from shroudnet import (AntiPhase, Blade, BladeGroup, Excitation, ExplicitPhases, FixedStep,
-                       Interface, Mode, Scene, TravellingWave, ZenoGuard, assemble, classify,
-                       friction_loss_per_cycle, simulate, spectrum)
-from shroudnet.baseline import solve_ivp_baseline
-from shroudnet.excitation import ENGINE_ORDER_MAX, EngineOrderWave
-from shroudnet.scenefile import load
+from shroudnet import (
+    AntiPhase,
+    Blade,
+    BladeGroup,
+    Excitation,
+    ExplicitPhases,
+    FixedStep,
+    Interface,
+    Mode,
+    Scene,
+    TravellingWave,
+    ZenoGuard,
+    assemble,
+    classify,
+    friction_loss_per_cycle,
+    simulate,
+    spectrum,
+)
+from shroudnet.io.scenefile import load
+from shroudnet.model.excitation import ENGINE_ORDER_MAX, EngineOrderWave
+from shroudnet.references.blades import solve_ivp_baseline
 from shroudnet.scenes import three_blade_paper
 from tests.laws import CubicSpring, PreloadedStop, RationalWeakening
 
@@ -32,7 +47,7 @@ SHROUD = Interface(gap=1e-5, angle=0.5, normal=cl.LinearSpring(stiffness=1e5),
                    friction=cl.Coulomb(mu=0.3))
 EXCITATION = Excitation(engine_order=2, amplitudes=(0.0, 10.0), phases=AntiPhase())
 #: The module (``shroudnet.simulate`` the attribute is the function of the same name).
-simulate_module = sys.modules["shroudnet.simulate"]
+simulate_module = sys.modules["shroudnet.run.simulate"]
 
 
 # ---- check_int ------------------------------------------------------------------------------
@@ -226,7 +241,7 @@ def test_blades_on_disc_is_checked(disc, error, message):
 
 
 def test_scene_files_place_a_packet_on_its_disc():
-    from shroudnet import scenefile
+    from shroudnet.io import scenefile
     document = scenefile.document(packet_scene(EngineOrderWave(blades_on_disc=36)))
     document["excitation"]["phases"] = "engine-order"
     document["excitation"]["blades_on_disc"] = 36

@@ -8,9 +8,20 @@ import pytest
 
 from contact_laws import Coulomb, Regularised
 from shroudnet import Accuracy, Adaptive, FixedStep, simulate, sweep
-from shroudnet.precision import (REFERENCE, Measurement, Setting, Study, errors, outcome,
-                                 paper_regimes, regularised, run, sampling_floor, summary)
 from shroudnet.scenes import three_blade_paper
+from shroudnet.studies.precision import (
+    REFERENCE,
+    Measurement,
+    Setting,
+    Study,
+    errors,
+    outcome,
+    paper_regimes,
+    regularised,
+    run,
+    sampling_floor,
+    summary,
+)
 from tests.test_simulate import linear_response
 
 #: The paper's p1 and p3 regimes, shortened: still periodic, errors still settled.

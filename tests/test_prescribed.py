@@ -13,17 +13,33 @@ import numpy as np
 import pytest
 
 from contact_laws import ConstantLoad, Coulomb, LinearSpring, Stribeck
-from shroudnet import (Adaptive, AntiPhase, Blade, BladeGroup, ConstantVelocity, Coupling,
-                       Excitation, FixedStep, HarmonicMotion, Interface, Mode, MotionTable,
-                       Scene, assemble, linear_modes, monodromy, periodic_orbit,
-                       simulate)
+from shroudnet import (
+    Adaptive,
+    AntiPhase,
+    Blade,
+    BladeGroup,
+    ConstantVelocity,
+    Coupling,
+    Excitation,
+    FixedStep,
+    HarmonicMotion,
+    Interface,
+    Mode,
+    MotionTable,
+    Scene,
+    assemble,
+    linear_modes,
+    monodromy,
+    periodic_orbit,
+    simulate,
+)
 from shroudnet.engine.assembly import law_forces
 from shroudnet.engine.codes import EventKind
-from shroudnet.baseline import solve_ivp_baseline
 from shroudnet.engine.generate import flags
+from shroudnet.references.blades import solve_ivp_baseline
 from shroudnet.scenes import three_blade_paper
 from tests.laws import StaticKinetic
-from tests.test_tangent import (EXACT, differenced_monodromy, scaled_error, state_scale)
+from tests.test_tangent import EXACT, differenced_monodromy, scaled_error, state_scale
 
 NO_EXCITATION = Excitation(engine_order=1, amplitudes=(0.0,), phases=AntiPhase())
 BLOCK = Blade(mass=1.0, damping=0.0, stiffness=1e4)

@@ -28,8 +28,7 @@ from hypothesis import strategies as st
 import contact_laws
 import shroudnet
 from contact_laws import Coulomb, LinearSpring
-from shroudnet import (Blade, BladeGroup, Excitation, AntiPhase, Interface,
-                       Scene, scenes)
+from shroudnet import AntiPhase, Blade, BladeGroup, Excitation, Interface, Scene, scenes
 
 pytestmark = pytest.mark.timeout(900)
 
@@ -42,8 +41,8 @@ def _in_a_scratch_folder(tmp_path, monkeypatch):
 
 
 def _project_errors() -> tuple[type[Exception], ...]:
-    from shroudnet.results import ResultsError
-    from shroudnet.scenefile import SceneFileError
+    from shroudnet.io.results import ResultsError
+    from shroudnet.io.scenefile import SceneFileError
     return (ValueError, TypeError, shroudnet.SimulationError, shroudnet.ConvergenceError,
             SceneFileError, ResultsError)
 

@@ -29,7 +29,7 @@ import scipy.linalg
 
 import shroudnet as sn
 from shroudnet import craig_bampton, modal_truncation, periodic_orbit, scenes
-from shroudnet.orbits import ORBIT_TOLERANCE
+from shroudnet.steady.orbits import ORBIT_TOLERANCE
 
 ELEMENTS = 6
 FULL = scenes.beam_pair(elements=ELEMENTS).group.blade("blade1")

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from contact_laws import ExponentialFriction, LinearSpring
-from shroudnet import (Blade, BladeGroup, Excitation, Interface, Scene, Sweep, results,
-                       simulate, sweep)
-from shroudnet.progress import ProgressReporter, SweepWarning
-from shroudnet.results import ResultsError
+from shroudnet import Blade, BladeGroup, Excitation, Interface, Scene, Sweep, simulate, sweep
+from shroudnet.front.progress import ProgressReporter, SweepWarning
+from shroudnet.io import results
+from shroudnet.io.results import ResultsError
 from shroudnet.scenes import three_blade_paper
 
 ROOT = Path(__file__).resolve().parents[1]

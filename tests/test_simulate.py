@@ -8,10 +8,23 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from contact_laws import Coulomb, ExponentialFriction, KelvinVoigt, LinearSpring, Regularised
-from shroudnet import (Accuracy, Adaptive, Blade, BladeGroup, EventKind, Excitation,
-                       FixedStep, Interface, Mode, Scene, SimulationError, Southwell,
-                       ZenoGuard, simulate)
-from shroudnet.methods import SimulationSettings
+from shroudnet import (
+    Accuracy,
+    Adaptive,
+    Blade,
+    BladeGroup,
+    EventKind,
+    Excitation,
+    FixedStep,
+    Interface,
+    Mode,
+    Scene,
+    SimulationError,
+    Southwell,
+    ZenoGuard,
+    simulate,
+)
+from shroudnet.run.methods import SimulationSettings
 from shroudnet.scenes import three_blade_paper
 
 

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 import contact_laws as cl
-import shroudnet.scene
 import shroudnet.engine.generate as generate
+import shroudnet.model.scene as scene_module
 from shroudnet import Adaptive, FixedStep, SimulationError, simulate
 from shroudnet.scenes import three_blade_paper
 from tests.laws import PreloadedStop
@@ -27,7 +27,7 @@ def sticking_scene(**laws):
 @pytest.fixture
 def unchecked_laws(monkeypatch):
     """Scenes built without the sampled check of user laws, to reach the loop's own guards."""
-    monkeypatch.setattr(shroudnet.scene, "check_user_laws", lambda scene: None)
+    monkeypatch.setattr(scene_module, "check_user_laws", lambda scene: None)
 
 
 @dataclass(frozen=True, kw_only=True)

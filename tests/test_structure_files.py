@@ -11,13 +11,22 @@ import scipy.io
 import scipy.sparse
 
 from contact_laws import Coulomb, LinearSpring
-from shroudnet import (Blade, BladeGroup, Coupling, Excitation, Interface, Scene, results,
-                       TravellingWave, scenefile, simulate)
-from shroudnet.beam import cantilever_beam
-from shroudnet.blade import Southwell
-from shroudnet.cli import main
-from shroudnet.reduction import craig_bampton
-from shroudnet.substructure import Substructure
+from shroudnet import (
+    Blade,
+    BladeGroup,
+    Coupling,
+    Excitation,
+    Interface,
+    Scene,
+    TravellingWave,
+    simulate,
+)
+from shroudnet.front.cli import main
+from shroudnet.io import results, scenefile
+from shroudnet.model.beam import cantilever_beam
+from shroudnet.model.blade import Southwell
+from shroudnet.model.reduction import craig_bampton
+from shroudnet.model.substructure import Substructure
 
 #: Three DOFs of a small FE model, exported as an FE tool would (SI units).
 MASS = np.diag([0.03, 0.02, 0.01])

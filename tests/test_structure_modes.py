@@ -15,8 +15,8 @@ import scipy.linalg
 import shroudnet as sn
 from contact_laws import Coulomb, LinearSpring
 from shroudnet import scenes
-from shroudnet.mistuning import mistuned_group
-from shroudnet.substructure import Substructure
+from shroudnet.model.substructure import Substructure
+from shroudnet.studies.mistuning import mistuned_group
 from tests.test_structures import as_substructures, stuck_ring
 
 SPEED = 6000.0

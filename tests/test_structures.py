@@ -16,11 +16,17 @@ import pytest
 import shroudnet as sn
 from contact_laws import Coulomb, LinearSpring
 from shroudnet import scenes
-from shroudnet import baseline_structures as bs
-from shroudnet.substructure import Substructure
+from shroudnet.model.substructure import Substructure
+from shroudnet.references import structures as bs
 from tests.laws import StaticKinetic
-from tests.test_tangent import (EXACT, differenced_monodromy, scaled_error, settled_state,
-                                settled_through_every_switch, state_scale)
+from tests.test_tangent import (
+    EXACT,
+    differenced_monodromy,
+    scaled_error,
+    settled_state,
+    settled_through_every_switch,
+    state_scale,
+)
 
 
 def as_substructures(scene: sn.Scene) -> sn.Scene:

@@ -18,10 +18,17 @@ import scipy.sparse
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-import shroudnet.reduction as reduction
-from shroudnet import (FrequencyTable, Southwell, Substructure, cantilever_beam, craig_bampton,
-                       modal_truncation, read_matrices)
-from shroudnet.fe_files import substructure_from_file
+import shroudnet.model.reduction as reduction
+from shroudnet import (
+    FrequencyTable,
+    Southwell,
+    Substructure,
+    cantilever_beam,
+    craig_bampton,
+    modal_truncation,
+    read_matrices,
+)
+from shroudnet.model.matrix_files import substructure_from_file
 
 #: A steel strip 100 × 20 × 4 mm: flapwise (along the 4 mm thickness) is the weak plane.
 STEEL = dict(youngs_modulus=2.0e11, density=7800.0)

@@ -17,10 +17,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shroudnet import Sweep, results, simulate, sweep
-from shroudnet.progress import NoticeLines, ProgressReporter, SweepWarning, TerminalProgress
+from shroudnet import Sweep, simulate, sweep
+from shroudnet.front.progress import NoticeLines, ProgressReporter, SweepWarning, TerminalProgress
+from shroudnet.io import results
+from shroudnet.run.simulation import SweepFailure
 from shroudnet.scenes import three_blade_paper
-from shroudnet.simulation import SweepFailure
+from tests.test_layers import imports_of, module_names
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -312,7 +314,7 @@ def test_a_failed_point_is_a_warning_when_progress_is_a_plain_callable():
 
 
 def test_the_bifurcation_figure_leaves_a_failed_point_out():
-    from shroudnet.figures import bifurcation_diagram
+    from shroudnet.front.figures import bifurcation_diagram
 
     result = sweep(overflowing_scene_at, [1.0, 3.5], parameter="gamma1", workers=1,
                    progress=Recorder(), **SETTINGS)
@@ -523,62 +525,53 @@ def test_notice_lines_write_only_the_notices():
 
 # ---- module boundaries --------------------------------------------------------------------
 
-def imported_modules(source: Path | ast.AST) -> set[str]:
-    """The shroudnet modules the source at ``source`` (a path, or a parsed part of a file)
-    imports anywhere (functions included), by their name in the package ("results",
+def imported_modules(path: Path, tree: ast.AST | None = None) -> set[str]:
+    """The shroudnet modules the module at ``path`` (or the part ``tree`` of it) imports
+    anywhere (functions included), by their name in the package ("io.results",
     "engine.codes", ...)."""
-    tree = ast.parse(source.read_text()) if isinstance(source, Path) else source
-    found = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and node.level == 1:
-            found.update([node.module] if node.module else
-                         [alias.name for alias in node.names])
-        elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("shroudnet."):
-            found.add(node.module.removeprefix("shroudnet."))
-        elif isinstance(node, ast.Import):
-            found.update(alias.name.removeprefix("shroudnet.") for alias in node.names
-                         if alias.name.startswith("shroudnet."))
-    return found
+    modules = module_names()
+    name = next(name for name, found in modules.items() if found == path.resolve())
+    return imports_of(name, path.resolve(), modules, tree)
 
 
 def test_the_sweep_computation_imports_no_file_terminal_or_figure_code():
     """Importing shroudnet, or the sweep, loads neither results nor the terminal displays
-    nor the command line nor the figures (in a fresh process). sweep.py names results and
-    progress only inside the two functions that stand for ``save_to=FOLDER`` and
-    ``progress="auto"``, called when a sweep asks for them; otherwise it reports to the
-    protocol of ``reporting``. The records that runs return live beside ``Simulation``, so
-    results does not import the sweep."""
-    front = ("results", "progress", "cli", "figures")
-    code = ("import shroudnet.sweep, sys; print([m for m in sys.modules if m in "
-            f"{tuple('shroudnet.' + name for name in front)}])")
+    nor the command line nor the figures (in a fresh process). The sweep computation names
+    none of them at all (``tests/test_layers.py`` holds every folder to its layer); the
+    sweep the package offers (``front.studies``) imports results and the terminal display
+    only inside itself, when a sweep asks for ``save_to=FOLDER`` or ``progress="auto"``.
+    The records that runs return live beside ``Simulation``, so results does not import
+    the sweep."""
+    front = ("io.results", "front.progress", "front.cli", "front.figures")
+    code = ("import shroudnet, shroudnet.studies.sweep, sys; print([m for m in sys.modules "
+            f"if m in {tuple('shroudnet.' + name for name in front)}])")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True,
                           text=True, check=True)
     assert done.stdout.strip() == "[]"
     package = ROOT / "shroudnet"
-    tree = ast.parse((package / "sweep.py").read_text())
-    naming = {node.name: imported_modules(node) & set(front) for node in ast.walk(tree)
-              if isinstance(node, ast.FunctionDef) and imported_modules(node) & set(front)}
-    assert naming == {"folder_store": {"results"}, "terminal_progress": {"progress"}}
+    assert not imported_modules(package / "studies" / "sweep.py") & set(front)
+    tree = ast.parse((package / "front" / "studies.py").read_text())
     outside_functions = ast.Module([node for node in tree.body
                                     if not isinstance(node, ast.FunctionDef)], [])
-    assert not imported_modules(outside_functions) & set(front)
-    assert "sweep" not in imported_modules(package / "results.py")
-    assert ProgressReporter.__module__ == SweepWarning.__module__ == "shroudnet.reporting"
-    assert not imported_modules(package / "reporting.py")
+    assert not imported_modules(package / "front" / "studies.py", outside_functions) \
+        & set(front)
+    assert "studies.sweep" not in imported_modules(package / "io" / "results.py")
+    assert ProgressReporter.__module__ == SweepWarning.__module__ == "shroudnet.run.reporting"
+    assert not imported_modules(package / "run" / "reporting.py")
     from shroudnet import SweepFailure, SweepPoint
     assert {Sweep.__module__, SweepPoint.__module__, SweepFailure.__module__} == {
-        "shroudnet.simulation"}
+        "shroudnet.run.simulation"}
 
 
 def test_the_method_settings_have_a_module_the_scene_files_read_them_from():
     import shroudnet
-    from shroudnet import methods
+    from shroudnet.run import methods
 
     for name in ("FixedStep", "Adaptive", "Accuracy", "ZenoGuard"):
         settings = getattr(methods, name)
-        assert settings.__module__ == "shroudnet.methods"
+        assert settings.__module__ == "shroudnet.run.methods"
         assert getattr(shroudnet, name) is settings
     assert (methods.ACCURACY_MARGIN, methods.ZENO_WINDOW_TOLERANCES,
             methods.ZENO_WINDOW_LIMIT) == (100.0, 1e6, 1e-3)
-    scenefile = imported_modules(ROOT / "shroudnet" / "scenefile.py")
-    assert "methods" in scenefile and "simulate" not in scenefile
+    scenefile = imported_modules(ROOT / "shroudnet" / "io" / "scenefile.py")
+    assert "run.methods" in scenefile and "run.simulate" not in scenefile

@@ -20,20 +20,40 @@ import scipy.linalg
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from contact_laws import (ConstantLoad, Coulomb, ExponentialFriction, Hertz, HuntCrossley,
-                          KelvinVoigt, LinearSpring, Regularised, Stribeck)
-from shroudnet import (Adaptive, Blade, BladeGroup, ConstantVelocity, Excitation, Interface,
-                       Scene, SimulationError, assemble, classify, lyapunov, monodromy,
-                       simulate)
+from contact_laws import (
+    ConstantLoad,
+    Coulomb,
+    ExponentialFriction,
+    Hertz,
+    HuntCrossley,
+    KelvinVoigt,
+    LinearSpring,
+    Regularised,
+    Stribeck,
+)
+from shroudnet import (
+    Adaptive,
+    Blade,
+    BladeGroup,
+    ConstantVelocity,
+    Excitation,
+    Interface,
+    Scene,
+    SimulationError,
+    assemble,
+    classify,
+    lyapunov,
+    monodromy,
+    simulate,
+)
+from shroudnet.analysis.stability import stroboscopic_step
 from shroudnet.engine.codes import STICK
 from shroudnet.engine.generate import kernel_scene, load_kernel
-from shroudnet.scenefile import load
+from shroudnet.io.scenefile import load
 from shroudnet.scenes import three_blade_paper
-from shroudnet.stability import stroboscopic_step
 from tests.groups import states
 from tests.laws import StaticKinetic
-from tests.test_physics_references import (BLADE, FAR, IDLE, IDLE_BLADE, SPEED_RPM,
-                                           facing_pads)
+from tests.test_physics_references import BLADE, FAR, IDLE, IDLE_BLADE, SPEED_RPM, facing_pads
 
 #: The trajectories the differences are taken of: as exact as the integrator goes.
 EXACT = Adaptive(rtol=1e-12)

@@ -16,13 +16,20 @@ from contact_laws import check_array, check_instance, check_real
 from contact_laws.base import ZERO_PLUS_SPEED
 
 from ..checked_records import check_record
-from ..scene import Scene, SceneArrays
+from ..model.scene import Scene, SceneArrays
 from .clusters import TWO_DRIVERS, cluster_labels
 from .codes import OPEN, SLIP_POSITIVE, STICK, Mode
 from .detect import event_guards
-from .dynamics import (cluster_accelerations, continued_mu, coupling_forces,
-                       driven_accelerations, excitation_forces, interface_kinematics,
-                       resultant_forces, static_friction)
+from .dynamics import (
+    cluster_accelerations,
+    continued_mu,
+    coupling_forces,
+    driven_accelerations,
+    excitation_forces,
+    interface_kinematics,
+    resultant_forces,
+    static_friction,
+)
 from .regroup import cluster_mass, static_friction_operator
 
 

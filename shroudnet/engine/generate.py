@@ -40,7 +40,7 @@ import numpy as np
 from contact_laws import BUILT_IN_FRICTION, BUILT_IN_NORMAL, Coulomb
 from contact_laws import base as law_base
 
-from ..scene import Scene
+from ..model.scene import Scene
 from .cache import cache_folder, keep
 from .header import derivative_function, has_derivative, header, law_function
 from .kernel import PHASES

@@ -1,0 +1,614 @@
+"""Benchmark: ``python -m shroudnet.front.bench`` prints what the paper's scene costs to simulate.
+
+0. Compiling: the first run of the paper's scene on an empty cache, and then the first run
+   of another combination of built-in law classes, each in a fresh process.
+1. Steps per second of each integrator on one core.
+2. Effects: the same blades with no contact, frictionless and frictional contact, each
+   paying for the effects it has (all of them run the kernel shared by the built-in laws).
+3. The ratio against a plain ``solve_ivp`` event-driven implementation of the same scene
+   (``shroudnet.references.blades``) at equal accuracy, both measured against a converged reference.
+4. Sweeps: seconds per bifurcation point, the speed-up with the number of workers, and the
+   wall time (median of three runs, each in a process of its own) and peak memory of a
+   Fig. 6-class diagram (γ1 over [0.5, 10], 300 transient + 100 recorded periods per
+   value) on every core.
+5. The tangent flow: the cost of a period with one tangent vector (``lyapunov``) and with
+   all 2N (``monodromy``) against the plain run, for the paper's group and the 24-blade
+   ring of ``examples/scenes``; and the time ``lyapunov`` takes to give the paper's
+   chaotic exponent (γ1 = 8.8) to two digits.
+6. Steady states: milliseconds per periodic orbit (``periodic_orbit``) for the paper's
+   group and the 24-blade ring; the seconds a forced-response curve of about 300 orbits
+   across the paper's l = 2 resonance takes (``continuation``), against transient sweeps
+   up and down the same speeds.
+7. Substructures: periods per second and milliseconds per periodic orbit (with all its
+   multipliers) of a packet of six three-mode blades (``scenes.modal_packet``), with its
+   1-D rigid-stick contacts and with 3-D elastic ones, and the
+   seconds a forced-response curve of 300 of its orbits takes; two
+   unreduced beams with a shroud contact (``scenes.beam_pair``), by the adaptive and the
+   exponential methods, against the plain ``solve_ivp`` reference of
+   ``baseline_structures``, every run measured against a converged one, and each plain
+   run's time against the fastest of ours at least as accurate.
+8. Tuned rings at the cost of one sector: milliseconds per period-1 orbit with all its
+   multipliers, shooting whole periods against the travelling wave's reduced map
+   (``cyclic``), for the 24-blade ring and the 24-sector disc at an engine order coprime
+   with 24 and at engine order 6; and a forced-response curve of 100 orbits of the ring
+   both ways.
+
+Figures are medians of several runs after one warm-up run (which also compiles or loads
+the kernel); nothing here is asserted, because timings depend on the machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import json
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ..analysis.stability import lyapunov
+from ..io import scenefile
+from ..model.excitation import EngineOrderWave, Excitation
+from ..model.group import BladeGroup
+from ..model.scene import Scene
+from ..references import structures as baseline_structures
+from ..references.blades import solve_ivp_baseline
+from ..run.methods import EVENT_TOLERANCE, TRANSIENT, Adaptive, Exponential, FixedStep
+from ..run.simulate import simulate
+from ..run.simulation import SimulationError
+from ..scenes import beam_pair, bladed_disc_24, modal_packet, three_blade_paper
+from ..steady.continuation import continuation
+from ..steady.orbits import periodic_orbit
+from ..studies.sweep import default_workers, sweep
+from .options import whole
+from .progress import progress_callback
+
+#: The benchmark's operating point: p3 motion with stick, slip and impacts on both shrouds.
+POINT = {"gamma1": 2.2, "speed_rpm": 6000.0, "q1": 50.0}
+
+
+_FIRST_RUN = (
+    "import sys, time\n"
+    "began = time.perf_counter()\n"
+    "from contact_laws import Coulomb, Hertz\n"
+    "from shroudnet import simulate\n"
+    "from shroudnet.scenes import three_blade_paper\n"
+    "laws = {} if sys.argv[1] == 'paper' else "
+    "{'normal': Hertz(stiffness=3e7), 'friction': Coulomb(mu=0.3)}\n"
+    "sim = simulate(three_blade_paper(**laws), 1)\n"
+    "print(time.perf_counter() - began, sim.compile_seconds)\n")
+
+
+def first_runs() -> dict[str, tuple[float, float]]:
+    """(wall seconds of a fresh process's first run, of them compiling) on an empty cache:
+    the paper's scene, then a scene with other law classes (the engine's own code now
+    cached, the kernel new)."""
+    with tempfile.TemporaryDirectory() as folder:
+        env = {**os.environ, "SHROUDNET_CACHE": f"{folder}/kernels",
+               "NUMBA_CACHE_DIR": f"{folder}/numba"}
+        runs = {}
+        for which in ("paper", "other laws"):
+            done = subprocess.run([sys.executable, "-c", _FIRST_RUN, which.split()[0]],
+                                  env=env, capture_output=True, text=True, check=True)
+            wall, compiling = map(float, done.stdout.split())
+            runs[which] = (wall, compiling)
+        return runs
+
+
+def median_time(function, repeats: int) -> tuple[float, object]:
+    """Median wall time [s] of ``function()`` over ``repeats`` runs, and its last result."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = function()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), result
+
+
+def steps_per_second(method, *, scene=None, periods: int = 200, repeats: int = 5
+                     ) -> tuple[float, object]:
+    """Median Runge–Kutta steps per second on one core, and the last simulation.
+
+    A step is one grid step for ``FixedStep``, one accepted step for ``Adaptive``; the time
+    includes locating and resolving every switch and recording 100 samples per period.
+    """
+    scene = three_blade_paper(**POINT) if scene is None else scene
+    simulate(scene, 2, method=method)
+    seconds, sim = median_time(lambda: simulate(scene, periods, method=method), repeats)
+    return sim.steps / seconds, sim
+
+
+def without_interfaces(scene: Scene) -> Scene:
+    """The same blades and excitation with no shroud interfaces at all."""
+    group = BladeGroup()
+    for name in scene.group.blades:
+        group.add_blade(name, scene.group.blade(name))
+    return Scene(group=group, excitation=scene.excitation, speed_rpm=scene.speed_rpm)
+
+
+def effect_scenes() -> dict[str, Scene]:
+    frictional = three_blade_paper(**POINT)
+    return {
+        "no interfaces": without_interfaces(frictional),
+        "contact that never closes (gap 1 m)": three_blade_paper(**POINT, gap=1.0),
+        "frictionless contact": three_blade_paper(**POINT, friction=None),
+        "frictional contact (the paper's)": frictional,
+    }
+
+
+def gamma_scene(gamma1):
+    """The benchmark's scene at stiffness ratio ``gamma1`` (module-level: it is pickled)."""
+    return three_blade_paper(**{**POINT, "gamma1": gamma1})
+
+
+def baseline_comparison(gammas=(1.0, 2.2, 3.5), periods: int = 50, repeats: int = 3):
+    """Per γ1: (seconds ours, seconds solve_ivp, error ours, error solve_ivp, switches).
+
+    Both run Dormand–Prince 5(4) at rtol = 1e-8, atol = 1e-12 m; errors are the largest
+    deviation of the displacements at t = k T_e from a reference at rtol = 1e-12, relative
+    to the largest displacement.
+    """
+    rows = []
+    for gamma1 in gammas:
+        scene = gamma_scene(gamma1)
+        reference = simulate(scene, periods, method=Adaptive(rtol=1e-12, atol=1e-16),
+                             samples_per_period=1, event_tolerance=1e-13).x
+        run = functools.partial(simulate, scene, periods, method=Adaptive(atol=1e-12),
+                                samples_per_period=1)
+        run()
+        ours_seconds, ours = median_time(run, repeats)
+        start = time.perf_counter()
+        plain = solve_ivp_baseline(scene, periods, rtol=1e-8, atol=1e-12)
+        plain_seconds = time.perf_counter() - start
+        scale = np.abs(reference).max()
+        rows.append((gamma1, ours_seconds, plain_seconds,
+                     np.abs(ours.x - reference).max() / scale,
+                     np.abs(plain.x - reference).max() / scale, plain.switches))
+    return rows
+
+
+def diagram(values, *, workers, transient=TRANSIENT, record=100, progress=False):
+    """A Fig. 6-class sweep of γ1; returns (wall time [s], the sweep)."""
+    start = time.perf_counter()
+    result = sweep(gamma_scene, values, parameter="gamma1", transient=transient,
+                   record=record, method=Adaptive(), workers=workers, progress=progress)
+    return time.perf_counter() - start, result
+
+
+#: Runs of the Fig. 6-class diagram, each in a process of its own, whose median is quoted.
+DIAGRAM_REPEATS = 3
+
+
+def diagram_in_fresh_process(points, transient, record, workers) -> dict:
+    """Run the diagram in a new Python process, so that its peak memory is its own.
+
+    Returns wall seconds, peak resident memory [MB] of that process and of its largest
+    worker, and the size of the results the sweep keeps [MB]. Progress goes to stderr.
+    """
+    command = [sys.executable, "-m", "shroudnet.front.bench", "--diagram-only", "--points",
+               str(points), "--transient", str(transient), "--record", str(record),
+               "--workers", str(workers)]
+    done = subprocess.run(command, stdout=subprocess.PIPE, text=True, check=True)
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def _diagram_only(points, transient, record, workers) -> None:
+    seconds, result = diagram(np.linspace(0.5, 10.0, points), workers=workers,
+                              transient=transient, record=record,
+                              progress=progress_callback("auto"))
+    kept = sum(p.poincare.nbytes + sum(s.nbytes for s in p.final_state)
+               for p in result.points)
+    print(json.dumps({
+        "seconds": seconds, "kept_mb": kept / 1e6,
+        "own_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "worker_mb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}))
+
+
+RING = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "ring_24_travelling_wave.toml"
+
+
+def tangent_costs(scene, periods: int, repeats: int) -> tuple[float, float, float]:
+    """Seconds per period of the plain run, of ``lyapunov`` with one exponent and of
+    ``monodromy`` (2N tangent vectors), each from the same settled start (medians)."""
+    settled = simulate(scene, 100, samples_per_period=1)
+    start = (settled.x[-1], settled.v[-1])
+    n = len(start[0])
+    plain, _ = median_time(lambda: simulate(scene, periods, samples_per_period=1,
+                                            initial=start, event_capacity=0), repeats)
+    one, _ = median_time(lambda: lyapunov(scene, periods, transient=0, initial=start),
+                         repeats)
+    every, _ = median_time(lambda: lyapunov(scene, periods, transient=0, initial=start,
+                                            exponents=2 * n), repeats)
+    return plain / periods, one / periods, every / periods
+
+
+def chaotic_exponent(periods: int, repeats: int) -> tuple[float, object]:
+    """Seconds for λ_max of the paper's γ1 = 8.8 case (300 transient periods), and the result."""
+    return median_time(lambda: lyapunov(three_blade_paper(gamma1=8.8), periods,
+                                        transient=300), repeats)
+
+
+def orbit_cost(scene, periods: int, repeats: int, **options) -> tuple[float, object]:
+    """Seconds for ``periodic_orbit`` from the state after 100 periods (median), and the
+    orbit."""
+    settled = simulate(scene, 100, samples_per_period=1, event_capacity=0)
+    guess = (settled.x[-1], settled.v[-1])
+    return median_time(lambda: periodic_orbit(scene, periods, guess=guess, **options),
+                       repeats)
+
+
+def symmetric_costs(scene, repeats: int) -> dict[str, tuple[float, object]]:
+    """(seconds, orbit) of ``periodic_orbit`` to 1e-8 from the state after 100 periods
+    (median), by solver: "full" shoots whole periods, "symmetric" the travelling wave's
+    reduced map (``cyclic``)."""
+    return {name: orbit_cost(scene, 1, repeats, symmetry=symmetry, tolerance=1e-8)
+            for name, symmetry in (("full", "none"), ("symmetric", "cyclic"))}
+
+
+def paper_ring(engine_order: int, speed_rpm: float = 6000.0) -> Scene:
+    """24 of the paper's blades round a ring, each joined to the next by the paper's
+    shroud (γ1 = 2.2), forced by its q1 in engine order ``engine_order``."""
+    paper = three_blade_paper(speed_rpm=speed_rpm)
+    group = BladeGroup.ring(24, paper.group.blade("blade1"), paper.group.interfaces[0][2])
+    return Scene(group=group, speed_rpm=speed_rpm, excitation=Excitation(
+        engine_order=engine_order, amplitudes=paper.excitation.amplitudes,
+        phases=EngineOrderWave()))
+
+
+def in_engine_order(scene, engine_order: int):
+    """``scene`` forced in ``engine_order`` (the same amplitudes, an engine-order wave)."""
+    return Scene(group=scene.group, speed_rpm=scene.speed_rpm, excitation=Excitation(
+        engine_order=engine_order, amplitudes=scene.excitation.amplitudes,
+        phases=EngineOrderWave()))
+
+
+def symmetric_curve(scene, start: float, stop: float, points: int,
+                    symmetry: str) -> tuple[float, object]:
+    """(seconds, branch) of ``scene``'s forced response over ``start``–``stop`` rpm, at
+    most ``points`` orbits, with ``symmetry`` as ``continuation`` takes it."""
+    def scene_at(speed_rpm):
+        return Scene(group=scene.group, excitation=scene.excitation, speed_rpm=speed_rpm)
+
+    clock = time.perf_counter()
+    branch = continuation(scene_at, start, stop, max_points=points, symmetry=symmetry,
+                          max_step=0.012)
+    return time.perf_counter() - clock, branch
+
+
+def speed_at(speed_rpm):
+    return three_blade_paper(speed_rpm=speed_rpm)
+
+
+def response_curve(max_step: float, max_points: int, repeats: int) -> tuple[float, object]:
+    """Seconds for the paper's forced response over 5800–7200 rpm (median), and the branch."""
+    return median_time(lambda: continuation(speed_at, 5800.0, 7200.0, max_step=max_step,
+                                            max_points=max_points), repeats)
+
+
+def transient_sweeps(values, transient: int, record: int) -> float:
+    """Seconds for sweeps of transients up and down ``values`` on one core, each point
+    starting from the last."""
+    options = {"transient": transient, "record": record, "continuation": True,
+               "workers": 1, "progress": False}
+    start = time.perf_counter()
+    sweep(speed_at, values, **options)
+    sweep(speed_at, values[::-1], **options)
+    return time.perf_counter() - start
+
+
+def worker_counts(cores: int) -> list[int]:
+    counts = [1]
+    while counts[-1] * 2 <= cores:
+        counts.append(counts[-1] * 2)
+    return counts + ([cores] if counts[-1] != cores else [])
+
+
+def packet_costs(scene, periods: int, repeats: int) -> tuple[float, float, object]:
+    """(periods per second, seconds per periodic orbit from a settled guess, the orbit) of
+    a ``scenes.modal_packet``."""
+    rate = periods_per_second(scene, periods, repeats)
+    orbit = periodic_orbit(scene)
+    orbit_seconds, orbit = median_time(lambda: periodic_orbit(scene, guess=orbit.initial),
+                                       repeats)
+    return rate, orbit_seconds, orbit
+
+
+def periods_per_second(scene, periods: int, repeats: int) -> float:
+    """Periods per second of ``scene`` sampled 20 times a period (median), its kernel
+    compiled or loaded first."""
+    simulate(scene, 5)
+    seconds, _ = median_time(lambda: simulate(scene, periods, samples_per_period=20), repeats)
+    return periods / seconds
+
+
+#: ``scenes.modal_packet`` with 3-D shroud points whose faces slide in their plane with
+#: elastic stick (k_t three times the normal contact stiffness; 2-D Coulomb friction
+#: with a circular limit, the sliders in the state), against its 1-D rigid-stick faces.
+ELASTIC_PACKET = {"tangential_stiffness": 3e5}
+
+
+def packet_curve(points: int) -> tuple[float, object]:
+    """(seconds, the branch) of a forced-response curve of ``scenes.modal_packet`` up in
+    speed from 2600 rpm across its first flap resonance, of at most ``points`` orbits
+    (steps of at most 5 % of the range, as ``examples/fe_packet.py`` takes them), from
+    the orbit at 2600 rpm."""
+    def scene_at(speed_rpm):
+        return modal_packet(speed_rpm=speed_rpm)
+
+    start = periodic_orbit(scene_at(2600.0))
+    clock = time.perf_counter()
+    branch = continuation(scene_at, 2600.0, 3400.0, guess=start.initial, max_step=0.05,
+                          max_points=points)
+    return time.perf_counter() - clock, branch
+
+
+def beams_against_plain(periods: int, repeats: int) -> dict[str, tuple[float, float]]:
+    """(seconds, error) on ``scenes.beam_pair`` from rest, by run: shroudnet's adaptive
+    method at rtol 1e-6 and its exponential one (``Exponential()``, the motion between
+    switches exact, its error the switches' location: at the default event tolerance and
+    at 1e-12 periods), and the plain ``baseline_structures`` run with RK45 at rtol 1e-9 and
+    DOP853 at rtol 1e-9 and 1e-10 (atol rtol times the displacement scale); each error the
+    largest deviation of the physical degrees of freedom at t = k T_e from a run at rtol
+    1e-12 with switches located to 1e-13 periods, relative to their largest value. Each
+    impact sets the beams' high modes ringing, which Runge–Kutta steps follow: at rtol
+    1e-6, 17,377 steps in 10 periods without the contact, 45,714 with it, and 175,749 at
+    rtol 1e-9; the exponential method carries them exactly, 400 steps a period."""
+    scene = beam_pair()
+    dofs = scene.dof_matrix()
+    reference = simulate(scene, periods, method=Adaptive(rtol=1e-12), samples_per_period=1,
+                         event_tolerance=1e-13).x @ dofs.T
+    scale = np.abs(reference).max()
+    rows = {}
+    for label, method, tolerance in (
+            ("shroudnet Adaptive(rtol=1e-6)", Adaptive(rtol=1e-6), EVENT_TOLERANCE),
+            ("shroudnet Exponential()", Exponential(), EVENT_TOLERANCE),
+            ("shroudnet Exponential(), event_tolerance 1e-12", Exponential(), 1e-12)):
+        run = functools.partial(simulate, scene, periods, method=method, samples_per_period=1,
+                                event_tolerance=tolerance)
+        run()
+        seconds, ours = median_time(run, repeats)
+        rows[label] = seconds, np.abs(ours.x @ dofs.T - reference).max() / scale
+    problem = baseline_structures.structure_from_substructures(scene)
+    zero = np.zeros(problem.n_dof)
+    for method, rtol in (("RK45", 1e-9), ("DOP853", 1e-9), ("DOP853", 1e-10)):
+        start = time.perf_counter()
+        plain = baseline_structures.strobe_structure(problem, zero, zero, periods, rtol=rtol,
+                                                     atol=rtol * scale, method=method)
+        rows[f"solve_ivp {method}, rtol {rtol:g}"] = (time.perf_counter() - start,
+                                                      np.abs(plain.q - reference).max() / scale)
+    return rows
+
+
+def against_ours(rows: dict[str, tuple[float, float]]) -> dict[str, tuple[str, float]]:
+    """For each plain run of ``beams_against_plain``'s rows, the fastest shroudnet run at
+    least as accurate, and how many times faster it is: {plain label: (ours, ratio)}."""
+    ours = {label: row for label, row in rows.items() if label.startswith("shroudnet")}
+    ratios = {}
+    for label, (seconds, error) in rows.items():
+        if label in ours:
+            continue
+        matched = [(time_, name) for name, (time_, ours_error) in ours.items()
+                   if ours_error <= error]
+        if matched:
+            time_, name = min(matched)
+            ratios[label] = name, seconds / time_
+    return ratios
+
+
+def options_parser(prog: str = "python -m shroudnet.front.bench",
+                   parser_class: type[argparse.ArgumentParser] = argparse.ArgumentParser
+                   ) -> argparse.ArgumentParser:
+    """The benchmark's options, every one checked as it is read; ``prog`` and
+    ``parser_class`` those of the command that runs it (``shroudnet bench``)."""
+    parser = parser_class(prog=prog, description=__doc__.split("\n\n")[0])
+    parser.add_argument("--points", type=whole(1), default=400,
+                        help="values of γ1 in the diagram (default 400)")
+    parser.add_argument("--transient", type=whole(0), default=TRANSIENT,
+                        help=f"periods before recording, per value (default {TRANSIENT})")
+    parser.add_argument("--record", type=whole(3), default=100,
+                        help="periods recorded per value, at least 3 (default 100)")
+    parser.add_argument("--scaling-points", type=whole(1), default=None,
+                        help="values per run of the worker scaling (default 8 per core)")
+    parser.add_argument("--baseline-periods", type=whole(1), default=50,
+                        help="periods of the comparison with solve_ivp (default 50)")
+    parser.add_argument("--quick", action="store_true",
+                        help="small sizes everywhere, to check that the benchmark runs")
+    parser.add_argument("--diagram-only", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--workers", type=whole(1), default=None, help=argparse.SUPPRESS)
+    return parser
+
+
+def main(argv=None) -> None:
+    """Run the benchmark with the options ``argv`` (default: the process's)."""
+    args = options_parser().parse_args(argv)
+    if args.diagram_only:
+        return _diagram_only(args.points, args.transient, args.record, args.workers)
+    if args.quick:
+        args.points, args.transient, args.record, args.baseline_periods = 8, 20, 10, 5
+    cores = default_workers()
+    scaling_points = args.scaling_points or (4 if args.quick else 8 * cores)
+    repeats = 1 if args.quick else 5
+    periods = 20 if args.quick else 200
+    start = time.perf_counter()
+
+    runs = first_runs()
+    print("0. First run in a fresh process on an empty cache (import, compile, 1 period)")
+    for which, (wall, compiling) in runs.items():
+        laws = "LinearSpring + ExponentialFriction" if which == "paper" else "Hertz + Coulomb"
+        print(f"   {which} ({laws}): {wall:.1f} s, of which {compiling:.1f} s compiling")
+
+    print(f"\n1. Integration speed, one core: paper scene γ1 = {POINT['gamma1']}, "
+          f"{POINT['speed_rpm']:g} rpm, q1 = {POINT['q1']:g} N, {periods} periods")
+    for label, method in [("fixed-step RK4, 1000 steps/period", FixedStep()),
+                          ("adaptive DP5(4), default tolerances", Adaptive())]:
+        rate, sim = steps_per_second(method, periods=periods, repeats=repeats)
+        counts = sim.events.counts
+        per_period = sim.steps / sim.periods
+        print(f"   {label}: {rate:,.0f} steps/s, {per_period:,.0f} steps/period, "
+              f"{rate / per_period:,.0f} periods/s (median of {repeats})")
+        print(f"     events: {sum(counts.values())} "
+              f"({', '.join(f'{k} {v}' for k, v in counts.items())}); energy ledger "
+              f"residual {sim.energy.residual:.3e} J against friction loss "
+              f"{sim.energy.friction_loss:.4f} J")
+
+    print("\n2. Effects: the same blades, one core, steps/s with fixed-step RK4 and adaptive "
+          "DP5(4)")
+    for label, scene in effect_scenes().items():
+        fixed, sim = steps_per_second(FixedStep(), scene=scene, periods=periods,
+                                      repeats=repeats)
+        adaptive, _ = steps_per_second(Adaptive(), scene=scene, periods=periods,
+                                       repeats=repeats)
+        print(f"   {label}: {fixed:,.0f} fixed, {adaptive:,.0f} adaptive steps/s, "
+              f"{sum(sim.events.counts.values())} events")
+
+    print(f"\n3. Against plain solve_ivp (RK45, Python right-hand side, event functions), "
+          f"{args.baseline_periods} periods, both at rtol 1e-8, atol 1e-12 m")
+    ratios = []
+    for gamma1, ours, plain, error_ours, error_plain, switches in baseline_comparison(
+            gammas=(2.2,) if args.quick else (1.0, 2.2, 3.5), periods=args.baseline_periods,
+            repeats=repeats):
+        ratios.append(plain / ours)
+        print(f"   γ1 = {gamma1:g}: shroudnet {ours * 1e3:.1f} ms (error {error_ours:.1e}), "
+              f"solve_ivp {plain:.2f} s (error {error_plain:.1e}), {switches} switches: "
+              f"{plain / ours:,.0f}x")
+    print(f"   median ratio: {statistics.median(ratios):,.0f}x per trajectory")
+
+    print(f"\n4. Sweeps of γ1 ({args.transient} transient + {args.record} recorded periods "
+          f"per value, adaptive DP5(4)); this machine has {cores} cores")
+    subset = np.linspace(0.5, 10.0, scaling_points)
+    diagram(subset[:2], workers=1, transient=2, record=3)  # compile or load the kernel
+    serial = None
+    for workers in worker_counts(cores):
+        seconds, _ = diagram(subset, workers=workers, transient=args.transient,
+                             record=args.record)
+        serial = serial or seconds
+        print(f"   {workers:>3} worker(s), {scaling_points} values: {seconds:6.2f} s, "
+              f"{seconds / scaling_points:.3f} s per point, speed-up "
+              f"{serial / seconds:.2f} (efficiency {serial / seconds / workers:.0%})")
+    runs = [diagram_in_fresh_process(args.points, args.transient, args.record, cores)
+            for _ in range(1 if args.quick else DIAGRAM_REPEATS)]
+    times = sorted(run["seconds"] for run in runs)
+    seconds = statistics.median(times)
+    figures = runs[0]
+    print(f"   Fig. 6-class diagram, {args.points} values on {cores} workers: {seconds:.1f} s "
+          f"wall (median of {len(times)}, {times[0]:.1f}–{times[-1]:.1f} s), "
+          f"{seconds / args.points:.3f} s per point")
+    print(f"   peak resident memory of the first run: {figures['own_mb']:.0f} MB in its main "
+          f"process, {figures['worker_mb']:.0f} MB in its largest worker; the sweep keeps "
+          f"{figures['kept_mb']:.2f} MB of results")
+    print("\n5. The tangent flow, one core, ms per period: plain run, with one tangent vector "
+          "(lyapunov), with all 2N (monodromy)")
+    scenes = {"paper group, 3 blades": three_blade_paper(**POINT)}
+    if RING.exists() and not args.quick:
+        scenes["ring of 24 blades"] = scenefile.load(RING).scene
+    for label, scene in scenes.items():
+        lyapunov(scene, 10, transient=0)  # compile or load the kernel
+        plain, one, every = tangent_costs(scene, 20 if args.quick else 100, repeats)
+        # five significant figures: the ratios, to 0.1, are then the printed times' quotients
+        print(f"   {label}: {plain * 1e3:.5g}, {one * 1e3:.5g} ({one / plain:.1f}x), "
+              f"{every * 1e3:.5g} ({every / plain:.1f}x)")
+    for periods in (100,) if args.quick else (1000, 2000):
+        seconds, result = chaotic_exponent(periods, repeats)
+        print(f"   γ1 = 8.8: λ_max = {result.largest:.3f} ± {result.error[0]:.3f} per period "
+              f"from {periods} periods, {seconds:.2f} s")
+
+    print("\n6. Steady states, one core: ms per periodic orbit from a settled guess "
+          "(Newton steps)")
+    cases = {"paper group, γ1 = 1, period 1": (three_blade_paper(gamma1=1.0), 1, {}),
+             "paper group, γ1 = 3.5, period 3": (three_blade_paper(gamma1=3.5), 3, {})}
+    if RING.exists() and not args.quick:
+        cases["ring of 24 blades, period 1 (its travelling wave), to 1e-8"] = (
+            scenefile.load(RING).scene, 1,
+                                                         {"tolerance": 1e-8})
+    for label, (scene, orbit_periods, options) in cases.items():
+        try:
+            seconds, orbit = orbit_cost(scene, orbit_periods, repeats, **options)
+        except SimulationError as error:
+            print(f"   {label}: no orbit ({error})")
+            continue
+        print(f"   {label}: {seconds * 1e3:.1f} ms ({orbit.iterations} steps), "
+              f"|μ|max = {abs(orbit.multipliers[0]):.4f}"
+              + (f", {orbit.singular} switches where the map is not differentiable"
+                 if orbit.singular else ""))
+    target = 30 if args.quick else 300
+    max_step = 0.0185 * 453 / target  # about ``target`` orbits over the range
+    response_curve(0.3, 20, 1)  # compile or load the kernels
+    seconds, branch = response_curve(max_step, 2 * target, repeats)
+    print(f"   forced response of the paper's group, 5800–7200 rpm: {len(branch)} orbits in "
+          f"{seconds:.2f} s ({seconds / len(branch) * 1e3:.1f} ms per orbit), "
+          f"bifurcations: " + ", ".join(f"{b.kind} at {b.parameter:.1f} rpm"
+                                        for b in branch.bifurcations))
+    values = np.linspace(5800.0, 7200.0, len(branch))
+    swept = transient_sweeps(values, args.transient, 50)
+    print(f"   transient sweeps up and down the same {len(values)} speeds ({args.transient} + "
+          f"50 periods a point): {swept:.2f} s, {swept / seconds:.1f}x the continuation's "
+          "time, for the stable orbits only")
+
+    print("\n7. Substructures, one core")
+    periods = 20 if args.quick else 200
+    rate, orbit_seconds, orbit = packet_costs(modal_packet(), periods, repeats)
+    print(f"   packet of 6 blades of 3 modes (18 coordinates, 5 interfaces): {rate:,.0f} "
+          f"periods/s; a periodic orbit with its {len(orbit.multipliers)} multipliers from a "
+          f"settled guess {orbit_seconds * 1e3:.0f} ms ({orbit.iterations} Newton steps)")
+    elastic, elastic_seconds, elastic_orbit = packet_costs(modal_packet(**ELASTIC_PACKET),
+                                                           periods, repeats)
+    print(f"   the packet's contacts: 1-D contacts, rigid stick {rate:,.0f} periods/s; 3-D "
+          f"contacts, elastic stick, 2-D friction {elastic:,.0f} periods/s")
+    print(f"   with the 3-D elastic contacts (their stretches in the state), a periodic orbit "
+          f"with its {len(elastic_orbit.multipliers)} multipliers from a settled guess "
+          f"{elastic_seconds * 1e3:.0f} ms ({elastic_orbit.iterations} Newton steps)")
+    seconds, branch = packet_curve(20 if args.quick else 300)
+    print(f"   its forced-response curve up from 2600 rpm: {len(branch)} orbits with their "
+          f"multipliers in {seconds:.1f} s ({branch.ended} at "
+          f"{branch.parameter[-1]:.1f} rpm)")
+    rows = beams_against_plain(2 if args.quick else 10, repeats)
+    print("   two unreduced beams (2 × 8 degrees of freedom) with a tip shroud contact, "
+          f"{2 if args.quick else 10} periods from rest:")
+    for label, (seconds, error) in rows.items():
+        print(f"     {label}: {seconds:.3f} s, error {error:.1e}")
+    for label, (ours, ratio) in against_ours(rows).items():
+        print(f"     {label} takes {ratio:,.0f}x the time of {ours}, as accurate or more")
+
+    print("\n8. Tuned rings at the cost of one sector, one core: ms per period-1 orbit with "
+          "all its multipliers, to 1e-8 from a settled guess")
+    disc = bladed_disc_24()
+    cases = {"ring of 24 paper blades, l = 5 (τ = T/24)": paper_ring(5),
+             "ring of 24 paper blades, l = 6 (τ = T/4)": paper_ring(6),
+             "24-sector disc, l = 5 (τ = T/24)": in_engine_order(disc, 5),
+             # where the wave of l = 6 is stable, so that both solvers find it
+             "24-sector disc, l = 6 at 3300 rpm (τ = T/4)": bladed_disc_24(speed_rpm=3300.0)}
+    if args.quick:
+        cases = dict(list(cases.items())[:1])
+    for label, scene in cases.items():
+        try:
+            found = symmetric_costs(scene, repeats)
+        except SimulationError as error:
+            print(f"   {label}: no orbit ({error})")
+            continue
+        (full, full_orbit), (symmetric, orbit) = found["full"], found["symmetric"]
+        gap = np.abs(full_orbit.state - orbit.state).max() / np.abs(orbit.state).max()
+        print(f"   {label}: full {full * 1e3:.5g} ms, symmetric {symmetric * 1e3:.5g} ms "
+              f"({full / symmetric:.1f}x); |μ|max {abs(orbit.multipliers[0]):.4f} of ND "
+              f"{orbit.wave_numbers[0]}"
+              + ("" if gap < 1e-6 else f"; the full solver found another orbit ({gap:.2g} "
+                 "apart): the travelling wave is unstable there"))
+    points = 10 if args.quick else 100
+    times = {symmetry: symmetric_curve(paper_ring(5), 5500.0, 6500.0, points, symmetry)
+             for symmetry in ("none", "cyclic")}
+    (full, branch), (symmetric, reduced) = times["none"], times["cyclic"]
+    print(f"   forced response of the ring of 24 paper blades in l = 5, 5500–6500 rpm: full "
+          f"{len(branch)} orbits in {full:.1f} s, symmetric {len(reduced)} in "
+          f"{symmetric:.1f} s ({full / len(branch) / (symmetric / len(reduced)):.1f}x per "
+          "orbit)")
+    print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,395 @@
+"""The group's linear modes, in the two limits of its interfaces, and by nodal diameter.
+
+Before any nonlinear run a designer reads the natural frequencies of the group with its
+interfaces in the two limits the friction moves between:
+
+- ``contacts="open"``: every interface carries nothing; the blades' own springs and the
+  couplings hold the group (``SceneArrays.stiffness_matrix``);
+- ``contacts="stuck"``: every interface that can stick (an exact friction law and a face
+  with a component along x, α < π/2) is stuck, as the loop's stick clusters are: its two
+  nodes move as one body, and a node stuck to a fixed node does not move. An interface
+  that cannot stick but is closed at rest (penetration −Δ sin α > 0, or a law that never
+  opens) slides freely and pushes by its normal law only: a spring of its contact
+  stiffness ∂N/∂δ sin²α along x, the law's gradient at the rest penetration. An elastic
+  contact (``Interface.tangential_stiffness`` k_t) is not a constraint: stuck, it is the
+  spring k_t cos²α along x beside its normal spring; rigid stick is only where k_t is None.
+
+The modes solve K φ = ω² M φ (``scipy.linalg.eigh``), mass-normalised (φᵀ M φ = 1). A
+prescribed-motion node is held where it is, as a fixed node: these are the modes about
+its path.
+
+A ring of N identical sectors (``BladeGroup.ring``, ``BladeGroup.bladed_disc``, or
+``sectors=N`` for a group whose nodes were added sector by sector) has modes that are
+travelling or standing waves round the ring: mode φ has nodal diameter ND when its
+sectors' amplitudes vary round the ring as cos(2π ND s/N + θ). ND is read from each
+shape by a discrete Fourier transform over the sectors (harmonics k and N − k are one
+ND), so that mistuned rings are labelled by their dominant diameter. An engine order l
+excites the diameter ND = min(l mod N, N − l mod N) only (``excited_diameter``).
+
+A group with substructures (DESIGN §7) is solved in the coordinates of its state
+(``SceneArrays.layout``: each node's modal coordinates, mass diag(m̃)), with the same two
+limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, v_e = t_e·ẋ):
+
+- ``"open"``: K̃ x = ω² M̃ x, K̃ the nodes' stiffness with the couplings
+  (``SceneArrays.stiffness_matrix``), the interfaces carrying nothing;
+- ``"stuck"``: every interface that can stick (an exact friction law, t_e ≠ 0) holds
+  t_e·x = 0, a constraint, while its normal force still acts along n_e; so every interface
+  closed at rest (−Δ_e > 0, or a law that never opens), stuck or sliding, adds the spring
+  ∂N/∂δ n_e n_eᵀ. The constraints G x = 0 (one row t_e per stuck interface) are eliminated
+  by an orthonormal basis T of the null space of G (redundant rows, as round an all-stuck
+  ring, are dropped by its rank), and Tᵀ K T z = ω² Tᵀ M T z is solved. For one-mass
+  blades (t_e ∥ n_e) this is the stick clusters above. An elastic contact adds, in place
+  of its constraint, the spring k_t (t₁t₁ᵀ + t₂t₂ᵀ) over its tangent directions.
+
+``shapes`` stay by coordinate (mass-normalised: the kinetic energy is the physical one);
+``LinearModes.node_shapes`` and ``point_shapes`` read them in a node's own degrees of
+freedom q_i or as a point's displacement r_p. The nodal diameter of a ring of substructures
+is read, as for blades, from the DFT over the sectors of each node's own degrees of freedom
+q_i (so that sectors whose coordinates differ, as mistuned ones do, are compared in the same
+physical terms).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.linalg
+from scipy.optimize import brentq
+
+from contact_laws import check_array, check_instance, check_int, check_sequence
+
+from ..checked_records import check_record
+from ..engine.clusters import cluster_labels
+from ..model.scene import Scene, edge_matrix
+
+CONTACTS = ("open", "stuck")
+
+
+@dataclass(frozen=True, eq=False)
+class LinearModes:
+    """Natural frequencies and mode shapes of a scene's linearised group.
+
+    ``frequencies`` [Hz] ascending; ``shapes`` one mass-normalised column per mode, rows
+    by blade position [1/√kg] (with substructures, by coordinate of the state: read them
+    with ``node_shapes`` or ``point_shapes``); ``nodal_diameters`` the ND of each mode for a
+    group of ``sectors`` identical sectors, else None; ``scene`` the scene they are of.
+    """
+
+    frequencies: np.ndarray
+    shapes: np.ndarray
+    nodal_diameters: np.ndarray | None
+    contacts: str
+    sectors: int | None
+    speed_rpm: float
+    scene: Scene | None = None
+
+    def __post_init__(self):
+        check_record(self)
+
+    def node_shapes(self, node: Hashable) -> np.ndarray:
+        """The mode shapes in ``node``'s own degrees of freedom q_i (n_i × modes; column k
+        is mode k, mass-normalised with the whole group) [1/√kg for displacements]: for a
+        ``Blade``, its displacement x (1 × modes); for a substructure, its q (of
+        ``Substructure.matrices_at``), so that ``Substructure.expand`` takes a reduction's
+        shape back to its full model."""
+        return self._scene("node_shapes").dof_rows(node) @ self.shapes
+
+    def point_shapes(self, node: Hashable, point: str | None = None) -> np.ndarray:
+        """The displacement r_p = Φ_p q_i of ``node``'s ``point`` in each mode (d × modes)
+        [m per √kg]; a ``Blade``'s one point is its x, and a substructure with one point
+        needs no name."""
+        return self._scene("point_shapes").point_rows(node, point) @ self.shapes
+
+    def _scene(self, method: str) -> Scene:
+        if self.scene is None:
+            raise ValueError(f"LinearModes.{method} needs the scene: these modes were made "
+                             "without one (linear_modes gives it)")
+        return self.scene
+
+    def of_diameter(self, nodal_diameter: int) -> np.ndarray:
+        """The frequencies [Hz] of the modes of one nodal diameter, ascending."""
+        if self.nodal_diameters is None:
+            raise ValueError("these modes are not sorted by nodal diameter: the group has "
+                             "no sectors (give linear_modes(..., sectors=N))")
+        largest = int(self.nodal_diameters.max(initial=0))
+        nodal_diameter = check_int("LinearModes.of_diameter", "nodal_diameter", nodal_diameter,
+                                   low=0, high=largest, high_label="N // 2")
+        return self.frequencies[self.nodal_diameters == nodal_diameter]
+
+    def families(self) -> np.ndarray:
+        """Frequencies [Hz] as a table: row = nodal diameter 0 … N//2, column = family
+        (the k-th lowest mode of that diameter); NaN where a diameter has fewer modes.
+
+        A diameter 0 < ND < N/2 has its modes in pairs (two standing waves, or a forward
+        and a backward travelling one, of one frequency when tuned): each pair is one
+        entry, at its mean frequency.
+        """
+        if not self.sectors:
+            raise ValueError("these modes are not sorted by nodal diameter: the group has "
+                             "no sectors (give linear_modes(..., sectors=N))")
+        rows = []
+        for nd in range(self.sectors // 2 + 1):
+            row = self.of_diameter(nd)
+            if 0 < nd < self.sectors / 2:
+                row = row[: len(row) // 2 * 2].reshape(-1, 2).mean(axis=1)
+            rows.append(row)
+        width = max((len(r) for r in rows), default=0)
+        table = np.full((len(rows), width), np.nan)
+        for nd, row in enumerate(rows):
+            table[nd, :len(row)] = row
+        return table
+
+
+def linear_modes(scene: Scene, contacts: str = "open", *,
+                 sectors: int | None = None) -> LinearModes:
+    """The natural frequencies and mode shapes of ``scene``'s group at its speed.
+
+    Parameters
+    ----------
+    scene : Scene
+    contacts : "open" or "stuck"
+        The limit of the interfaces (module docstring).
+    sectors : int, optional
+        N, for a ring of N identical sectors whose nodes are numbered sector by sector
+        (the node at position p in sector p // (nodes/N)); taken from the group where it
+        was built as a ring or a bladed disc. With substructures, every sector must have
+        as many degrees of freedom.
+
+    Examples
+    --------
+    >>> from shroudnet import (AntiPhase, Blade, BladeGroup, Coupling, Excitation, Scene,
+    ...                        linear_modes)
+    >>> ring = BladeGroup.ring(6, Blade(mass=0.1, damping=0.0, stiffness=1e5),
+    ...                        Coupling(stiffness=2e4))
+    >>> scene = Scene(group=ring, excitation=Excitation(engine_order=1,
+    ...               amplitudes=(0.0, 1.0), phases=AntiPhase()), speed_rpm=6000.0)
+    >>> modes = linear_modes(scene)
+    >>> [int(nd) for nd in modes.nodal_diameters]
+    [0, 1, 1, 2, 2, 3]
+    """
+    check_instance("linear_modes", "scene", scene, Scene, expected="a shroudnet.Scene")
+    if not isinstance(contacts, str) or contacts not in CONTACTS:
+        kind = ValueError if isinstance(contacts, str) else TypeError
+        raise kind(f"linear_modes: contacts must be one of {CONTACTS}, got {contacts!r}")
+    a = scene.arrays
+    if sectors is None:
+        sectors = scene.group.graph.graph.get("sectors")
+    if sectors is not None:
+        sectors = check_int("linear_modes", "sectors", sectors, low=1)
+        if len(scene.blades) % sectors:
+            raise ValueError(f"linear_modes: sectors = {sectors} does not divide the "
+                             f"{len(scene.blades)} blades into equal sectors")
+    limit = interface_limit(a, contacts, "linear_modes")
+    basis, stiffness = limit.basis, limit.stiffness
+    mass = basis.T @ np.diag(a.mass) @ basis
+    eigenvalues, vectors = scipy.linalg.eigh(basis.T @ stiffness @ basis, mass)
+    frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
+    shapes = basis @ vectors
+    diameters = None
+    if sectors is not None:
+        diameters = nodal_diameters(_by_degree_of_freedom(scene, shapes, sectors), sectors)
+    return LinearModes(frequencies=frequencies, shapes=shapes, nodal_diameters=diameters,
+                       contacts=contacts, sectors=sectors, speed_rpm=scene.speed_rpm,
+                       scene=scene)
+
+
+@dataclass(frozen=True, eq=False)
+class Limit:
+    """The group linearised with its interfaces in one limit: the state's displacements
+    x = T z move as the stuck interfaces allow (``basis`` T), under the stiffness K [N/m]
+    and damping C [N·s/m] of the blades, couplings and interfaces closed at rest (each a
+    spring ∂N/∂δ and a dashpot ∂N/∂δ̇ along its normal, at its rest penetration)."""
+
+    basis: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+
+
+def interface_limit(a, contacts: str, caller: str) -> Limit:
+    """The ``Limit`` of the scene arrays ``a`` with its interfaces ``contacts`` (module
+    docstring). Open, the interfaces add nothing. Raises a ValueError, naming ``caller``,
+    where nothing can move."""
+    stiffness, damping = a.stiffness_matrix(), a.damping_matrix()
+    if a.is_structure:
+        basis = np.eye(a.n_blades)
+        if contacts == "stuck":
+            basis, springs, dashpots = _structure_limit(a)
+            stiffness, damping = stiffness + springs, damping + dashpots
+    else:
+        stuck = np.zeros(a.n_interfaces, dtype=bool)
+        if contacts == "stuck":
+            elastic = np.isfinite(a.tangential_stiffness)
+            stuck = a.can_stick & ~elastic
+            springs, dashpots = _sliding_contacts(a, ~stuck)
+            tangential = np.where(elastic, a.tangential_stiffness, 0.0) * a.cos_angle ** 2
+            springs = springs + edge_matrix(np.zeros(a.n_blades), a.left, a.right, tangential)
+            stiffness, damping = stiffness + springs, damping + dashpots
+        basis = _cluster_basis(a, stuck)
+    if basis.shape[1] == 0:
+        raise ValueError(f"{caller}: with every interface stuck nothing moves: every "
+                         "blade is stuck to a fixed node")
+    return Limit(basis=basis, stiffness=stiffness, damping=damping)
+
+
+def _rest_gradient(a, e, penetration) -> tuple[float, float]:
+    """(∂N/∂δ [N/m], ∂N/∂δ̇ [N·s/m]) of interface e at rest at ``penetration`` [m] if it is
+    closed there (or its law never opens), else (0, 0)."""
+    if penetration > 0.0 or not a.opens[e]:
+        return a.normal_laws[e].gradient(max(penetration, 0.0), 0.0)
+    return 0.0, 0.0
+
+
+def _structure_limit(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(T, springs, dashpots) of a scene with substructures, its interfaces stuck (module
+    docstring): x = T z spans the motions the stuck interfaces allow (T orthonormal); each
+    interface closed at rest adds ∂N/∂δ n nᵀ and ∂N/∂δ̇ n nᵀ, and each elastic contact
+    k_t (t₁t₁ᵀ + t₂t₂ᵀ) in place of its constraint. A prescribed-motion coordinate is held
+    (its columns of the rows dropped)."""
+    n = a.n_blades
+    springs, dashpots = np.zeros((n, n)), np.zeros((n, n))
+    elastic = np.isfinite(a.tangential_stiffness)
+    for e in range(a.n_interfaces):
+        spring, dashpot = _rest_gradient(a, e, -a.normal_gap[e])
+        normal = a.normal_rows[e, :n]
+        springs += spring * np.outer(normal, normal)
+        dashpots += dashpot * np.outer(normal, normal)
+        if elastic[e]:
+            for rows in (a.tangent_rows, a.second_tangent_rows):
+                springs += a.tangential_stiffness[e] * np.outer(rows[e, :n], rows[e, :n])
+    constraints = a.tangent_rows[a.can_stick & ~elastic, :n]
+    basis = scipy.linalg.null_space(constraints) if len(constraints) else np.eye(n)
+    return basis, springs, dashpots
+
+
+def _by_degree_of_freedom(scene: Scene, shapes: np.ndarray, sectors: int) -> np.ndarray:
+    """``shapes`` in the nodes' own degrees of freedom, nodes by position (a scene of blades:
+    ``shapes`` itself), checked to give every sector as many rows."""
+    if not scene.arrays.is_structure:
+        return shapes
+    rows = [scene.dof_rows(node) @ shapes for node in scene.blades]
+    per_sector = len(rows) // sectors
+    sizes = {sum(len(r) for r in rows[s * per_sector:(s + 1) * per_sector])
+             for s in range(sectors)}
+    if len(sizes) != 1:
+        raise ValueError(f"linear_modes: the {sectors} sectors have different numbers of "
+                         f"degrees of freedom ({sorted(sizes)}): they are not identical")
+    return np.vstack(rows)
+
+
+def _sliding_contacts(a, candidates) -> tuple[np.ndarray, np.ndarray]:
+    """The spring ∂N/∂δ sin²α [N/m] and dashpot ∂N/∂δ̇ sin²α [N·s/m] along x of each
+    interface in ``candidates`` that is closed at rest, on the rows and columns of its
+    nodes."""
+    springs, dashpots = np.zeros(a.n_interfaces), np.zeros(a.n_interfaces)
+    for e in np.flatnonzero(candidates):
+        spring, dashpot = _rest_gradient(a, e, -a.gap[e] * a.sin_angle[e])
+        springs[e], dashpots[e] = (value * a.sin_angle[e] ** 2 for value in (spring, dashpot))
+    own = np.zeros(a.n_blades)
+    return (edge_matrix(own, a.left, a.right, springs),
+            edge_matrix(own, a.left, a.right, dashpots))
+
+
+def _cluster_basis(a, stuck) -> np.ndarray:
+    """T (n_blades × free clusters): x = T z moves each stick cluster as one body; clusters
+    stuck to a fixed or a prescribed-motion node have no column."""
+    n = a.n_blades
+    labels, grounded, _ = cluster_labels(n + a.n_prescribed, n, a.left, a.right, stuck)
+    free = np.flatnonzero(~grounded)
+    return (labels[:n, None] == free[None, :]).astype(float)
+
+
+def nodal_diameters(shapes, sectors: int) -> np.ndarray:
+    """The nodal diameter of each column of ``shapes`` (rows by position, sector-major):
+    the harmonic k of the sector-to-sector DFT holding most of the shape's square, with k
+    and N − k one diameter min(k, N − k)."""
+    n, count = shapes.shape
+    per_sector = n // sectors
+    grid = shapes.reshape(sectors, per_sector, count)
+    power = (np.abs(np.fft.fft(grid, axis=0)) ** 2).sum(axis=1)  # (harmonic, mode)
+    folded = np.zeros((sectors // 2 + 1, count))
+    for k in range(sectors):
+        folded[min(k, sectors - k)] += power[k]
+    return np.argmax(folded, axis=0)
+
+
+def excited_diameter(engine_order: int, sectors: int) -> int:
+    """The one nodal diameter an engine order l excites on N sectors: l mod N, folded to
+    min(r, N − r)."""
+    remainder = engine_order % sectors
+    return min(remainder, sectors - remainder)
+
+
+@dataclass(frozen=True, eq=False)
+class GroupCampbell:
+    """The group's natural frequencies over speed and the engine orders that cross them.
+
+    ``frequencies[k, m]`` [Hz] is mode m (ascending) at ``speeds_rpm[k]``, and
+    ``nodal_diameters[k, m]`` its ND (None without sectors). ``crossings`` lists
+    (engine order, mode number, speed [rpm], frequency [Hz]) where f_m = l Ω/60 on a mode
+    the engine order excites (its ND, for a ring).
+    """
+
+    speeds_rpm: np.ndarray
+    frequencies: np.ndarray
+    nodal_diameters: np.ndarray | None
+    engine_orders: tuple[int, ...]
+    crossings: tuple[tuple[int, int, float, float], ...]
+    contacts: str
+
+    #: Fields that may hold NaN or ±inf (see ``checked_records``).
+    NON_FINITE = ("frequencies",)
+
+    def __post_init__(self):
+        check_record(self)
+
+    def line(self, engine_order: int) -> np.ndarray:
+        """The excitation frequency l Ω/60 [Hz] of an engine order at each speed."""
+        return engine_order * self.speeds_rpm / 60.0
+
+
+def group_campbell(scene: Scene, speeds_rpm: Sequence[float],
+                   engine_orders: Sequence[int] = (1, 2, 3, 4), *, contacts: str = "open",
+                   sectors: int | None = None) -> GroupCampbell:
+    """The Campbell diagram of the group: ``linear_modes`` at each of the increasing
+    ``speeds_rpm``, with the crossings of the engine-order lines located by Brent's method
+    on the modes each order excites."""
+    check_instance("group_campbell", "scene", scene, Scene, expected="a shroudnet.Scene")
+    speeds = check_array("group_campbell", "speeds_rpm", speeds_rpm, shape=(None,), low=0.0,
+                         low_open=True, unit="rpm")
+    if len(speeds) < 2 or np.any(np.diff(speeds) <= 0):
+        raise ValueError("group_campbell needs at least two increasing speeds_rpm")
+    orders = tuple(check_int("group_campbell", "engine_orders", order, low=1)
+                   for order in check_sequence("group_campbell", "engine_orders",
+                                               engine_orders, expected="a sequence of ints",
+                                               min_length=1))
+
+    def modes_at(speed):
+        return linear_modes(replace(scene, speed_rpm=float(speed)), contacts,
+                            sectors=sectors)
+
+    table = [modes_at(speed) for speed in speeds]
+    frequencies = np.array([m.frequencies for m in table])
+    ring = table[0].sectors
+    diameters = None if ring is None else np.array([m.nodal_diameters for m in table])
+    crossings = []
+    for order in orders:
+        for mode in range(frequencies.shape[1]):
+            if ring is not None and excited_diameter(order, ring) not in diameters[:, mode]:
+                continue
+            gap = frequencies[:, mode] - order * speeds / 60.0
+            for k in range(len(speeds) - 1):
+                if gap[k] * gap[k + 1] > 0.0 or gap[k + 1] == 0.0:
+                    continue
+
+                def detuning(speed, mode=mode, order=order):
+                    return modes_at(speed).frequencies[mode] - order * speed / 60.0
+
+                speed = speeds[k] if gap[k] == 0.0 else brentq(
+                    detuning, speeds[k], speeds[k + 1], xtol=1e-6)
+                if ring is not None and modes_at(speed).nodal_diameters[mode] \
+                        != excited_diameter(order, ring):
+                    continue
+                crossings.append((order, mode, float(speed), float(order * speed / 60.0)))
+    return GroupCampbell(speeds, frequencies, diameters, orders, tuple(crossings), contacts)
