@@ -41,10 +41,16 @@ its path.
 A ring of N identical sectors (``BladeGroup.ring``, ``BladeGroup.bladed_disc``, or
 ``sectors=N`` for a group whose nodes were added sector by sector) has modes that are
 travelling or standing waves round the ring: mode φ has nodal diameter ND when its
-sectors' amplitudes vary round the ring as cos(2π ND s/N + θ). ND is read from each
-shape by a discrete Fourier transform over the sectors (harmonics k and N − k are one
-ND), so that mistuned rings are labelled by their dominant diameter. An engine order l
-excites the diameter ND = min(l mod N, N − l mod N) only (``excited_diameter``).
+sectors' amplitudes vary round the ring as cos(2π ND s/N + θ), that is when it lies in
+the cyclic subspace of the harmonics k = ND and N − ND of the discrete Fourier transform
+over the sectors. Each eigenspace (eigenvalues ω² equal to ``EIGENSPACE``, relative) is
+projected onto these subspaces and its basis turned so that each mode lies in one of
+them (``cyclic_eigenspaces``): a tuned ring's eigenspace is invariant under the sector
+shift, so a degenerate family (N uncoupled blades: N modes at one frequency) gets every
+diameter exactly once, ND = 0 and N/2 one mode, the others two. A mode is labelled by
+the diameter holding most of its square, so that a mistuned ring's modes are labelled by
+their dominant diameter. An engine order l excites the diameter
+ND = min(l mod N, N − l mod N) only (``excited_diameter``).
 
 A group with substructures (DESIGN §7) is solved in the coordinates of its state
 (``SceneArrays.layout``: each node's modal coordinates, mass diag(m̃)), with the same
@@ -100,6 +106,13 @@ FIRST_TOUCH = 1e-9
 DEEPER = 1e-8
 TOUCH_AGREEMENT = 1e-3
 
+#: Eigenvalues ω² that belong to one eigenspace: consecutive ones within ``EIGENSPACE`` of
+#: the larger (relative), or within ``EIGENSPACE_ROUNDING`` of the largest |ω²| (the
+#: rounding of a generalised symmetric eigensolver, which also gathers the rigid-body
+#: modes, ω² = 0 to within it).
+EIGENSPACE = 1e-8
+EIGENSPACE_ROUNDING = 1e3 * np.finfo(float).eps
+
 
 @dataclass(frozen=True, eq=False)
 class LinearModes:
@@ -147,9 +160,8 @@ class LinearModes:
         if self.nodal_diameters is None:
             raise ValueError("these modes are not sorted by nodal diameter: the group has "
                              "no sectors (give linear_modes(..., sectors=N))")
-        largest = int(self.nodal_diameters.max(initial=0))
         nodal_diameter = check_int("LinearModes.of_diameter", "nodal_diameter", nodal_diameter,
-                                   low=0, high=largest, high_label="N // 2")
+                                   low=0, high=self.sectors // 2, high_label="N // 2")
         return self.frequencies[self.nodal_diameters == nodal_diameter]
 
     def families(self) -> np.ndarray:
@@ -190,7 +202,8 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
         N, for a ring of N identical sectors whose nodes are numbered sector by sector
         (the node at position p in sector p // (nodes/N)); taken from the group where it
         was built as a ring or a bladed disc. With substructures, every sector must have
-        as many degrees of freedom.
+        as many degrees of freedom. The modes of each eigenspace are then turned so that
+        each lies in one nodal diameter's cyclic subspace (module docstring).
 
     Raises
     ------
@@ -227,11 +240,12 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
     basis, stiffness = limit.basis, limit.stiffness
     mass = basis.T @ np.diag(a.mass) @ basis
     eigenvalues, vectors = scipy.linalg.eigh(basis.T @ stiffness @ basis, mass)
-    frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
     shapes = basis @ vectors
     diameters = None
     if sectors is not None:
-        diameters = nodal_diameters(_by_degree_of_freedom(scene, shapes, sectors), sectors)
+        eigenvalues, shapes, diameters = cyclic_eigenspaces(
+            eigenvalues, shapes, stiffness, _dof_matrix(scene, sectors), sectors)
+    frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
     return LinearModes(frequencies=frequencies, shapes=shapes, nodal_diameters=diameters,
                        contacts=contacts, sectors=sectors, speed_rpm=scene.speed_rpm,
                        scene=scene)
@@ -334,12 +348,12 @@ def _structure_limit(a, closing: _NormalSprings) -> tuple[np.ndarray, np.ndarray
     return basis, springs, dashpots
 
 
-def _by_degree_of_freedom(scene: Scene, shapes: np.ndarray, sectors: int) -> np.ndarray:
-    """``shapes`` in the nodes' own degrees of freedom, nodes by position (a scene of blades:
-    ``shapes`` itself), checked to give every sector as many rows."""
+def _dof_matrix(scene: Scene, sectors: int) -> np.ndarray:
+    """D: the nodes' own degrees of freedom q = D x, nodes by position (a scene of blades:
+    the identity), checked to give every sector as many rows."""
     if not scene.arrays.is_structure:
-        return shapes
-    rows = [scene.dof_rows(node) @ shapes for node in scene.blades]
+        return np.eye(scene.arrays.n_blades)
+    rows = [scene.dof_rows(node) for node in scene.blades]
     per_sector = len(rows) // sectors
     sizes = {sum(len(r) for r in rows[s * per_sector:(s + 1) * per_sector])
              for s in range(sectors)}
@@ -383,6 +397,64 @@ def nodal_diameters(shapes, sectors: int) -> np.ndarray:
     for k in range(sectors):
         folded[min(k, sectors - k)] += power[k]
     return np.argmax(folded, axis=0)
+
+
+def cyclic_eigenspaces(eigenvalues: np.ndarray, shapes: np.ndarray, stiffness: np.ndarray,
+                       dofs: np.ndarray, sectors: int
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(eigenvalues, shapes, nodal diameters) of the modes ``shapes`` (columns,
+    mass-normalised, of the ascending ``eigenvalues`` ω² [rad²/s²] of the stiffness
+    ``stiffness`` [N/m]), each eigenspace's basis turned so that each mode lies in one
+    diameter's cyclic subspace where the eigenspace allows it (module docstring).
+
+    ``dofs`` D (rows by position, sector-major, as many per sector) takes a shape to the
+    nodes' own degrees of freedom q = D φ, where the DFT over the sectors is taken. For an
+    eigenspace of several modes, Φ = shapes[:, cluster] and Q = D Φ: the operator
+    Σ_ND ND Qᵀ P_ND Q, P_ND the orthogonal projector on the harmonics ND and N − ND of
+    q, is diagonalised against Qᵀ Q (``scipy.linalg.eigh``); its eigenvectors R are the
+    combinations of Φ whose q are orthonormal, each of one diameter, where the eigenspace
+    is invariant under the sector shift (a tuned ring: P_ND Q = Q C_ND there, and the
+    eigenvalues are the diameters). Φ R is made mass-normalised again by the orthogonal
+    polar factor of R (Φ is), which keeps each diameter's columns within it, in
+    ascending diameter. An eigenspace gathered to the tolerance may join the exact
+    eigenspaces of neighbouring diameters, each of which its turned modes then are: where
+    their Rayleigh quotients φᵀ K φ spread beyond rounding (``EIGENSPACE_ROUNDING``),
+    they become the modes' eigenvalues and order them. Each mode is labelled by
+    ``nodal_diameters``. A single mode is left as it is.
+    """
+    eigenvalues, shapes = eigenvalues.copy(), shapes.copy()
+    rounding = EIGENSPACE_ROUNDING * np.abs(eigenvalues).max(initial=0.0)
+    if sectors > 1:
+        for cluster in _eigenspaces(eigenvalues):
+            if len(cluster) > 1:
+                q = dofs @ shapes[:, cluster]
+                _, turn = scipy.linalg.eigh(_diameter_operator(q, sectors), q.T @ q)
+                turned = shapes[:, cluster] @ scipy.linalg.polar(turn)[0]
+                rayleigh = np.einsum("ij,ij->j", turned, stiffness @ turned)
+                if np.ptp(rayleigh) > rounding:
+                    order = np.argsort(rayleigh, kind="stable")
+                    eigenvalues[cluster], turned = rayleigh[order], turned[:, order]
+                shapes[:, cluster] = turned
+    return eigenvalues, shapes, nodal_diameters(dofs @ shapes, sectors)
+
+
+def _eigenspaces(eigenvalues: np.ndarray) -> list[np.ndarray]:
+    """The indices of each run of ascending ``eigenvalues`` equal to ``EIGENSPACE``
+    (relative) or ``EIGENSPACE_ROUNDING`` of the largest."""
+    floor = EIGENSPACE_ROUNDING * np.abs(eigenvalues).max(initial=0.0)
+    gaps = np.diff(eigenvalues)
+    tolerance = EIGENSPACE * np.abs(eigenvalues[1:]) + floor
+    return np.split(np.arange(len(eigenvalues)), np.flatnonzero(gaps > tolerance) + 1)
+
+
+def _diameter_operator(q: np.ndarray, sectors: int) -> np.ndarray:
+    """Σ_ND ND Qᵀ P_ND Q for the columns Q of ``q`` (rows sector-major): with the unitary
+    DFT F_k = Σ_s Q_s e^{−2πi k s/N}/√N over the sectors s, Σ_k min(k, N − k) Re(F_kᴴ F_k)."""
+    grid = q.reshape(sectors, -1, q.shape[1])
+    harmonics = np.fft.fft(grid, axis=0) / np.sqrt(sectors)
+    k = np.arange(sectors)
+    weights = np.minimum(k, sectors - k).astype(float)
+    return np.einsum("k,kpi,kpj->ij", weights, harmonics.conj(), harmonics).real
 
 
 def excited_diameter(engine_order: int, sectors: int) -> int:

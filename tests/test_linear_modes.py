@@ -10,8 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from contact_laws import ConstantLoad, Coulomb, Hertz, KelvinVoigt, LinearSpring
-from shroudnet import (AntiPhase, Blade, BladeGroup, Coupling, Excitation, Interface, Scene,
-                       Southwell, frequency_response, group_campbell, linear_modes, scenes)
+from shroudnet import (AntiPhase, Blade, BladeGroup, Coupling, EngineOrderWave, Excitation,
+                       Interface, Scene, Southwell, frequency_response, group_campbell,
+                       linear_modes, scenes)
 from shroudnet.linear import excited_diameter
 from shroudnet.substructure import Substructure
 
@@ -299,3 +300,97 @@ def test_closed_frequencies_are_at_least_stuck_ones_and_those_at_least_open_ones
     assert np.all(closed >= stuck * (1 - 1e-12))
     assert np.all(stuck >= open_[:len(stuck)] * (1 - 1e-12))
 
+
+# ---- nodal diameters from the cyclic projection of each eigenspace -------------------------
+
+def diameter_shares(dofs, sectors):
+    """For each column of ``dofs`` (rows sector-major), the share of its square in each
+    nodal diameter 0 … N//2 (harmonics k and N − k of the DFT over the sectors)."""
+    grid = dofs.reshape(sectors, -1, dofs.shape[1])
+    power = (np.abs(np.fft.fft(grid, axis=0)) ** 2).sum(axis=1)
+    shares = np.zeros((sectors // 2 + 1, dofs.shape[1]))
+    for k in range(sectors):
+        shares[min(k, sectors - k)] += power[k]
+    return shares / shares.sum(axis=0)
+
+
+def every_diameter(sectors):
+    """The diameters of one family of a tuned ring: 0 and N/2 once, the others twice."""
+    return sorted(min(k, sectors - k) for k in range(sectors))
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 7, 12, 36])
+def test_a_ring_of_uncoupled_blades_gives_its_degenerate_family_every_diameter_once(n):
+    """N identical blades whose shrouds are open: N modes at f₀ = √(k/m)/2π, one family,
+    in which each diameter appears once (twice for 0 < ND < N/2), each mode a pure
+    diameter, still mass-orthonormal."""
+    blade = Blade(mass=MASS, damping=0.0, stiffness=GROUND)
+    shroud = Interface(gap=1e-5, angle=0.5, normal=LinearSpring(stiffness=1e6),
+                       friction=Coulomb(mu=0.3))
+    group = BladeGroup.chain(n, blade, shroud)
+    if n > 2:
+        group.connect(f"blade{n}", "blade1", shroud)
+    modes = linear_modes(scene_of(group), sectors=n)
+    assert modes.frequencies == pytest.approx([hz(GROUND, MASS)] * n, rel=1e-12)
+    assert sorted(modes.nodal_diameters.tolist()) == every_diameter(n)
+    shares = diameter_shares(modes.shapes, n)
+    assert np.all(shares[modes.nodal_diameters, np.arange(n)] > 1 - 1e-12)
+    assert np.allclose(modes.shapes.T @ np.diag(ring_masses(n)) @ modes.shapes, np.eye(n))
+    assert modes.families() == pytest.approx(np.full((n // 2 + 1, 1), hz(GROUND, MASS)))
+    for nd in range(n // 2 + 1):
+        assert modes.of_diameter(nd) == pytest.approx(
+            [hz(GROUND, MASS)] * every_diameter(n).count(nd), rel=1e-12)
+
+
+@pytest.mark.parametrize("n", [5, 6])
+def test_a_ring_of_substructures_gives_each_degenerate_family_every_diameter_once(n):
+    """N point masses in the plane (√(k_x/m), √(k_y/m)), their shroud faces open: two
+    families of N modes, each with every diameter once, read from the two coordinates of
+    each sector."""
+    group = BladeGroup()
+    names = [f"s{i}" for i in range(n)]
+    for name in names:
+        group.add_blade(name, point_mass(0.2, (3e5, 8e5)))
+    for left, right in zip(names, names[1:] + names[:1]):
+        group.connect((left, "tip"), (right, "tip"), Interface(
+            gap=1e-5, normal=LinearSpring(stiffness=1e6), friction=Coulomb(mu=0.3),
+            normal_direction=(0.6, 0.8), tangent_direction=(-0.8, 0.6)))
+    scene = Scene(group=group, speed_rpm=3000.0, excitation=Excitation(
+        engine_order=1, amplitudes=(0.0, 1.0), phases=EngineOrderWave(n)))
+    modes = linear_modes(scene, sectors=n)
+    low, high = hz(3e5, 0.2), hz(8e5, 0.2)
+    for family, frequency in enumerate((low, high)):
+        members = slice(family * n, (family + 1) * n)
+        assert modes.frequencies[members] == pytest.approx([frequency] * n, rel=1e-12)
+        assert sorted(modes.nodal_diameters[members].tolist()) == every_diameter(n)
+    for nd in range(n // 2 + 1):
+        twice = every_diameter(n).count(nd)
+        assert modes.of_diameter(nd) == pytest.approx([low] * twice + [high] * twice,
+                                                       rel=1e-12)
+    assert modes.families() == pytest.approx(np.tile([low, high], (n // 2 + 1, 1)))
+
+
+@pytest.mark.parametrize("ratio", [0.3, 1e-9])
+@pytest.mark.parametrize(("n", "reach"), [(7, 1), (12, 1), (7, 2), (12, 2)])
+def test_a_tuned_ring_of_couplings_has_each_diameter_at_its_closed_form(n, reach, ratio):
+    """Each blade coupled to its ``reach``-th neighbour by k_c = ``ratio`` k:
+    ω² = (k + 2 k_c (1 − cos(2π reach ND/N)))/m. With reach 2 the frequency rises and
+    falls again with ND, and on 12 blades ND 0 and 6, 1 and 5, 2 and 4 share one
+    frequency: eigenspaces of two diameters. With k_c = 10⁻⁹ k the whole family lies
+    within the eigenspace tolerance and is projected as one; each diameter must still
+    carry its own frequency, whose neighbours differ by ≥ 10⁻¹¹ of it."""
+    coupling = ratio * GROUND
+    group = BladeGroup()
+    for s in range(n):
+        group.add_blade(s, Blade(mass=MASS, damping=0.0, stiffness=GROUND))
+    for s in range(n):
+        group.connect(s, (s + reach) % n, Coupling(stiffness=coupling))
+    modes = linear_modes(scene_of(group), sectors=n)
+    for nd in range(n // 2 + 1):
+        expected = hz(GROUND + 2 * coupling * (1 - math.cos(2 * math.pi * reach * nd / n)),
+                      MASS)
+        assert modes.of_diameter(nd) == pytest.approx(
+            [expected] * every_diameter(n).count(nd), rel=1e-14, abs=0.0)
+    shares = diameter_shares(modes.shapes, n)
+    assert np.all(shares[modes.nodal_diameters, np.arange(n)] > 1 - 1e-9)
+    assert np.all(np.diff(modes.frequencies) >= 0.0)
