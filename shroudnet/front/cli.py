@@ -42,7 +42,7 @@ import contact_laws
 from ..analysis.readings import classify
 from ..engine.cache import cache_folder, cache_size, clear_cache
 from ..io import results, scenefile
-from ..linear.modes import CONTACTS, linear_modes
+from ..linear.modes import linear_modes
 from ..model.group import BLADE_POINT
 from ..model.substructure import Substructure
 from ..run.methods import TRANSIENT
@@ -800,6 +800,11 @@ def _diameter(bifurcation) -> str:
     return f", along ND {bifurcation.wave_number}"
 
 
+#: The limits of the interfaces ``shroudnet modes`` tabulates side by side
+#: (``linear_modes``).
+TABULATED = ("open", "stuck")
+
+
 def _modes(args) -> int:
     from .figures import zzenf_diagram
     loaded = _load_scene(args.scene, _import_laws(args.laws))
@@ -808,7 +813,7 @@ def _modes(args) -> int:
     path = args.output / f"{args.scene.stem}-modes.png"
     _check_file(path, "--output")
     _prove_writable(args.output, "--output")
-    both = {contacts: linear_modes(scene, contacts) for contacts in CONTACTS}
+    both = {contacts: linear_modes(scene, contacts) for contacts in TABULATED}
     if both["open"].sectors is None:
         for contacts, found in both.items():
             listed = ", ".join(f"{f:.2f}" for f in found.frequencies)
@@ -820,10 +825,10 @@ def _modes(args) -> int:
     tables = {contacts: found.families()[:, :families] for contacts, found in both.items()}
     for nd in range(tables["open"].shape[0]):
         cells = ["  ".join(f"{f:9.2f}" for f in tables[c][nd] if np.isfinite(f))
-                 for c in CONTACTS]
+                 for c in TABULATED]
         print(f"ND {nd:3d}  {cells[0]}  |  {cells[1]}")
     sectors = both["open"].sectors
-    zzenf_diagram({f"interfaces {c}": both[c] for c in CONTACTS}, speed_rpm=scene.speed_rpm,
+    zzenf_diagram({f"interfaces {c}": both[c] for c in TABULATED}, speed_rpm=scene.speed_rpm,
                   engine_orders=range(1, sectors // 2 + 1), families=families,
                   title=f"{args.scene.stem}: frequency against nodal diameter").savefig(
         path, dpi=110)

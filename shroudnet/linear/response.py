@@ -1,9 +1,11 @@
-"""The group's linear forced response in the two limits of its interfaces.
+"""The group's linear forced response in the limits of its interfaces.
 
 Every friction-damping plot is drawn between two linear curves: the response with the
-interfaces open (they carry nothing) and with them stuck (``linear.interface_limit``, the
-limits ``linear_modes`` takes). Between them the nonlinear response moves as the contacts
-slip, close and open.
+interfaces open (they carry nothing) and with them closed, normal springs included, and
+stuck where they can stick (``linear.interface_limit``, the limits ``linear_modes``
+takes). Between them the nonlinear response moves as the contacts slip, close and open.
+The third limit, "stuck", is the group at rest with its friction locked: an interface
+open at rest adds no normal spring there, so with gaps it is not the upper bound.
 
 The excitation's first harmonic drives the group: node coordinate i feels
 Q_i(t) = A_i sin(ω t + φ_i) (``SceneArrays.harmonic_amplitudes``, ``harmonic_phases``, row
@@ -13,10 +15,12 @@ steady response x(t) = Im(X e^{iωt}) solves
     Tᵀ (K − ω² M + iω C) T Z = Tᵀ F,   X = T Z,
 
 in the basis T of the limit (the identity when open; ``linear.Limit``). The stiffness is
-K(Ω) at the scene's speed, and stuck, K and C include the spring ∂N/∂δ and dashpot ∂N/∂δ̇
-of each interface closed at rest. The constant load q_0 and the harmonics n ≥ 2 are not
-part of it (each harmonic n would add its own response at n ω), and a scene with
-prescribed-motion nodes, whose motion is an excitation of its own, is refused.
+K(Ω) at the scene's speed; stuck, K and C include the spring ∂N/∂δ and dashpot ∂N/∂δ̇
+of each interface closed at rest, and closed, those of every interface (one open at rest
+taken at first touch; ``linear``'s docstring says which laws have none). The constant
+load q_0 and the harmonics n ≥ 2 are not part of it (each harmonic n would add its own
+response at n ω), and a scene with prescribed-motion nodes, whose motion is an
+excitation of its own, is refused.
 """
 
 from __future__ import annotations
@@ -97,7 +101,7 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
                        contacts: str = "open") -> FrequencyResponse:
     """The linear steady response of ``scene``'s group to its excitation's first harmonic,
     at each excitation frequency in ``frequencies`` [Hz], with the interfaces ``contacts``
-    ("open" or "stuck"; module docstring).
+    ("open", "stuck" or "closed"; module docstring).
 
     Examples
     --------
@@ -126,7 +130,7 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
         raise ValueError("frequency_response: the excitation has no first harmonic "
                          "(Excitation.amplitudes[1] is 0 or absent): nothing drives the "
                          "response")
-    limit = interface_limit(a, contacts, "frequency_response")
+    limit = interface_limit(scene, contacts, "frequency_response")
     basis = limit.basis
     forcing = a.harmonic_amplitudes[1, :n] * np.exp(1j * a.harmonic_phases[1, :n])
     mass = basis.T @ np.diag(a.mass) @ basis

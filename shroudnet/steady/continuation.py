@@ -103,19 +103,43 @@ JUMP = 1e-3
 @dataclass(frozen=True)
 class FrequencyShift:
     """A branch's resonance against the linear limits it lies between [Hz]: ``peak``, the
-    excitation frequency where its amplitude is largest; ``open`` and ``stuck``, where the
-    linear responses with the interfaces open and stuck peak. Friction and contact move
-    the resonance by ``peak − open`` from the open blades', a fraction ``stiffening`` of
-    the way to the stuck one."""
+    excitation frequency where its amplitude is largest; ``open``, ``stuck`` and
+    ``closed``, where the linear responses with the interfaces in those limits peak
+    (``linear_modes``' docstring): open is the lower bound, closed (every interface
+    closed, and stuck where it can stick) the upper one, and stuck the group at rest with
+    its friction locked, the normal springs of interfaces open at rest left out. Friction
+    and contact move the resonance by ``peak − open`` from the open blades', a fraction
+    ``stiffening`` of the way to the closed one.
+
+    ``at_end`` is True where the largest amplitude is at the first or the last point of
+    the branch: the branch has no maximum inside it, so ``peak`` is where the branch was
+    started or stopped, not a resonance (which lies beyond it, or nowhere); ``str`` says
+    so.
+    """
 
     peak: float
     open: float
     stuck: float
+    closed: float
+    at_end: bool
 
     @property
     def stiffening(self) -> float:
-        """(peak − open)/(stuck − open): 0 at the open resonance, 1 at the stuck one."""
-        return (self.peak - self.open) / (self.stuck - self.open)
+        """(peak − open)/(closed − open): 0 at the open resonance, 1 at the closed one;
+        NaN where the two coincide (nothing the interfaces do moves the resonance)."""
+        if self.closed == self.open:
+            return math.nan
+        return (self.peak - self.open) / (self.closed - self.open)
+
+    def __str__(self) -> str:
+        text = (f"resonance at {self.peak:.2f} Hz; the linear limits' at {self.open:.2f} Hz "
+                f"(open), {self.stuck:.2f} Hz (stuck) and {self.closed:.2f} Hz (closed)")
+        if self.closed != self.open:
+            text += f": {self.stiffening:.0%} of the way from open to closed"
+        if self.at_end:
+            text += ("; the branch's largest amplitude is at its end, not a maximum inside "
+                     "it: the resonance lies beyond the branch, if anywhere")
+        return text
 
 
 #: Frequencies at which ``Branch.frequency_shift`` evaluates each linear limit.
@@ -229,20 +253,23 @@ class Branch:
 
     def frequency_shift(self, blade) -> FrequencyShift:
         """Where the branch peaks against the linear limits (``FrequencyShift``): the
-        excitation frequency 1/T_e of the orbit of largest ``amplitude(blade)``, and
-        those at which ``frequency_response`` of that orbit's scene (at its speed) peaks
-        for ``blade`` with the interfaces open and stuck, each sought over a half to twice
-        the branch's (a grid of ``SHIFT_POINTS``, refined by a parabola)."""
-        top = int(np.argmax(self.amplitude(blade)))
+        excitation frequency 1/T_e of the orbit of largest ``amplitude(blade)`` (flagged
+        ``at_end`` where that orbit is the branch's first or last), and those at which
+        ``frequency_response`` of that orbit's scene (at its speed) peaks for ``blade``
+        with the interfaces open, stuck and closed, each sought over a half to twice the
+        branch's (a grid of ``SHIFT_POINTS``, refined by a parabola). A ValueError where
+        the closed limit is not linear (a Hertz contact open at rest: ``linear``)."""
+        amplitude = self.amplitude(blade)
+        top = int(np.argmax(amplitude))
         scene = self.orbits[top].scene
-        peak = 1.0 / scene.excitation_period
+        peak = float(1.0 / scene.excitation_period)
         grid = np.linspace(0.5 * peak, 2.0 * peak, SHIFT_POINTS)
-        limits = []
-        for contacts in ("open", "stuck"):
+        limits = {}
+        for contacts in ("open", "stuck", "closed"):
             found = frequency_response(scene, grid, contacts)
-            limits.append(_parabola_top(grid, np.abs(scene.response_of(found.response,
-                                                                         blade))))
-        return FrequencyShift(peak=peak, open=limits[0], stuck=limits[1])
+            limits[contacts] = _parabola_top(grid, np.abs(scene.response_of(found.response,
+                                                                             blade)))
+        return FrequencyShift(peak=peak, **limits, at_end=top in (0, len(amplitude) - 1))
 
     def harmonics(self, blade, order: int = 5) -> tuple[np.ndarray, np.ndarray]:
         """(amplitudes A_n [m], phases φ_n [rad]) of ``blade`` along the branch, one row
