@@ -205,7 +205,8 @@ def check_bladed_disc(example, result, arguments):
         assert result.stuck.of_diameter(nd)[0] > result.open.of_diameter(nd)[0]
     branch = result.branch
     assert branch.parameter[0] == example.CURVE[0] and np.all(np.diff(branch.parameter) > 0)
-    assert len(branch) == arguments["max_points"]
+    # every point asked for, unless the branch ended where asked (steps move by rounding)
+    assert len(branch) == arguments["max_points"] or branch.ended.startswith("reached p")
     factors = result.mistuning.amplification
     assert factors.shape == (arguments["samples"],) and np.all(factors > 0.0)
     assert result.mistuning.patterns.shape == (arguments["samples"], 24)

@@ -31,7 +31,7 @@ from ..run.classification import (
     Classification,
 )
 from ..run.methods import Adaptive
-from ..run.simulation import Simulation, steady_rows
+from ..run.simulation import Simulation, steady_rows, steady_skip
 from .stability import LYAPUNOV_BLOCKS, LyapunovExponents, lyapunov
 
 
@@ -294,8 +294,8 @@ def friction_loss_per_cycle(sim: Simulation, skip: int) -> float:
     """
     check_instance("friction_loss_per_cycle", "sim", sim, Simulation,
                    expected="a shroudnet.Simulation")
-    rows = steady_rows(sim, skip, "friction_loss_per_cycle")
-    work = sim.work[rows]
+    skip = steady_skip(sim, skip, "friction_loss_per_cycle")
+    work = sim.work[steady_rows(sim, skip, "friction_loss_per_cycle")]
     return float((work[-1, 2] + work[-1, 4] - work[0, 2] - work[0, 4])
                  / (sim.periods - skip))
 
@@ -344,6 +344,7 @@ def hysteresis_loop(sim: Simulation, interface: int, skip: int,
         raise ValueError(f"hysteresis_loop.direction = 2: interface {interface} slides along "
                          "one direction; a face that slides in its plane takes "
                          "Interface(tangent_directions=(t1, t2), ...)")
+    skip = steady_skip(sim, skip, "hysteresis_loop")
     rows = steady_rows(sim, skip, "hysteresis_loop")
     slip = sim.slip_displacement(interface, direction)[rows]
     return HysteresisLoop(slip=slip, force=sim.friction_along(interface, direction)[rows],

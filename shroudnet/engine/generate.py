@@ -45,7 +45,6 @@ from .cache import cache_folder, keep
 from .header import derivative_function, has_derivative, header, law_function
 from .kernel import PHASES
 from .records import KernelScene, StructureScene
-from .regroup import fill_groups
 
 _ENGINE = Path(__file__).parent
 _PHASES = [_ENGINE / "kernel" / f"{phase}.py" for phase in PHASES]
@@ -54,12 +53,22 @@ _PHASES = [_ENGINE / "kernel" / f"{phase}.py" for phase in PHASES]
 #: or ``EXPONENTIAL``, nor call a function of another phase (which their module lacks).
 METHOD_FREE = ("forces", "tangent", "resolve")
 
-#: About how long compiling one driver of a kernel takes on a 2-core machine [s], with
-#: the engine's own compiled code in the cache, and without (the very first run); and
-#: the driver with its tangent flow.
-COMPILE_ESTIMATE = 30
-FIRST_COMPILE_ESTIMATE = 35
-TANGENT_COMPILE_ESTIMATE = 60
+#: How long compiling each flavour of kernel takes [s of processor time], by (method,
+#: substructures, elastic contacts, tangent flow): measured from an empty cache, each in a
+#: fresh process, on a 2-core machine (``shroudnet cache --warm`` compiles them all). A
+#: kernel of laws of one's own compiles fewer effects, so a little faster.
+COMPILE_SECONDS = {
+    ("adaptive", False, False, False): 32,
+    ("adaptive", False, False, True): 79,
+    ("fixed_step", False, False, False): 40,
+    ("adaptive", True, False, False): 41,
+    ("adaptive", True, False, True): 92,
+    ("fixed_step", True, False, False): 54,
+    ("exponential", True, False, False): 70,
+    ("adaptive", True, True, False): 45,
+    ("adaptive", True, True, True): 94,
+    ("fixed_step", True, True, False): 63,
+}
 
 
 def announce(message: str) -> None:
@@ -265,8 +274,7 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
     if not driver.overloads:
         if not _cached(driver):
             module = sys.modules[driver.py_func.__module__]
-            seconds = TANGENT_COMPILE_ESTIMATE if module.TANGENT else \
-                COMPILE_ESTIMATE if _cached(fill_groups) else FIRST_COMPILE_ESTIMATE
+            seconds = compile_seconds(module)
             flow = " with its tangent flow" if module.TANGENT else ""
             laws = "every built-in contact law (once" if module.SHARED else \
                 f"{' + '.join(module.LAWS)} (once for these law classes"
@@ -276,6 +284,14 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
         driver.compile(tuple(numba.typeof(a) for a in arguments))
         return driver, time.perf_counter() - began
     return driver, 0.0
+
+
+def compile_seconds(kernel: ModuleType) -> int:
+    """About how long compiling ``kernel``'s driver takes (``COMPILE_SECONDS``; the
+    longest of its method's where a flavour is not listed)."""
+    key = (kernel.METHOD, kernel.HAS_STRUCTURES, kernel.HAS_SLIDERS, kernel.TANGENT)
+    return COMPILE_SECONDS.get(key) or max(
+        seconds for flavour, seconds in COMPILE_SECONDS.items() if flavour[0] == kernel.METHOD)
 
 
 def _cached(driver) -> bool:

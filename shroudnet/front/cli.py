@@ -40,7 +40,7 @@ import numpy as np
 import contact_laws
 
 from ..analysis.readings import classify
-from ..engine.cache import cache_folder, cache_size, clear_cache
+from ..engine.cache import cache_folder, cache_size, checked_cache_folder, clear_cache
 from ..io import results, scenefile
 from ..linear.modes import linear_modes
 from ..model.group import BLADE_POINT
@@ -50,7 +50,7 @@ from ..run.simulate import simulate
 from ..run.simulation import SimulationError, steady_rows
 from ..steady.continuation import LARGEST_STEP, Branch, continuation
 from ..steady.parametric import same_scene
-from ..studies.sweep import sweep
+from ..studies.sweep import default_workers, sweep
 from .options import whole
 from .progress import ProgressReporter, TerminalProgress
 from .studies import mistuning_study
@@ -321,8 +321,15 @@ def _parser() -> argparse.ArgumentParser:
         "the built-in laws, and one per combination of law classes of your own) and how "
         "much room they take: $SHROUDNET_CACHE, else ~/.cache/shroudnet; a file there, "
         "or a folder that cannot be written, is refused. "
-        "With --clear, delete them: the next run compiles again, once.")
-    cache.add_argument("--clear", action="store_true", help="delete the compiled integrators")
+        "With --clear, delete them: the next run compiles again, once. With --warm, "
+        "compile every integrator the built-in laws call for now, on every core, so that "
+        "no first run waits for one.")
+    action = cache.add_mutually_exclusive_group()
+    action.add_argument("--clear", action="store_true", help="delete the compiled integrators")
+    action.add_argument("--warm", action="store_true",
+                        help="compile every built-in integrator now (minutes, once)")
+    cache.add_argument("--workers", type=whole(1), default=None,
+                       help="integrators compiled at once with --warm (default: every core)")
     cache.set_defaults(command=_cache, name="cache")
 
     bench = commands.add_parser(
@@ -360,9 +367,28 @@ def _cache(args) -> int:
         freed = clear_cache()
         print(f"cleared  {cache_folder()} ({freed / 2**20:.1f} MiB)")
         return 0
+    if args.warm:
+        return _warm(args.workers)
     size, files = cache_size()
     print(f"cache    {cache_folder()}: {size / 2**20:.1f} MiB in {files} files "
           "(clear with 'shroudnet cache --clear')")
+    return 0
+
+
+def _warm(workers: int | None) -> int:
+    """Compile every shipped flavour, printing each as it is done and the whole."""
+    from .warm import FLAVOURS, warm
+
+    checked_cache_folder()
+    workers = min(workers or default_workers(), len(FLAVOURS))
+    print(f"warming  {len(FLAVOURS)} integrators in {cache_folder()}, {workers} at once",
+          flush=True)
+    began = time.perf_counter()
+    seconds = warm(FLAVOURS, workers,
+                   lambda flavour, took: print(f"  {flavour.name:<42} {took:6.1f} s",
+                                               flush=True))
+    print(f"warmed   {len(FLAVOURS)} integrators in {time.perf_counter() - began:.0f} s "
+          f"(their compiles: {sum(seconds.values()):.0f} s of processor time)")
     return 0
 
 

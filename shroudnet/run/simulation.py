@@ -204,12 +204,17 @@ class Simulation:
 
 
 def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:
-    """The rows of ``sim`` from t = skip·T_e on: what is left after ``skip`` transient periods.
+    """The rows of ``sim`` from t = skip·T_e on: what is left after ``skip`` transient periods
+    (``skip`` checked by ``steady_skip``). Every reading of a steady response takes ``skip``
+    through here."""
+    return slice(steady_skip(sim, skip, owner) * sim.samples_per_period, None)
 
-    ``skip`` is a whole number of periods (an int, a numpy integer or a float of integral
-    value) in [0, periods): at least one whole period is left, so that each reading of it
-    (Poincaré points, E_ρ, the spectrum, the friction loss per cycle, the classification)
-    has something to read. Every reading of a steady response takes ``skip`` through here.
+
+def steady_skip(sim: Simulation, skip: int, owner: str) -> int:
+    """``skip`` as an int: a whole number of periods (an int, a numpy integer or a float of
+    integral value) in [0, periods), so that at least one whole period is left for each
+    reading of it (Poincaré points, E_ρ, the spectrum, the friction loss per cycle, the
+    classification) to read.
 
     Raises
     ------
@@ -226,7 +231,7 @@ def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:
         raise ValueError(f"{owner}.skip must be a whole number of periods in "
                          f"[0, {sim.periods}) (the run's {sim.periods} periods, at least one "
                          f"left to read), got {skip}")
-    return slice(skip * sim.samples_per_period, None)
+    return skip
 
 
 @dataclass(frozen=True)
