@@ -32,7 +32,7 @@ templates_path = ["_templates"]
 
 # MyST: GitHub-style anchors, so that a page's links work on GitHub and in the site alike.
 myst_heading_anchors = 3
-myst_enable_extensions = ["dollarmath", "colon_fence"]
+
 
 # The reference: one page per public name, from its docstring.
 autosummary_generate = True
