@@ -18,8 +18,8 @@ from ..model.scene import Scene
 #: The default width of the time bracket of each located switch, in excitation periods,
 #: of every entry point that locates switches (``simulate``, ``monodromy``, ``lyapunov``,
 #: ``periodic_orbit``, ``continuation``, a scene file's ``[run]``). Its error on the
-#: results is 0.3–6 times this (README, "What accuracy costs"): below the integrators'
-#: own at their default tolerances.
+#: results is 0.3–6 times this (docs/guide/simulating.md, "What accuracy costs"): below
+#: the integrators' own at their default tolerances.
 EVENT_TOLERANCE = 1e-10
 #: The smallest event tolerance [periods]: ten times the resolution of a float, below which
 #: a switch's time bracket cannot shrink, and its location would never end.
@@ -157,7 +157,7 @@ class Accuracy:
     becomes ``Adaptive(rtol=target/100)`` (whose atol is rtol·x_s, x_s the static
     deflection under the whole excitation) and an event tolerance of at most
     target/100 periods. The factor 100 comes from the work–precision study
-    (``studies.precision``, README "What accuracy costs"): on the paper's group the
+    (``studies.precision``, docs/guide/simulating.md): on the paper's group the
     error of the adaptive integrator is 7–16 times its rtol, and that of the event
     location 0.3–6 times its tolerance. In chaos no single trajectory converges; E_ρ and
     the attractor's bounds then converge to the sampling error of the record instead.

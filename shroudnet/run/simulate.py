@@ -53,8 +53,9 @@ def simulate(scene: Scene, periods: int, *,
         The integrator and its accuracy knobs, or the accuracy asked for. The default,
         ``Adaptive()`` (rtol = 1e-8), keeps Poincaré points and E_ρ of the paper's group
         to about 1e-7 at a quarter of the cost of ``FixedStep(steps_per_period=1000)``,
-        which reaches 1e-9 (README, "What accuracy costs"). ``Exponential()`` carries the
-        motion between switches exactly, for scenes whose phases are linear.
+        which reaches 1e-9 (docs/guide/simulating.md, "What accuracy costs").
+        ``Exponential()`` carries the motion between switches exactly, for scenes whose
+        phases are linear.
     samples_per_period : int
         Output samples per period; with ``FixedStep`` or ``Exponential`` it must divide the
         steps per period.
