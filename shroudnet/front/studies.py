@@ -126,10 +126,49 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
                     samples_per_period: int = 100, method=Adaptive(),
                     workers: int | None = None, executor=None,
                     progress="auto") -> MistuningStudy:
-    """``studies.mistuning.mistuning_study`` (where every argument is documented) with its
-    progress shown as ``sweep`` shows it: ``progress`` "auto" (on standard error when it is
-    a terminal), True (always), False or None (silent), or a callable
-    ``progress(done, total)``."""
+    """A Monte Carlo of the forced response over random mistuning patterns.
+
+    Every sample, and the tuned group, runs at every speed of ``speeds_rpm`` (one
+    ``sweep``, on every core or on ``executor``, a dask cluster included); a point keeps
+    the peak |x| of each node (of a substructure, the largest over its points' components)
+    over ``record`` periods after ``transient`` ones, sampled ``samples_per_period`` times a
+    period.
+
+    Parameters
+    ----------
+    scene : Scene
+        The tuned group; its speed is replaced by each of ``speeds_rpm``.
+    spread : float
+        The standard deviation of the blade frequency deviation ε, 0 ≤ spread < 0.3 [-].
+    samples : int
+        Number of random patterns, ≥ 1.
+    speeds_rpm : sequence of float
+        The speeds [rev/min] the peak is sought over: the resonance to study.
+    blades : sequence of node names, optional
+        The nodes that are mistuned and whose amplitudes count; default every node, or
+        every node whose name starts with "blade" in a group built by
+        ``BladeGroup.bladed_disc``.
+    patterns : array (samples × sectors), optional
+        Given deviations ε instead of random ones (then ``spread`` is only reported).
+    seed : int
+        Of the random generator: the same seed gives the same patterns.
+    transient, record : int
+        Periods run before a point is read, and periods read.
+    samples_per_period : int
+        Samples a period the peaks are read from.
+    method : FixedStep, Adaptive, Exponential or Accuracy
+        As for ``simulate``.
+    workers, executor
+        Where the runs go, as for ``sweep``.
+    progress : "auto", bool, None or callable
+        As for ``sweep``: "auto" shows runs done, rate and time left on standard error
+        when it is a terminal, True always; False or None is silent; a callable
+        ``progress(done, total)`` (a ``ProgressReporter`` hears the notices too).
+
+    Returns
+    -------
+    MistuningStudy
+    """
     return mistuning_module.mistuning_study(
         scene, spread=spread, samples=samples, speeds_rpm=speeds_rpm, blades=blades,
         patterns=patterns, seed=seed, transient=transient, record=record,
