@@ -1,18 +1,21 @@
 """Figures in the paper's style, drawn with matplotlib from computed results.
 
 Nothing in the computation imports this module. Each function returns a matplotlib
-``Figure`` and leaves saving to the caller (``fig.savefig(path)``).
+``Figure`` and leaves saving to the caller: ``save_figure(fig, path)`` writes it whole or
+not at all (``fig.savefig(path)`` would leave half an image where it is interrupted).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Hashable, Mapping, Sequence
+from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
+from . import atomic
 from .analysis import Campbell, HysteresisLoop, classify, spectrum
 from .continuation import Branch
 from .engine.codes import Mode
@@ -22,6 +25,14 @@ from .orbits import PeriodicOrbit
 from .precision import Study
 from .simulation import Simulation
 from .sweep import Sweep
+
+
+def save_figure(figure: Figure, path, *, dpi: float = 110) -> Path:
+    """Write ``figure`` to the image file ``path`` (its format from the suffix: ``.png``,
+    ``.pdf``, ``.svg``, ...) whole or not at all (``atomic.write``); returns the path."""
+    path = Path(path)
+    kind = path.suffix[1:].lower() or None  # None: matplotlib's default format
+    return atomic.write(path, lambda file: figure.savefig(file, format=kind, dpi=dpi))
 
 
 def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: str = "",

@@ -14,8 +14,9 @@ folder of an interrupted sweep, so that it runs only the points still missing
 finished one. Each point file carries the fingerprint of the sweep it belongs to (a hash
 of ``sweep.json``'s content).
 
-Every file is written to a temporary name in its folder and renamed into place, so a run
-killed at any moment leaves either the whole file or none. A file damaged anyway (cut
+Every file is written to a temporary name in its folder and renamed into place
+(``atomic.write``), so a run killed at any moment leaves either the whole file or none, and
+a full disc leaves the file that was there as it was. A file damaged anyway (cut
 short by a full disk, a flipped bit, edited by hand) raises ``ResultsError`` naming the
 file and what is wrong with it, never a bare zip, JSON or numpy error. Resuming a sweep
 computes a damaged point again, with a notice; a damaged ``sweep.json`` is written again
@@ -30,9 +31,7 @@ import functools
 import hashlib
 import json
 import math
-import os
 import re
-import tempfile
 import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass
@@ -41,7 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import scenefile
+from . import atomic, scenefile
 from .classification import Classification
 from .continuation import Bifurcation, Branch
 from .cycle import EnergyPerCycle
@@ -64,30 +63,22 @@ class ResultsError(ValueError):
 # ---- writing and reading one file ---------------------------------------------------------
 
 def atomic_write(path: str | Path, write: Callable[[object], None]) -> Path:
-    """Call ``write(file)`` on a temporary file beside ``path``, then rename it to ``path``.
+    """Call ``write(file)`` on a temporary file beside ``path``, then rename it to ``path``
+    (``atomic.write``).
 
-    Raises ``ResultsError`` when ``path`` is a folder, when a part of its folder is a file,
-    or when the folder cannot be written.
+    Raises ``ResultsError`` naming ``path`` when it is a folder, when a part of its folder
+    is a file, or when the system refuses the write (a folder that cannot be written, a
+    full disc); the file that was there before is then left as it was.
     """
     path = Path(path)
     _make_folder(path.parent, f"cannot save {path}")
     if path.is_dir():
         raise ResultsError(f"{path}: is a folder; give the name of a file to save to")
     try:
-        handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
-                                             suffix=".part")
-    except OSError as error:
-        raise ResultsError(f"cannot save {path}: {error.strerror or error}") from None
-    try:
-        with os.fdopen(handle, "wb") as file:
-            write(file)
-            file.flush()
-            os.fsync(file.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    return path
+        return atomic.write(path, write)
+    except atomic.WriteError as error:
+        raise ResultsError(f"cannot save {path}: {error.strerror}; nothing was changed "
+                           "there") from None
 
 
 def _make_folder(folder: Path, doing: str) -> None:

@@ -160,7 +160,7 @@ import scipy.sparse
 import contact_laws
 from contact_laws import check_int, check_real
 
-from . import fe_files
+from . import atomic, fe_files
 from .beam import cantilever_beam
 from .blade import Blade, ConstantFrequency, FrequencyTable, Southwell
 from .coupling import Coupling
@@ -1275,6 +1275,9 @@ def save(path: str | Path | Scene, scene: Scene | str | Path,
     back into an equal scene; the matrix files it names are written relative to its folder
     (made if missing). The scene and the path may come in either order:
     ``save(scene, "group.toml")`` is ``save("group.toml", scene)``.
+
+    The file is written whole or not at all (``atomic.write``): on a full disc the file
+    that was there is left as it was, and ``atomic.WriteError`` names it.
     """
     if isinstance(path, Scene):
         path, scene = scene, path
@@ -1283,10 +1286,7 @@ def save(path: str | Path | Scene, scene: Scene | str | Path,
     if not isinstance(path, str | os.PathLike):
         raise TypeError(f"scenefile.save needs a path (str or pathlib.Path), got {path!r}")
     path = Path(path)
-    text = dumps(document(scene, run, folder=path.parent))
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return atomic.write_text(path, dumps(document(scene, run, folder=path.parent)))
 
 
 def dumps(document: dict) -> str:
