@@ -40,6 +40,8 @@ from pathlib import Path
 
 import numpy as np
 
+from contact_laws import check_instance
+
 from . import atomic, scenefile
 from .classification import Classification
 from .continuation import Bifurcation, Branch
@@ -412,6 +414,10 @@ def save_simulation(path: str | Path, sim: Simulation,
 
     Raises ``ResultsError`` when ``path`` cannot be written (a folder, or under a file).
     """
+    check_instance("results.save_simulation", "sim", sim, Simulation,
+                   expected="a shroudnet.Simulation (what simulate returns)")
+    check_instance("results.save_simulation", "run", run, scenefile.RunSettings,
+                   optional=True, expected="scenefile.RunSettings(...) or None")
     meta = {"format": FORMAT, "kind": "simulation",
             "scene": scenefile.document(sim.scene, run), "settings": sim.settings.as_dict(),
             "energy": asdict(sim.energy), "event_counts": sim.events.counts,
@@ -873,6 +879,10 @@ def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
     Each orbit's scene is kept as the scene document of ``scene_at`` (a
     ``scenefile.SceneAt``) with the parameter's path, or else as one document per orbit.
     """
+    check_instance("results.save_branch", "branch", branch, Branch,
+                   expected="a shroudnet.Branch (what continuation returns)")
+    check_instance("results.save_branch", "scene_at", scene_at, scenefile.SceneAt,
+                   optional=True, expected="a scenefile.SceneAt or None")
     orbits = [*branch.orbits, *(b.orbit for b in branch.bifurcations)]
     values = [*branch.parameter, *(b.parameter for b in branch.bifurcations)]
     if isinstance(scene_at, scenefile.SceneAt):
