@@ -8,7 +8,8 @@ import functools
 
 import pytest
 
-from shroudnet import results, scenefile, simulate
+from shroudnet import Exponential, FixedStep, results, scenefile, simulate
+from shroudnet.methods import MOST_STEPS_PER_PERIOD
 from shroudnet.scenes import three_blade_paper
 
 
@@ -64,3 +65,22 @@ def test_a_scene_file_saves_what_loading_it_returned(tmp_path):
             == (tmp_path / f"again_{path.name}").read_text()
     assert "[run]" in (tmp_path / "again_with_run.toml").read_text()
     assert "[run]" not in (tmp_path / "again_without.toml").read_text()
+
+
+# ---- the methods ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("method", [FixedStep, Exponential])
+def test_a_method_on_a_grid_takes_at_most_a_million_steps_a_period(method):
+    """10¹² steps a period would take some 220 days for one: refused as the method is
+    made, before any run, and so is a scene file's [run] asking for them."""
+    assert method(steps_per_period=MOST_STEPS_PER_PERIOD).steps_per_period == 10**6
+    for steps in (MOST_STEPS_PER_PERIOD + 1, 10**12):
+        with pytest.raises(ValueError, match=rf"^{method.__name__}\.steps_per_period must be "
+                                             rf"an int >= 8 and <= 1000000, got {steps}$"):
+            method(steps_per_period=steps)
+    document = scenefile.document(three_blade_paper())
+    document["run"] = {"method": {FixedStep: "fixed", Exponential: "exponential"}[method],
+                       "steps_per_period": 10**12}
+    with pytest.raises(scenefile.SceneFileError, match=r"run: .*steps_per_period must be an "
+                                                       r"int >= 8 and <= 1000000"):
+        scenefile.read(document)
