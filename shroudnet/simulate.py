@@ -233,7 +233,8 @@ def integrate(scene: Scene, periods: int, *,
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
-                                            zeno.events, zeno_window))
+                                            zeno.events, zeno_window,
+                                            isinstance(method, FixedStep)))
     return Integration(run=run, method=method, event_tolerance=event_tolerance,
                        zeno_window=zeno_window, compile_seconds=compile_seconds,
                        stretches=stretches)
@@ -453,14 +454,15 @@ def check_finished(out, ledger: dict) -> None:
                 "masses, stiffnesses, forces and initial state")
 
 
-def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window):
+def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window,
+                  fixed_step=False):
     where = ""
     if interface >= 0:
         left, right, _ = scene.group.interfaces[interface]
         where = f" on interface {interface} ({left!r}, {right!r})"
     when = f"at t = {t:.9g} s (period {t / period:.6f})"
     return status.message(when, where, zeno_events=zeno_events, zeno_window=zeno_window,
-                          smallest_step=SMALLEST_STEP)
+                          smallest_step=SMALLEST_STEP, fixed_step=fixed_step)
 
 
 #: Nodes and weights of 16-point Gauss–Legendre quadrature on [−1, 1] (computing them

@@ -5,12 +5,19 @@ silently or hung, grouped by the door they come through."""
 from __future__ import annotations
 
 import functools
+import math
+import re
 
+import numpy as np
 import pytest
 
-from shroudnet import Exponential, FixedStep, results, scenefile, simulate
+import contact_laws as cl
+from shroudnet import (Adaptive, AntiPhase, Blade, BladeGroup, Excitation, Exponential,
+                       FixedStep, Interface, Scene, SimulationError, Substructure, results,
+                       scales, scenefile, simulate)
+from shroudnet.engine.codes import Status
 from shroudnet.methods import MOST_STEPS_PER_PERIOD
-from shroudnet.scenes import three_blade_paper
+from shroudnet.scenes import modal_packet, three_blade_paper
 
 
 @functools.cache
@@ -84,3 +91,90 @@ def test_a_method_on_a_grid_takes_at_most_a_million_steps_a_period(method):
     with pytest.raises(scenefile.SceneFileError, match=r"run: .*steps_per_period must be an "
                                                        r"int >= 8 and <= 1000000"):
         scenefile.read(document)
+
+
+# ---- scales a run cannot carry -------------------------------------------------------------
+
+def chain(speed_rpm: float, **interface) -> Scene:
+    """Three blades of constant stiffness in a row, their interfaces as given."""
+    shroud = dict(gap=1e-5, angle=0.5, normal=cl.LinearSpring(stiffness=1e6),
+                  friction=cl.Coulomb(mu=0.3)) | interface
+    return Scene(group=BladeGroup.chain(3, Blade(mass=0.1, damping=1.0, stiffness=1e5),
+                                        Interface(**shroud)),
+                 excitation=Excitation(engine_order=1, amplitudes=(0.0, 1.0),
+                                       phases=AntiPhase()), speed_rpm=speed_rpm)
+
+
+def at_rest(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    n = scene.arrays.n_blades
+    return np.zeros(n), np.zeros(n)
+
+
+def test_a_speed_whose_period_has_no_step_a_float_can_tell_is_refused_by_name():
+    """At 1e300 rpm the period is 6e-299 s, its smallest step 6e-313 s, a subnormal float
+    (the scales check itself overflowed there, on ω_e²); at 1e200 rpm ω_e² overflows but
+    the steps are normal floats: the check passes without an OverflowError."""
+    with pytest.raises(SimulationError, match=r"^the run cannot start \(t = 0 s\): Scene\."
+                                              r"speed_rpm = 1e\+300 rpm makes an excitation "
+                                              r"period T_e = 6e-299 s .* smallest step, "
+                                              r"1e-14 T_e = 6e-313 s, is below the smallest "
+                                              r"normal float"):
+        simulate(chain(1e300), 1)
+    scene = chain(1e200)
+    assert scales.check_scales(scene, 1, Adaptive(), at_rest(scene)) is None
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: three_blade_paper(speed_rpm=1e300),
+     r"Blade\.stiffness_at: k\(Ω\) = m \(2π f_d1\(Ω\)\)² overflows a float at speed_rpm = "
+     r"1e\+300 \(Southwell"),
+    (lambda: modal_packet(speed_rpm=1e300),
+     r"Substructure\.matrices_at: K\(Ω\) = m ω\(Ω\)² of its modes overflows a float at "
+     r"speed_rpm = 1e\+300"),
+    (lambda: Substructure(np.eye(2), np.diag([1e4, 2e4]), stiffness_speed=np.eye(2),
+                          damping_ratios=0.01, points={"p": [[1.0, 0.0]]}).matrices_at(1e300),
+     r"Substructure\.matrices_at: K\(Ω\) = K₀ \+ Ω² K₁ overflows a float at speed_rpm = "
+     r"1e\+300"),
+])
+def test_a_stiffness_that_overflows_at_the_speed_is_refused_naming_the_speed(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+@pytest.mark.parametrize("method", [Adaptive(), FixedStep(steps_per_period=1000)],
+                         ids=["Adaptive", "FixedStep"])
+@pytest.mark.parametrize("interface, what", [
+    (dict(tangential_stiffness=1e300), r"its tangential_stiffness, 1e\+300 N/m"),
+    (dict(normal=cl.LinearSpring(stiffness=1e300)),
+     r"its normal law's stiffness ∂N/∂δ \(LinearSpring\), 1e\+300 N/m"),
+])
+def test_a_contact_no_step_can_follow_is_refused_by_name_whatever_the_method(
+        method, interface, what):
+    """Its natural frequency on the masses it joins is ω² = k gᵀ M⁻¹ g, g its row:
+    (cos α, −cos α) on two blades of 0.1 kg for the tangent, (sin α, −sin α) for the
+    normal. Before, the run started and stopped at once, blaming a law or the fixed step
+    (the run was adaptive)."""
+    row = math.cos(0.5) if "tangential_stiffness" in interface else math.sin(0.5)
+    omega = math.sqrt(1e300 * row**2 * 2 / 0.1)
+    with pytest.raises(SimulationError) as caught:
+        simulate(chain(3000.0, **interface), 1, method=method)
+    text = str(caught.value)
+    assert re.search(rf"interface 0 \('blade1', 'blade2'\): {what}, on the masses it joins "
+                     rf"makes a natural frequency of up to {re.escape(f'{omega:.3g}')} rad/s",
+                     text), text
+    assert "fixed step" not in text and "law returned" not in text
+
+
+def test_a_stiff_contact_that_steps_can_follow_passes_the_check():
+    """k_t = 1e12 N/m on 0.1 kg: ω ≈ 4.2e6 rad/s, a stable step of 7e-7 s against a
+    smallest step of 2e-16 s."""
+    scene = chain(3000.0, tangential_stiffness=1e12)
+    assert scales.check_scales(scene, 1, Adaptive(), at_rest(scene)) is None
+
+
+def test_a_non_finite_state_blames_the_fixed_step_only_in_a_run_on_a_fixed_grid():
+    def text(fixed_step):
+        return Status.NOT_FINITE.message("at t = 0 s", "", fixed_step=fixed_step)
+    assert "the fixed step is too large" in text(True)
+    assert "fixed step" not in text(False) and "law returned inf or NaN, or the scene" \
+        in text(False)
