@@ -13,8 +13,8 @@ import pytest
 
 import contact_laws as cl
 from shroudnet import (Adaptive, AntiPhase, Blade, BladeGroup, Excitation, Exponential,
-                       FixedStep, Interface, Scene, SimulationError, Substructure, results,
-                       scales, scenefile, simulate)
+                       FixedStep, Interface, Scene, SimulationError, Substructure, fe_files,
+                       read_matrices, results, scales, scenefile, simulate)
 from shroudnet.engine.codes import Status
 from shroudnet.methods import MOST_STEPS_PER_PERIOD
 from shroudnet.scenes import modal_packet, three_blade_paper
@@ -178,3 +178,59 @@ def test_a_non_finite_state_blames_the_fixed_step_only_in_a_run_on_a_fixed_grid(
     assert "the fixed step is too large" in text(True)
     assert "fixed step" not in text(False) and "law returned inf or NaN, or the scene" \
         in text(False)
+
+
+# ---- finite-element files ------------------------------------------------------------------
+
+@pytest.mark.parametrize("name, content, message", [
+    ("empty.mat", b"", r"'empty\.mat' is empty \(0 bytes\): .*empty\.mat holds no matrices"),
+    ("empty.npz", b"", r"'empty\.npz' is empty \(0 bytes\): .*empty\.npz holds no matrices"),
+    ("text.mat", b"M = [1 0; 0 1]\n" * 20, r"'text\.mat' is not a readable \.mat file"),
+    ("text.npz", b"M = [1 0; 0 1]\n" * 20,
+     r"'text\.npz' is not a \.npz archive \(numpy\.savez writes a zip archive of arrays\): "
+     r".*text\.npz holds something else"),
+])
+def test_a_matrix_file_that_holds_no_matrices_is_refused_naming_it(tmp_path, name, content,
+                                                                  message):
+    """Before: MatReadError, EOFError and "contains pickled (object) data", the first two
+    without the file's name."""
+    (tmp_path / name).write_bytes(content)
+    with pytest.raises(ValueError, match=message):
+        read_matrices(tmp_path / name)
+
+
+#: Triplets of a 2 × 2 stiffness beside a dense 2 × 2 mass, one array replaced.
+TRIPLETS = dict(K_rows=np.array([0, 1, 1]), K_cols=np.array([0, 0, 1]),
+                K_values=np.array([2.0, -1.0, 3.0]), K_shape=np.array([2, 2]))
+
+
+@pytest.mark.parametrize("replaced, message", [
+    (dict(K_rows=np.array([0, 5, 1])), r"K_rows must lie in \[0, 1\], got 5"),
+    (dict(K_cols=np.array([0, -1, 1])), r"K_cols must lie in \[0, 1\], got -1"),
+    (dict(K_rows=np.array([0.5, 1.0, 1.0])),
+     r"K_rows must hold whole numbers \(0-based indices\), got 0\.5 at position 0"),
+    (dict(K_shape=np.array([-2, 2])), r"K_shape must lie in \[1, inf\), got -2"),
+    (dict(K_shape=np.array([2.5, 2])), r"K_shape must hold whole numbers \(sizes\), got 2\.5"),
+    (dict(K_shape=np.array([2, 2, 2])), r"K_shape must hold two sizes \(rows, columns\)"),
+    (dict(K_shape=np.array([10**12, 10**12])),
+     r"K_shape = \[1000000000000, 1000000000000\]: a sparse matrix of 1,000,000,000,000 "
+     r"rows needs 7,451 GiB for its row index alone, more than the 16 GiB"),
+    (dict(K_values=np.array([2.0, -1.0])), r"K_values must hold one entry per row index of "
+                                           r"K_rows \(3\), got 2"),
+])
+def test_sparse_triplets_are_checked_array_by_array(tmp_path, monkeypatch, replaced, message):
+    """Before: numpy's and scipy's messages without the file (an index out of range, a
+    negative shape), a MemoryError for 7 TiB (a shape of 1e12), and a row index 0.5 cut to
+    0 without a word."""
+    monkeypatch.setattr(fe_files, "machine_memory", lambda: 16 * 2**30)
+    path = tmp_path / "blade.npz"
+    np.savez(path, M=np.eye(2), **(TRIPLETS | replaced))
+    with pytest.raises(ValueError, match=r"^blade\.npz\." + message):
+        read_matrices(path)
+
+
+def test_sparse_triplets_stored_as_whole_floats_read_as_their_integers(tmp_path):
+    np.savez(tmp_path / "blade.npz", M=np.eye(2),
+             **{k: v.astype(float) for k, v in TRIPLETS.items()})
+    np.testing.assert_array_equal(read_matrices(tmp_path / "blade.npz").stiffness.toarray(),
+                                  [[2.0, 0.0], [-1.0, 3.0]])
