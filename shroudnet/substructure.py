@@ -28,7 +28,7 @@ import numpy as np
 import scipy.linalg
 import scipy.sparse
 
-from contact_laws import check_real
+from contact_laws import check_array, check_real
 
 from .blade import ConstantFrequency, FrequencyTable, Southwell, frequency_of
 
@@ -473,12 +473,19 @@ class Substructure:
     def expand(self, q: np.ndarray) -> np.ndarray:
         """q_full = T q: the full model's degrees of freedom from those of a reduction.
 
-        ``q`` has n rows (a state, or one column per instant).
+        ``q`` has n rows (a state of n, or n × k: one column per instant); another length
+        is refused naming ``Substructure.expand.q``.
         """
         if self.basis is None:
             raise ValueError("Substructure.expand needs a basis: this substructure is not a "
                              "reduction (craig_bampton, modal_truncation)")
-        return self.basis @ np.asarray(q, dtype=float)
+        try:
+            columns = np.ndim(q) == 2
+        except ValueError:  # a ragged nesting, which check_array refuses
+            columns = False
+        q = check_array("Substructure.expand", "q", q,
+                        shape=(self.n_dofs, None) if columns else (self.n_dofs,))
+        return self.basis @ q
 
     def __repr__(self) -> str:
         extras = []

@@ -14,7 +14,8 @@ import pytest
 import contact_laws as cl
 from shroudnet import (Adaptive, AntiPhase, Blade, BladeGroup, Excitation, Exponential,
                        FixedStep, Interface, Scene, SimulationError, Substructure, fe_files,
-                       read_matrices, results, scales, scenefile, simulate)
+                       modal_truncation, read_matrices, results, scales, scenefile,
+                       simulate)
 from shroudnet.engine.codes import Status
 from shroudnet.methods import MOST_STEPS_PER_PERIOD
 from shroudnet.scenes import modal_packet, three_blade_paper
@@ -234,3 +235,19 @@ def test_sparse_triplets_stored_as_whole_floats_read_as_their_integers(tmp_path)
              **{k: v.astype(float) for k, v in TRIPLETS.items()})
     np.testing.assert_array_equal(read_matrices(tmp_path / "blade.npz").stiffness.toarray(),
                                   [[2.0, 0.0], [-1.0, 3.0]])
+
+
+# ---- reductions ----------------------------------------------------------------------------
+
+@pytest.mark.parametrize("q, shape", [(np.zeros(3), r"\(2\), got shape \(3,\)"),
+                                      (np.zeros((3, 5)), r"\(2×n\), got shape \(3, 5\)"),
+                                      (np.zeros((5, 2)), r"\(2×n\), got shape \(5, 2\)")])
+def test_a_reduction_expands_only_its_own_number_of_coordinates(q, shape):
+    """Before: numpy's matmul message about a gufunc signature's core dimension."""
+    reduced = modal_truncation(np.eye(4), np.diag([1.0, 2.0, 3.0, 4.0]) * 1e4, 2,
+                               points={"p": [[1.0, 0.0, 0.0, 0.0]]})
+    with pytest.raises(ValueError, match=r"^Substructure\.expand\.q must have shape " + shape):
+        reduced.expand(q)
+    states = np.array([[1.0, 2.0], [3.0, -1.0]])  # one column per instant
+    np.testing.assert_array_equal(reduced.expand(states),
+                                  np.column_stack([reduced.basis @ c for c in states.T]))
