@@ -12,13 +12,17 @@ import numpy as np
 import pytest
 
 import contact_laws as cl
-from shroudnet import (Adaptive, AntiPhase, Blade, BladeGroup, Excitation, Exponential,
-                       FixedStep, Interface, Scene, SimulationError, Substructure, fe_files,
-                       modal_truncation, read_matrices, results, scales, scenefile,
-                       simulate)
+from shroudnet import (Adaptive, AntiPhase, Bifurcation, Blade, BladeGroup, Excitation,
+                       Exponential, FixedStep, Interface, Scene, SimulationError, Substructure,
+                       continuation, fe_files, modal_truncation, read_matrices, results,
+                       scales, scenefile, simulate)
+from shroudnet.continuation import _check_born_here
 from shroudnet.engine.codes import Status
 from shroudnet.methods import MOST_STEPS_PER_PERIOD
+from shroudnet.parametric import same_scene
 from shroudnet.scenes import modal_packet, three_blade_paper
+
+from .test_file_validation import orbit
 
 
 @functools.cache
@@ -251,3 +255,47 @@ def test_a_reduction_expands_only_its_own_number_of_coordinates(q, shape):
     states = np.array([[1.0, 2.0], [3.0, -1.0]])  # one column per instant
     np.testing.assert_array_equal(reduced.expand(states),
                                   np.column_stack([reduced.basis @ c for c in states.T]))
+
+
+# ---- continuation from a bifurcation -------------------------------------------------------
+
+def doubling_at(gamma1: float, of: float | None = None) -> Bifurcation:
+    """A made-up period doubling at γ1 = ``gamma1`` whose orbit is one of the paper's group
+    at γ1 = ``of`` (default the same)."""
+    return Bifurcation(kind="period-doubling", parameter=gamma1,
+                       orbit=orbit(three_blade_paper(gamma1=gamma1 if of is None else of), 1.0),
+                       multiplier=complex(-1.0), index=0, bracket=(gamma1 - 0.1, gamma1 + 0.1))
+
+
+def paper_at(gamma1: float) -> Scene:
+    return three_blade_paper(gamma1=gamma1)
+
+
+@pytest.mark.parametrize("bifurcation, scene_at, message", [
+    (doubling_at(20.0), paper_at,
+     r"from_bifurcation lies at 20, outside the range start = 1 … stop = 3"),
+    (doubling_at(2.0, of=2.5), paper_at,
+     r"from_bifurcation is a bifurcation of another scene: its orbit's scene is not "
+     r"scene_at\(2\)"),
+    (doubling_at(2.0), lambda gamma1: modal_packet(gap=-gamma1 * 1e-6),
+     r"from_bifurcation is a bifurcation of another scene"),
+])
+def test_a_branch_starts_only_from_a_bifurcation_of_its_own_scene_and_range(
+        bifurcation, scene_at, message):
+    """Before: a corrector that ran and failed ("a corrector step of 13.3 leaves the
+    prediction's reach 1"; "simulate.initial must be (x0, v0)" from another scene's
+    state)."""
+    with pytest.raises(ValueError, match=r"^continuation\." + message):
+        continuation(scene_at, 1.0, 3.0, from_bifurcation=bifurcation)
+    _check_born_here(doubling_at(2.0), paper_at, 1.0, 3.0)  # its own: no error
+
+
+def test_the_same_scene_is_told_for_substructures_too():
+    """Their coordinates' layout is a record without an equality of its own: two equal
+    packets were taken for different ones, so a scene_at that ignored its value passed."""
+    assert same_scene(modal_packet(), modal_packet())
+    assert not same_scene(modal_packet(), modal_packet(speed_rpm=2801.0))
+    with pytest.raises(ValueError, match="scene_at returns the same scene for different "
+                                         "values"):
+        continuation(lambda p: modal_packet(), 2700.0, 2900.0)
+
