@@ -238,17 +238,21 @@ class Scene:
         frozen.graph = nx.freeze(self.group.graph.copy())
         object.__setattr__(self, "group", frozen)
         n_blades = len(frozen.blades)
-        if isinstance(self.excitation.phases, EngineOrderWave):
+        pattern = self.excitation.phases
+        # the pattern given, or the one a scene made these phases from for its own group
+        pattern = getattr(pattern, "engine_order_wave", None) or pattern
+        if isinstance(pattern, EngineOrderWave):
             sectors = frozen.graph.graph.get("sectors", n_blades)
-            if self.excitation.phases.blades_on_disc is None and _open_packet(frozen):
+            if pattern.blades_on_disc is None and _open_packet(frozen):
                 warnings.warn(
                     f"EngineOrderWave() takes this packet's {n_blades} blades for a whole "
                     f"disc of {n_blades} (ND = l mod {n_blades}); a packet on a disc of N "
                     "blades needs EngineOrderWave(blades_on_disc=N)", stacklevel=3)
-            wave = self.excitation.phases.wave(sectors, self.excitation.engine_order)
+            wave = pattern.wave(sectors, self.excitation.engine_order)
             if sectors != n_blades:  # every node of a sector meets the pattern together
                 wave = ExplicitPhases(tuple(np.repeat(wave.phases(sectors),
-                                                      n_blades // sectors)))
+                                                      n_blades // sectors)),
+                                      engine_order_wave=pattern)
             object.__setattr__(self, "excitation",
                                dataclasses.replace(self.excitation, phases=wave))
         self.excitation.blade_phases(n_blades)  # raises if the count or the ND is wrong

@@ -12,15 +12,15 @@ import numpy as np
 import pytest
 
 import contact_laws as cl
-from shroudnet import (Adaptive, AntiPhase, Bifurcation, Blade, BladeGroup, Excitation,
-                       Exponential, FixedStep, Interface, Scene, SimulationError, Substructure,
-                       continuation, fe_files, modal_truncation, read_matrices, results,
-                       scales, scenefile, simulate)
+from shroudnet import (Adaptive, AntiPhase, Bifurcation, Blade, BladeGroup, EngineOrderWave,
+                       Excitation, Exponential, FixedStep, Interface, Scene, SimulationError,
+                       Substructure, TravellingWave, continuation, fe_files, modal_truncation,
+                       read_matrices, results, scales, scenefile, simulate)
 from shroudnet.continuation import _check_born_here
 from shroudnet.engine.codes import Status
 from shroudnet.methods import MOST_STEPS_PER_PERIOD
 from shroudnet.parametric import same_scene
-from shroudnet.scenes import modal_packet, three_blade_paper
+from shroudnet.scenes import bladed_disc_24, modal_packet, three_blade_paper
 
 from .test_file_validation import orbit
 
@@ -299,3 +299,41 @@ def test_the_same_scene_is_told_for_substructures_too():
                                          "values"):
         continuation(lambda p: modal_packet(), 2700.0, 2900.0)
 
+
+# ---- an excitation taken from one scene for another group ----------------------------------
+
+def ring_of(n: int, excitation: Excitation) -> Scene:
+    shroud = Interface(gap=1e-5, angle=0.5, normal=cl.LinearSpring(stiffness=1e6),
+                       friction=cl.Coulomb(mu=0.3))
+    return Scene(group=BladeGroup.ring(n, Blade(mass=0.1, damping=1.0, stiffness=1e5), shroud),
+                 excitation=excitation, speed_rpm=3000.0)
+
+
+@pytest.mark.parametrize("engine_order, grown", [(5, 4), (8, 8), (3, 7)])
+def test_an_engine_order_wave_taken_from_one_ring_is_the_wave_on_another(engine_order, grown):
+    """φ_i = 2π (l mod N) i / N on the new ring of N, whatever ring the excitation came
+    from. Before: the first ring's TravellingWave, refused for its diameter (l = 5 from 6
+    blades to 4) or kept with the wrong one, silently (l = 8 from 6 blades to 8: ND 2 where
+    it is 0)."""
+    six = ring_of(6, Excitation(engine_order=engine_order, amplitudes=(0.0, 1.0),
+                                phases=EngineOrderWave()))
+    assert six.excitation.phases == TravellingWave(engine_order % 6)
+    other = ring_of(grown, six.excitation)
+    assert other.excitation.phases == TravellingWave(engine_order % grown)
+    expected = 2 * math.pi * (engine_order % grown) * np.arange(grown) / grown
+    np.testing.assert_allclose(other.arrays.phases, expected, rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match=r"TravellingWave\.nodal_diameter must be in"):
+        ring_of(4, Excitation(engine_order=1, amplitudes=(0.0, 1.0),
+                              phases=TravellingWave(5)))  # a wave given as such stays one
+
+
+def test_an_engine_order_wave_taken_from_one_bladed_disc_is_the_wave_on_another():
+    """Every node of sector s at 2π (l mod N) s / N. Before: "ExplicitPhases has 18 phases
+    for 24 blades", a pattern the user never gave."""
+    six, eight = bladed_disc_24(sectors=6), bladed_disc_24(sectors=8)
+    grown = Scene(group=eight.group, excitation=six.excitation, speed_rpm=3000.0)
+    sector = np.repeat(np.arange(8), 3)  # three nodes a sector, in sector order
+    expected = np.angle(np.exp(2j * math.pi * 6 * sector / 8))
+    np.testing.assert_allclose(np.angle(np.exp(1j * grown.arrays.phases)), expected,
+                               rtol=0, atol=1e-12)
+    np.testing.assert_allclose(grown.arrays.phases, eight.arrays.phases, rtol=0, atol=0)
