@@ -14,8 +14,9 @@ import pytest
 import contact_laws as cl
 from shroudnet import (Adaptive, AntiPhase, Bifurcation, Blade, BladeGroup, EngineOrderWave,
                        Excitation, Exponential, FixedStep, Interface, Scene, SimulationError,
-                       Substructure, TravellingWave, continuation, fe_files, modal_truncation,
-                       read_matrices, results, scales, scenefile, simulate)
+                       Substructure, TravellingWave, classify_section, continuation, fe_files,
+                       modal_truncation, read_matrices, results, scales, scenefile, simulate,
+                       zero_one_test)
 from shroudnet.continuation import _check_born_here
 from shroudnet.engine.codes import Status
 from shroudnet.methods import MOST_STEPS_PER_PERIOD
@@ -337,3 +338,21 @@ def test_an_engine_order_wave_taken_from_one_bladed_disc_is_the_wave_on_another(
     np.testing.assert_allclose(np.angle(np.exp(1j * grown.arrays.phases)), expected,
                                rtol=0, atol=1e-12)
     np.testing.assert_allclose(grown.arrays.phases, eight.arrays.phases, rtol=0, atol=0)
+
+
+# ---- readings of a run ---------------------------------------------------------------------
+
+@pytest.mark.parametrize("series", [[], np.arange(49.0)], ids=["empty", "49 points"])
+def test_the_zero_one_test_refuses_a_series_too_short_to_tell(series):
+    """Before: NaN, silently."""
+    with pytest.raises(ValueError, match=r"^zero_one_test\.series needs at least 50 entries, "
+                                         rf"got {len(series)}$"):
+        zero_one_test(series)
+
+
+def test_too_few_poincare_points_still_classify_as_undetermined():
+    """classify_section asks the 0–1 test only where it can tell."""
+    angles = 1.3 * np.arange(10.0)  # an irrational rotation: no period
+    kind = classify_section(np.column_stack([np.sin(angles), np.cos(angles)]))
+    assert kind.label == "undetermined" and math.isnan(kind.zero_one)
+    assert "10 Poincaré points are too few for the 0–1 test (it needs 50)" in str(kind)
