@@ -342,6 +342,27 @@ def _count(n: int | None, word: str) -> str:
     return word + "s" if n is None else f"{n} {word}" + ("s" if n != 1 else "")
 
 
+#: The names an event count may be kept under: the event kinds, as ``EventLog.counts``
+#: names them.
+_EVENT_KINDS = tuple(kind.name.lower() for kind in EventKind)
+
+
+def _is_event_counts(value) -> bool:
+    """Whether ``value`` is a table of counts by name (``_check_event_kinds`` checks the
+    names)."""
+    return isinstance(value, dict) and all(isinstance(k, str) and _is_count(n)
+                                           for k, n in value.items())
+
+
+def _check_event_kinds(path: Path, counts: dict, where: str = "meta.event_counts") -> None:
+    """Refuse a table of event counts that counts a kind of event there is not."""
+    unknown = [kind for kind in counts if kind not in _EVENT_KINDS]
+    if unknown:
+        raise ResultsError(f"{path}: {where} counts the unknown event kind "
+                           f"{', '.join(map(repr, unknown))}; the kinds are "
+                           f"{', '.join(_EVENT_KINDS)}")
+
+
 # ---- a simulation -------------------------------------------------------------------------
 
 _SIMULATION_HEADER = (
@@ -349,9 +370,7 @@ _SIMULATION_HEADER = (
     _Field("settings", "a JSON object", lambda v: isinstance(v, dict)),
     _Field("energy", "the energy ledger: " + ", ".join(f.name for f in dataclasses.fields(
         EnergyLedger)) + " [J]", _number_table(f.name for f in dataclasses.fields(EnergyLedger))),
-    _Field("event_counts", "a table of event counts by kind",
-           lambda v: isinstance(v, dict) and all(isinstance(k, str) and _is_count(n)
-                                                 for k, n in v.items())),
+    _Field("event_counts", "a table of event counts by kind", _is_event_counts),
     _Field("samples_per_period", "an int >= 1", lambda v: _is_count(v) and v >= 1),
     _Field("steps", "an int >= 0", _is_count),
 )
@@ -444,6 +463,8 @@ def load_arrays(path: str | Path) -> SimulationArrays:
     meta, arrays = _load_npz(path, kind="simulation")
     _checked(path, meta, _SIMULATION_HEADER)
     blades, interfaces = _document_counts(path, meta["scene"])
+    _check_event_kinds(path, meta["event_counts"])
+    _check_second_friction(path, meta["scene"], "friction_force_second" in arrays)
     # with substructures, whose coordinates the document does not count, x sets them
     sizes = {"sample": None, "column": blades, "interface": interfaces}
     words = {"column": "coordinate" if blades is None else "blade"}
@@ -477,6 +498,21 @@ def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
     if any(scenefile.is_substructure(entry) for entry in document["blades"]):
         return None, counts[1]
     return counts[0], counts[1]
+
+
+def _check_second_friction(path: Path, document: dict, held: bool) -> None:
+    """Refuse a file that holds ``friction_force_second`` where its scene has no elastic
+    contact (an interface with a ``tangential_stiffness``), or lacks it where it has one:
+    the friction along t₂ would read as 0 N or as whatever the array holds."""
+    elastic = any(isinstance(entry, dict) and "tangential_stiffness" in entry
+                  for entry in document["interfaces"])
+    if elastic and not held:
+        raise ResultsError(f"{path}: has no array 'friction_force_second', which a run of a "
+                           "scene with elastic contacts (tangential_stiffness) records")
+    if held and not elastic:
+        raise ResultsError(f"{path}: holds an array 'friction_force_second', which only a "
+                           "run of a scene with elastic contacts (tangential_stiffness) "
+                           "records, and its scene has none")
 
 
 def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation:
@@ -838,9 +874,7 @@ _BRANCH_HEADER = (
     _Field("kinds", "a list of bifurcation kinds",
            lambda v: isinstance(v, list) and all(isinstance(k, str) for k in v)),
     _Field("event_counts", "a list of tables of event counts by kind, one per orbit",
-           lambda v: isinstance(v, list) and all(
-               isinstance(c, dict) and all(isinstance(k, str) and _is_count(n)
-                                           for k, n in c.items()) for c in v)),
+           lambda v: isinstance(v, list) and all(_is_event_counts(c) for c in v)),
 )
 
 
@@ -933,6 +967,8 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
     if len(meta["event_counts"]) != total:
         raise ResultsError(f"{path}: meta.event_counts has {len(meta['event_counts'])} "
                            f"tables for {total} orbits")
+    for k, counts in enumerate(meta["event_counts"]):
+        _check_event_kinds(path, counts, f"meta.event_counts[{k}]")
     sizes = {"orbit": total, "bifurcation": len(kinds), "bracket end": 2,
              "energy term": len(dataclasses.fields(EnergyPerCycle))}
     values = _checked_arrays(path, arrays, _BRANCH_ARRAYS[:1], sizes)["parameter"]

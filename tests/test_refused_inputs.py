@@ -5,15 +5,18 @@ silently or hung, grouped by the door they come through."""
 from __future__ import annotations
 
 import functools
+import json
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import contact_laws as cl
-from shroudnet import (Adaptive, AntiPhase, Bifurcation, Blade, BladeGroup, EngineOrderWave,
-                       Excitation, Exponential, FixedStep, Interface, Scene, SimulationError,
+from shroudnet import (Adaptive, AntiPhase, Bifurcation, Blade, BladeGroup, Branch,
+                       EnergyLedger, EngineOrderWave, EventKind, EventLog, Excitation,
+                       Exponential, FixedStep, Interface, Scene, Simulation, SimulationError,
                        Substructure, TravellingWave, classify_section, continuation, fe_files,
                        modal_truncation, read_matrices, results, scales, scenefile, simulate,
                        zero_one_test)
@@ -21,7 +24,7 @@ from shroudnet.continuation import _check_born_here
 from shroudnet.engine.codes import Status
 from shroudnet.methods import MOST_STEPS_PER_PERIOD
 from shroudnet.parametric import same_scene
-from shroudnet.scenes import bladed_disc_24, modal_packet, three_blade_paper
+from shroudnet.scenes import bladed_disc_24, blade_pair, modal_packet, three_blade_paper
 
 from .test_file_validation import orbit
 
@@ -356,3 +359,75 @@ def test_too_few_poincare_points_still_classify_as_undetermined():
     kind = classify_section(np.column_stack([np.sin(angles), np.cos(angles)]))
     assert kind.label == "undetermined" and math.isnan(kind.zero_one)
     assert "10 Poincaré points are too few for the 0–1 test (it needs 50)" in str(kind)
+
+
+# ---- results files -------------------------------------------------------------------------
+
+def made_run(scene: Scene, second: bool) -> Simulation:
+    """Four periods of a scene, made up (nothing integrated): zeros of the right shapes,
+    with the friction along t₂ where ``second``."""
+    n, m, samples = scene.arrays.n_blades, scene.arrays.n_interfaces, 21
+    settings = {"method": "FixedStep", "steps_per_period": 10, "periods": 4,
+                "samples_per_period": 5, "event_tolerance": 1e-10,
+                "zeno": {"events": 200, "window": 1e-4}}
+    events = EventLog(time=np.zeros(0), interface=np.zeros(0, dtype=np.int64),
+                      kind=np.zeros(0, dtype=np.int64),
+                      counts={kind.name.lower(): 0 for kind in EventKind})
+    return Simulation(scene=scene, settings=settings,
+                      t=np.linspace(0.0, 4 * scene.excitation_period, samples),
+                      x=np.zeros((samples, n)), v=np.zeros((samples, n)),
+                      normal_force=np.zeros((samples, m)), friction_force=np.zeros((samples, m)),
+                      modes=np.zeros((samples, m), dtype=np.int8), events=events,
+                      energy=EnergyLedger(0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+                      work=np.zeros((samples, 5)), samples_per_period=5, steps=40,
+                      friction_force_second=np.full((samples, m), 7.0) if second else None)
+
+
+def rewritten(path: Path, change) -> Path:
+    """A copy of the results file ``path`` with ``change(arrays, meta)`` made to it."""
+    with np.load(path) as data:
+        arrays = {name: data[name] for name in data.files}
+    meta = json.loads(arrays["meta"].tobytes())
+    change(arrays, meta)
+    arrays["meta"] = np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8)
+    copy = path.with_name("changed.npz")
+    np.savez(copy, **arrays)
+    return copy
+
+
+@pytest.mark.parametrize("elastic", [False, True], ids=["rigid", "elastic"])
+def test_a_results_file_must_hold_the_friction_along_t2_exactly_where_its_scene_has_it(
+        tmp_path, elastic):
+    """A rigid contact's file with the array added read 7 N along t₂, an elastic one's with
+    it removed 0 N: each is refused by the array's name."""
+    scene = blade_pair(tangential_stiffness=1e6 if elastic else None)
+    path = results.save_simulation(tmp_path / "run.npz", made_run(scene, second=elastic))
+    assert results.load_simulation(path).friction_along(0, 2)[0] == (7.0 if elastic else 0.0)
+
+    def flip(arrays, meta):
+        if elastic:
+            del arrays["friction_force_second"]
+        else:
+            arrays["friction_force_second"] = np.full_like(arrays["friction_force"], 7.0)
+    message = ("has no array 'friction_force_second', which a run of a scene with elastic "
+               "contacts" if elastic else "holds an array 'friction_force_second', which "
+               "only a run of a scene with elastic contacts")
+    with pytest.raises(results.ResultsError, match=f"changed.npz: {message}"):
+        results.load_simulation(rewritten(path, flip))
+
+
+def test_a_results_file_that_counts_an_unknown_kind_of_event_is_refused(tmp_path):
+    path = results.save_simulation(tmp_path / "run.npz", made_run(blade_pair(), False))
+    changed = rewritten(path, lambda arrays, meta: meta["event_counts"].update(bogus=3))
+    with pytest.raises(results.ResultsError,
+                       match=r"changed\.npz: meta\.event_counts counts the unknown event kind "
+                             r"'bogus'; the kinds are closing, separation, sticking, reversal, "
+                             r"breakaway"):
+        results.load_simulation(changed)
+    branch = results.save_branch(tmp_path / "branch.npz", Branch(
+        parameter=np.array([1.0]), orbits=(orbit(three_blade_paper(gamma1=2.0), 1.0),),
+        bifurcations=(), periods=1, name="gamma1", ended="stop reached"))
+    changed = rewritten(branch, lambda arrays, meta: meta["event_counts"][0].update(slip=1))
+    with pytest.raises(results.ResultsError, match=r"meta\.event_counts\[0\] counts the "
+                                                   r"unknown event kind 'slip'"):
+        results.load_branch(changed)
