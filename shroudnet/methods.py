@@ -43,6 +43,13 @@ def check_event_tolerance(owner: str, value: object) -> float:
 TRANSIENT = 300
 
 
+def transient_for(periods: int) -> int:
+    """The transient [periods] to leave out of a run of ``periods`` periods that was given
+    none (a run saved without its settings): ``TRANSIENT`` where the run is longer, else
+    half of it, so that the steady response read after it has periods in it."""
+    return TRANSIENT if periods > TRANSIENT else periods // 2
+
+
 #: The most steps per excitation period of a method on a grid: a step of 10⁻⁶ periods.
 #: Finer steps buy nothing: the classical Runge–Kutta step's truncation error (h⁴, 10⁻²⁴
 #: of a period's motion) is then far below the rounding its steps add up, and the

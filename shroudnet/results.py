@@ -49,7 +49,7 @@ from .cycle import EnergyPerCycle
 from .engine.codes import EventKind, Mode
 from .orbits import PeriodicOrbit
 from .reporting import SweepWarning
-from .methods import SimulationSettings
+from .methods import SimulationSettings, transient_for
 from .simulation import EnergyLedger, EventLog, Simulation, Sweep, SweepPoint
 from .stability import state_parts, state_size
 
@@ -581,7 +581,12 @@ def _own_law_names(document) -> list[str]:
 
 
 def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefile.RunSettings:
-    """The run settings saved with a simulation or a branch (the defaults if none were)."""
+    """The run settings saved with a simulation or a branch (the defaults if none were).
+
+    A simulation saved without them gets the defaults fitted to it: its own periods, and
+    the transient ``transient_for`` them (``TRANSIENT``, or half a shorter run), so that
+    what reads its steady response after the transient has periods left to read.
+    """
     path = Path(path)
     meta = _load_npz(path)[0]
     if meta.get("kind") == "branch":
@@ -589,7 +594,10 @@ def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefi
         scenes = meta["scenes"]
         return _scene(path, scenes if isinstance(scenes, dict) else scenes[0], laws).run
     data = load_arrays(path)
-    return _scene(data.path, data.document, laws).run
+    run = _scene(data.path, data.document, laws).run
+    if "run" in data.document:
+        return run
+    return dataclasses.replace(run, periods=data.periods, transient=transient_for(data.periods))
 
 
 # ---- a sweep, point by point --------------------------------------------------------------

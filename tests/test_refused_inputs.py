@@ -22,7 +22,8 @@ from shroudnet import (Adaptive, AntiPhase, Bifurcation, Blade, BladeGroup, Bran
                        zero_one_test)
 from shroudnet.continuation import _check_born_here
 from shroudnet.engine.codes import Status
-from shroudnet.methods import MOST_STEPS_PER_PERIOD
+from shroudnet.cli import main
+from shroudnet.methods import MOST_STEPS_PER_PERIOD, transient_for
 from shroudnet.parametric import same_scene
 from shroudnet.scenes import bladed_disc_24, blade_pair, modal_packet, three_blade_paper
 
@@ -431,3 +432,23 @@ def test_a_results_file_that_counts_an_unknown_kind_of_event_is_refused(tmp_path
     with pytest.raises(results.ResultsError, match=r"meta\.event_counts\[0\] counts the "
                                                    r"unknown event kind 'slip'"):
         results.load_branch(changed)
+
+
+# ---- the command line ----------------------------------------------------------------------
+
+def test_a_short_run_saved_without_its_settings_plots(tmp_path):
+    """Its settings are the defaults fitted to it: a transient of 300 periods in a file of
+    2 was refused ("Simulation.poincare.skip must be a whole number of periods in [0, 2)
+    ..., got 300")."""
+    path = results.save_simulation(tmp_path / "run.npz", paper_run())
+    settings = results.load_run_settings(path)
+    assert (settings.periods, settings.transient) == (2, 1)
+    assert main(["plot", str(path)]) == 0
+    assert (tmp_path / "run.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize("periods, transient", [(1, 0), (5, 2), (300, 150), (301, 300),
+                                                (10_000, 300)])
+def test_the_transient_given_to_a_run_without_one_leaves_it_periods_to_read(periods,
+                                                                             transient):
+    assert transient_for(periods) == transient < periods
