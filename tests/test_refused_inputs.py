@@ -452,3 +452,20 @@ def test_a_short_run_saved_without_its_settings_plots(tmp_path):
 def test_the_transient_given_to_a_run_without_one_leaves_it_periods_to_read(periods,
                                                                              transient):
     assert transient_for(periods) == transient < periods
+
+
+# ---- a state given as an array -------------------------------------------------------------
+
+def test_a_start_given_as_a_two_row_array_is_taken_as_the_same_nested_list():
+    """Before: the nested list ran and the 2 × 3 array was refused."""
+    start = [[1e-5, 0.0, -1e-5], [0.0, 0.1, 0.0]]
+    scene = three_blade_paper()
+    as_list = simulate(scene, 1, samples_per_period=10, initial=start)
+    as_array = simulate(scene, 1, samples_per_period=10, initial=np.array(start))
+    np.testing.assert_array_equal(as_array.x, as_list.x)
+    np.testing.assert_array_equal(as_array.x[0], start[0])
+    np.testing.assert_array_equal(as_array.v[0], start[1])
+    for wrong in (np.zeros((3, 3)), np.zeros(6)):
+        with pytest.raises(ValueError, match=r"^simulate\.initial must be \(x0, v0\), a pair "
+                                             r"of 3 displacements"):
+            simulate(scene, 1, initial=wrong)
