@@ -469,3 +469,67 @@ def test_a_start_given_as_a_two_row_array_is_taken_as_the_same_nested_list():
         with pytest.raises(ValueError, match=r"^simulate\.initial must be \(x0, v0\), a pair "
                                              r"of 3 displacements"):
             simulate(scene, 1, initial=wrong)
+
+
+# ---- a blade held by contacts alone --------------------------------------------------------
+
+FREE = Blade(mass=0.1, damping=1.0, stiffness=0.0)  # no spring to ground
+SPRUNG = Blade(mass=0.1, damping=1.0, stiffness=1e5)
+
+
+def stop(angle: float = 0.5, normal=None) -> Interface:
+    return Interface(gap=1e-5, angle=angle, normal=normal or cl.LinearSpring(stiffness=1e6),
+                     friction=cl.Coulomb(mu=0.3))
+
+
+def scene_of(group: BladeGroup, q0: float = 0.0) -> Scene:
+    blades = len(group.blades)
+    return Scene(group=group, speed_rpm=3000.0, excitation=Excitation(
+        engine_order=1, amplitudes=(q0, 1.0), phases=[0.0] * blades))
+
+
+def one_stop() -> BladeGroup:
+    """A free blade that touches a wall on its +x side."""
+    return BladeGroup().add_fixed("wall").add_blade("b", FREE).connect("b", "wall", stop())
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: scene_of(one_stop()),
+     r"blades \['b'\] are held only by contacts that open, \[\('b', 'wall'\)\], which stop "
+     r"them moving \+x: .* their mean force, 0 N, does not press them"),
+    (lambda: scene_of(one_stop(), q0=-2.0), r".*stop them moving \+x: .* mean force, -2 N"),
+    (lambda: scene_of(BladeGroup().add_fixed("wall").add_blade("b", FREE).connect(
+        "wall", "b", stop())), r".*\[\('wall', 'b'\)\], which stop them moving −x"),
+    # a chain of two free blades on one wall: a drifts off b, and b with it off the wall
+    (lambda: scene_of(one_stop().add_blade("a", FREE).connect("a", "b", stop())),
+     r"blades \['a'\] are held only by contacts that open, \[\('a', 'b'\)\], which stop "
+     r"them moving \+x"),
+    # a contact at α = 0 has no normal force along x
+    (lambda: scene_of(BladeGroup().add_fixed("wall").add_blade("b", FREE).connect(
+        "b", "wall", stop(angle=0.0))),
+     r"blades \['b'\] are held along x by no spring, no Coupling and no contact that can "
+     r"stop them"),
+])
+def test_blades_that_contacts_hold_one_way_only_are_refused(make, message):
+    """Before: the scene was taken, and the blade drifted off after its first impact."""
+    with pytest.raises(ValueError, match=r"^Scene\.group: " + message):
+        make()
+
+
+@pytest.mark.parametrize("make", [
+    # pressed onto its stop by its mean force, as a ball onto a table
+    lambda: scene_of(one_stop(), q0=2.0),
+    # a stop on each side
+    lambda: scene_of(one_stop().add_fixed("other").connect("other", "b", stop())),
+    # two free blades between two walls: each holds the other
+    lambda: scene_of(one_stop().add_blade("a", FREE).connect("a", "b", stop())
+                     .add_fixed("left").connect("left", "a", stop())),
+    # a free blade pressed on a sprung one from the +x side, and held by a wall beyond it
+    lambda: scene_of(BladeGroup().add_blade("a", SPRUNG).add_blade("b", FREE)
+                     .add_fixed("wall").connect("a", "b", stop()).connect("b", "wall", stop())),
+    # a contact that never opens holds both ways (a damper pressed on its platform)
+    lambda: scene_of(BladeGroup().add_fixed("wall").add_blade("b", FREE).connect(
+        "b", "wall", stop(normal=cl.ConstantLoad(force=10.0)))),
+])
+def test_blades_held_both_ways_or_pressed_onto_their_stop_are_taken(make):
+    assert isinstance(make(), Scene)
