@@ -91,11 +91,15 @@ _LEFTOVER = re.compile(r"(?:\d+-[a-z0-9_]+|[a-z0-9_]{8})" + re.escape(PART))
 
 
 def remove_leftovers(path: str | os.PathLike) -> None:
-    """Delete the temporary files of unfinished writes of ``path`` whose process has gone."""
+    """Delete the temporary files of unfinished writes of ``path`` whose process has gone
+    (one that cannot be deleted is left: it is litter, and no reason not to write)."""
     for leftover in leftovers(path):
         writer = _writer(leftover)
         if writer is None or not _running(writer):
-            leftover.unlink(missing_ok=True)
+            try:
+                leftover.unlink(missing_ok=True)
+            except OSError:
+                pass
 
 
 def _writer(leftover: Path) -> int | None:

@@ -205,3 +205,18 @@ def test_a_simulation_file_on_a_full_disc_leaves_the_old_one(tmp_path, monkeypat
     with pytest.raises(results.ResultsError, match=f"cannot save {path}: No space left"):
         results.save_simulation(path, sim)
     assert path.read_bytes() == old and others(tmp_path, path) == []
+
+
+def test_a_leftover_that_cannot_be_deleted_does_not_stop_the_write(tmp_path, monkeypatch):
+    path = tmp_path / "run.npz"
+    leftover = tmp_path / ".run.npz.k2j4_x9q.part"
+    leftover.write_bytes(b"cut short")
+    unlink = Path.unlink
+
+    def refuse(self, missing_ok=False):
+        if self == leftover:
+            raise PermissionError(errno.EACCES, "Permission denied")
+        unlink(self, missing_ok=missing_ok)
+    monkeypatch.setattr(Path, "unlink", refuse)
+    atomic.write(path, lambda file: file.write(b"whole"))
+    assert path.read_bytes() == b"whole" and leftover.exists()
