@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from contact_laws import check_array, check_int, check_real
+from contact_laws import check_array, check_instance, check_int, check_real
 
 #: Largest engine order accepted: l counts the vanes, struts or burners a blade passes per
 #: revolution, a few hundred at most in any turbomachine; beyond 1000 the excitation
@@ -63,6 +63,7 @@ class TravellingWave:
         object.__setattr__(self, "nodal_diameter",
                            check_int("TravellingWave", "nodal_diameter", self.nodal_diameter,
                                      low=0))
+        _check_source("TravellingWave", self.engine_order_wave)
 
     def phases(self, n_blades: int) -> np.ndarray:
         """φ_i = 2π ND i / N [rad] for the N = ``n_blades`` blades by position."""
@@ -146,6 +147,7 @@ class ExplicitPhases:
         values = tuple(check_real("ExplicitPhases", "values", v, unit="rad")
                        for v in self.values)
         object.__setattr__(self, "values", values)
+        _check_source("ExplicitPhases", self.engine_order_wave)
 
     def phases(self, n_blades: int) -> np.ndarray:
         """The given φ_i [rad]; raises unless there is one per blade."""
@@ -154,6 +156,12 @@ class ExplicitPhases:
             raise ValueError(f"ExplicitPhases has {len(self.values)} phases for "
                              f"{n_blades} blades")
         return np.array(self.values)
+
+
+def _check_source(owner: str, pattern: object) -> None:
+    """Refuse an ``engine_order_wave`` that is neither None nor an ``EngineOrderWave``."""
+    check_instance(owner, "engine_order_wave", pattern, EngineOrderWave, optional=True,
+                   expected="None or the EngineOrderWave(...) these phases stand for")
 
 
 PhasePattern = AntiPhase | TravellingWave | EngineOrderWave | ExplicitPhases
