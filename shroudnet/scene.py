@@ -483,7 +483,7 @@ def check_one_sided(group: BladeGroup, speed_rpm: float, mean_force: float) -> N
     both, one_sided = _edges_by_hold(group)
     parts = _parts(group, both)
     held = {part: {1, -1} if _anchored(group, part, both, speed_rpm) else set()
-            for part in set(parts.values())}
+            for part in dict.fromkeys(parts[name] for name in group.blades)}  # in order
     changed = True
     while changed:
         changed = False
@@ -502,10 +502,12 @@ def check_one_sided(group: BladeGroup, speed_rpm: float, mean_force: float) -> N
                 directions and pressing * next(iter(directions)) > 0.0):
             continue
         names = sorted(map(str, part))
-        contacts = [(left, right) for left, right in one_sided
+        crossing = [(left, right) for left, right in one_sided
                     if (left in part) != (right in part)]
         if directions:
             way = "+x" if 1 in directions else "−x"
+            contacts = [(left, right) for left, right in crossing
+                        if (left in part) == (1 in directions)]  # those that stop it
             raise ValueError(
                 f"Scene.group: blades {names} are held only by contacts that open, "
                 f"{contacts}, which stop them moving {way}: nothing holds them the other way "
@@ -516,7 +518,7 @@ def check_one_sided(group: BladeGroup, speed_rpm: float, mean_force: float) -> N
                 "(Excitation.amplitudes q0) that presses it onto the contact.")
         raise ValueError(
             f"Scene.group: blades {names} are held along x by no spring, no Coupling and "
-            f"no contact that can stop them (their contacts {contacts} are at a contact "
+            f"no contact that can stop them (their contacts {crossing} are at a contact "
             "angle of 0, or push on blades that nothing holds either): they can drift "
             "away together. Give one of them a stiffness, or connect one to a fixed node "
             "by a Coupling or an Interface at an angle above 0.")

@@ -144,7 +144,7 @@ def save_sweep_point(folder: Path, attempt: int) -> Path:
     return folder / "sweep" / "points" / "00000.npz"
 
 
-def save_figure(folder: Path, attempt: int) -> Path:
+def save_a_figure(folder: Path, attempt: int) -> Path:
     from matplotlib.figure import Figure
 
     from shroudnet.figures import save_figure
@@ -164,7 +164,7 @@ WRITERS = {
     "scene file": (save_scene, atomic.WriteError),
     "branch": (save_branch, results.ResultsError),
     "sweep point": (save_sweep_point, results.ResultsError),
-    "figure": (save_figure, atomic.WriteError),
+    "figure": (save_a_figure, atomic.WriteError),
 }
 
 

@@ -500,10 +500,10 @@ def one_stop() -> BladeGroup:
     (lambda: scene_of(one_stop(), q0=-2.0), r".*stop them moving \+x: .* mean force, -2 N"),
     (lambda: scene_of(BladeGroup().add_fixed("wall").add_blade("b", FREE).connect(
         "wall", "b", stop())), r".*\[\('wall', 'b'\)\], which stop them moving −x"),
-    # a chain of two free blades on one wall: a drifts off b, and b with it off the wall
+    # a chain of two free blades on one wall: b drifts off it, pushing a along
     (lambda: scene_of(one_stop().add_blade("a", FREE).connect("a", "b", stop())),
-     r"blades \['a'\] are held only by contacts that open, \[\('a', 'b'\)\], which stop "
-     r"them moving \+x"),
+     r"blades \['b'\] are held only by contacts that open, \[\('b', 'wall'\)\], which "
+     r"stop them moving \+x"),
     # a contact at α = 0 has no normal force along x
     (lambda: scene_of(BladeGroup().add_fixed("wall").add_blade("b", FREE).connect(
         "b", "wall", stop(angle=0.0))),
