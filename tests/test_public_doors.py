@@ -285,7 +285,6 @@ ONLY_ARGUMENTS = {
 
 #: Doors whose result may hold NaN by their documented contract.
 DOCUMENTED_NAN = {
-    "zero_one_test": "K is NaN below 50 points, as its docstring says",
     **{f"contact_laws.check_{kind}": "returns the value it checks as given: its type, "
                                      "callability or membership is all it checks"
        for kind in ("callable", "calls_with", "choice", "instance", "sequence")},

@@ -105,16 +105,16 @@ def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
 
     ``series`` is an observable sampled once per forcing period (a Poincaré coordinate).
     K is near 1 for chaotic dynamics and near 0 for periodic or quasi-periodic ones. It needs
-    a few hundred points; below 50 it returns NaN. The random frequencies c ∈ (π/5, 4π/5)
-    come from ``seed``, so the result is reproducible.
+    a few hundred points; fewer than ``MIN_ZERO_ONE_POINTS`` (50), from which it could not
+    tell, are refused (a ValueError naming ``zero_one_test.series``). The random
+    frequencies c ∈ (π/5, 4π/5) come from ``seed``, so the result is reproducible.
     """
-    phi = check_array("zero_one_test", "series", series, shape=(None,))
+    phi = check_array("zero_one_test", "series", series, shape=(None,),
+                      min_length=MIN_ZERO_ONE_POINTS)
     n_frequencies = check_int("zero_one_test", "n_frequencies", n_frequencies, low=1,
                               most=100_000)
     seed = check_int("zero_one_test", "seed", seed, low=0)
     n = len(phi)
-    if n < 50:
-        return math.nan
     spread = np.ptp(phi)
     if spread == 0.0:
         return 0.0
@@ -166,7 +166,7 @@ def classify_section(points, *, scale=None, tolerance: float = REPEAT_TOLERANCE,
     if period is not None:
         return Classification(f"p{period}", period, len(points), tolerance, mismatch, 0.0,
                               broadband)
-    k = zero_one_test(points[:, 0])
+    k = zero_one_test(points[:, 0]) if len(points) >= MIN_ZERO_ONE_POINTS else math.nan
     if exponent is not None:
         label, reason = exponent_label(exponent)
         return Classification(label, None, len(points), tolerance, mismatch, k, broadband,

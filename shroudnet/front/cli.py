@@ -648,12 +648,10 @@ def _point_peaks(sim, skip: int) -> list[tuple]:
 
 
 def _save_response(sim, settings, path: Path) -> Path:
-    from .figures import response_panel  # matplotlib only when a figure is drawn
+    from .figures import response_panel, save_figure  # matplotlib only when one is drawn
     figure = response_panel(sim, settings.blade, skip=settings.transient,
                             title=f"{path.stem}: {_about(sim.scene, settings.blade)}")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=110)
-    return path
+    return save_figure(figure, path)
 
 
 def _sweep(args) -> int:
@@ -765,12 +763,11 @@ def _number(text: str, token: str, option: str) -> float:
 
 
 def _save_diagram(result, path: Path) -> Path:
-    from .figures import bifurcation_diagram
+    from .figures import bifurcation_diagram, save_figure
     target = result.blade
     about = f"{target[0]}.{target[1]}[{target[2]}]" if isinstance(target, tuple) \
         else f"blade {target}"  # a point's component, as ``_sweep`` names it
-    bifurcation_diagram(result, title=f"{result.parameter}: {about}").savefig(path, dpi=110)
-    return path
+    return save_figure(bifurcation_diagram(result, title=f"{result.parameter}: {about}"), path)
 
 
 def _continue(args) -> int:
@@ -832,7 +829,7 @@ TABULATED = ("open", "stuck")
 
 
 def _modes(args) -> int:
-    from .figures import zzenf_diagram
+    from .figures import save_figure, zzenf_diagram
     loaded = _load_scene(args.scene, _import_laws(args.laws))
     scene = loaded.scene
     _check_folder(args.output, "--output")
@@ -854,16 +851,17 @@ def _modes(args) -> int:
                  for c in TABULATED]
         print(f"ND {nd:3d}  {cells[0]}  |  {cells[1]}")
     sectors = both["open"].sectors
-    zzenf_diagram({f"interfaces {c}": both[c] for c in TABULATED}, speed_rpm=scene.speed_rpm,
-                  engine_orders=range(1, sectors // 2 + 1), families=families,
-                  title=f"{args.scene.stem}: frequency against nodal diameter").savefig(
-        path, dpi=110)
+    save_figure(zzenf_diagram({f"interfaces {c}": both[c] for c in TABULATED},
+                              speed_rpm=scene.speed_rpm,
+                              engine_orders=range(1, sectors // 2 + 1), families=families,
+                              title=f"{args.scene.stem}: frequency against nodal diameter"),
+                path)
     print(f"saved    {path}")
     return 0
 
 
 def _mistuning(args) -> int:
-    from .figures import mistuning_histogram
+    from .figures import mistuning_histogram, save_figure
     loaded = _load_scene(args.scene, _import_laws(args.laws))
     speeds = _values(args.speeds, "--speeds")
     _check_folder(args.output, "--output")
@@ -881,7 +879,7 @@ def _mistuning(args) -> int:
           f"{np.percentile(factors, 95):.4f}, largest {factors.max():.4f} (pattern "
           f"{study.worst}); Whitehead's bound ½(1 + √{study.sectors}) = "
           f"{study.whitehead_bound:.4f}")
-    mistuning_histogram(study, title=f"{args.scene.stem}: mistuning").savefig(path, dpi=110)
+    save_figure(mistuning_histogram(study, title=f"{args.scene.stem}: mistuning"), path)
     print(f"saved    {path}")
     return 0
 
@@ -898,11 +896,10 @@ def _branch_progress(name: str):
 
 
 def _save_branch_figure(branch, blade, path: Path) -> Path:
-    from .figures import forced_response
-    forced_response({f"period {branch.periods}": branch}, blade,
-                    title=f"{branch.name}: {_about(branch.orbits[0].scene, blade)}"
-                    ).savefig(path, dpi=110)
-    return path
+    from .figures import forced_response, save_figure
+    return save_figure(forced_response(
+        {f"period {branch.periods}": branch}, blade,
+        title=f"{branch.name}: {_about(branch.orbits[0].scene, blade)}"), path)
 
 
 def _plot(args) -> int:

@@ -9,16 +9,18 @@ figure of several panels), and returns what it drew on, so that figures compose:
     left, right = figure.subplots(1, 2)
     campbell_diagram(campbell(paper_frequency_model(), range(0, 9001, 100)), ax=left)
     hysteresis_loops({"blade1–blade2": hysteresis_loop(sim, 0, skip=50)}, ax=right)
-    figure.savefig("composed.png")
+    save_figure(figure, "composed.png")
 
 Given no Axes, a function draws on a new ``Figure`` of its own size and returns that, as
-it always has, leaving saving to the caller (``fig.savefig(path)``).
+it always has, leaving saving to the caller: ``save_figure(fig, path)`` writes it whole or
+not at all (``fig.savefig(path)`` would leave half an image where it is interrupted).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Hashable, Mapping, Sequence
+from pathlib import Path
 
 import numpy as np
 from matplotlib.axes import Axes
@@ -27,6 +29,7 @@ from matplotlib.ticker import NullFormatter
 
 from contact_laws import check_instance, check_sequence
 
+from .. import atomic
 from ..analysis.readings import Campbell, HysteresisLoop, classify, spectrum
 from ..engine.codes import Mode
 from ..linear.modes import GroupCampbell, LinearModes, excited_diameter
@@ -36,6 +39,14 @@ from ..steady.orbits import PeriodicOrbit
 from ..studies.mistuning import MistuningStudy
 from ..studies.precision import Study
 from ..studies.sweep import Sweep
+
+
+def save_figure(figure: Figure, path, *, dpi: float = 110) -> Path:
+    """Write ``figure`` to the image file ``path`` (its format from the suffix: ``.png``,
+    ``.pdf``, ``.svg``, ...) whole or not at all (``atomic.write``); returns the path."""
+    path = Path(path)
+    kind = path.suffix[1:].lower() or None  # None: matplotlib's default format
+    return atomic.write(path, lambda file: figure.savefig(file, format=kind, dpi=dpi))
 
 
 def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: str = "",

@@ -14,8 +14,9 @@ folder of an interrupted sweep, so that it runs only the points still missing
 finished one. Each point file carries the fingerprint of the sweep it belongs to (a hash
 of ``sweep.json``'s content).
 
-Every file is written to a temporary name in its folder and renamed into place, so a run
-killed at any moment leaves either the whole file or none. A file damaged anyway (cut
+Every file is written to a temporary name in its folder and renamed into place
+(``atomic.write``), so a run killed at any moment leaves either the whole file or none, and
+a full disc leaves the file that was there as it was. A file damaged anyway (cut
 short by a full disk, a flipped bit, edited by hand) raises ``ResultsError`` naming the
 file and what is wrong with it, never a bare zip, JSON or numpy error. Resuming a sweep
 computes a damaged point again, with a notice; a damaged ``sweep.json`` is written again
@@ -30,9 +31,7 @@ import functools
 import hashlib
 import json
 import math
-import os
 import re
-import tempfile
 import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass
@@ -41,10 +40,13 @@ from pathlib import Path
 
 import numpy as np
 
+from contact_laws import check_instance
+
+from .. import atomic
 from ..analysis.stability import state_parts, state_size
 from ..engine.codes import EventKind, Mode
 from ..run.classification import Classification
-from ..run.methods import SimulationSettings
+from ..run.methods import SimulationSettings, transient_for
 from ..run.reporting import SweepWarning
 from ..run.simulation import EnergyLedger, EventLog, Simulation, Sweep, SweepPoint
 from ..steady.continuation import Bifurcation, Branch
@@ -64,30 +66,22 @@ class ResultsError(ValueError):
 # ---- writing and reading one file ---------------------------------------------------------
 
 def atomic_write(path: str | Path, write: Callable[[object], None]) -> Path:
-    """Call ``write(file)`` on a temporary file beside ``path``, then rename it to ``path``.
+    """Call ``write(file)`` on a temporary file beside ``path``, then rename it to ``path``
+    (``atomic.write``).
 
-    Raises ``ResultsError`` when ``path`` is a folder, when a part of its folder is a file,
-    or when the folder cannot be written.
+    Raises ``ResultsError`` naming ``path`` when it is a folder, when a part of its folder
+    is a file, or when the system refuses the write (a folder that cannot be written, a
+    full disc); the file that was there before is then left as it was.
     """
     path = Path(path)
     _make_folder(path.parent, f"cannot save {path}")
     if path.is_dir():
         raise ResultsError(f"{path}: is a folder; give the name of a file to save to")
     try:
-        handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
-                                             suffix=".part")
-    except OSError as error:
-        raise ResultsError(f"cannot save {path}: {error.strerror or error}") from None
-    try:
-        with os.fdopen(handle, "wb") as file:
-            write(file)
-            file.flush()
-            os.fsync(file.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    return path
+        return atomic.write(path, write)
+    except atomic.WriteError as error:
+        raise ResultsError(f"cannot save {path}: {error.strerror}; nothing was changed "
+                           "there") from None
 
 
 def _make_folder(folder: Path, doing: str) -> None:
@@ -349,6 +343,27 @@ def _count(n: int | None, word: str) -> str:
     return word + "s" if n is None else f"{n} {word}" + ("s" if n != 1 else "")
 
 
+#: The names an event count may be kept under: the event kinds, as ``EventLog.counts``
+#: names them.
+_EVENT_KINDS = tuple(kind.name.lower() for kind in EventKind)
+
+
+def _is_event_counts(value) -> bool:
+    """Whether ``value`` is a table of counts by name (``_check_event_kinds`` checks the
+    names)."""
+    return isinstance(value, dict) and all(isinstance(k, str) and _is_count(n)
+                                           for k, n in value.items())
+
+
+def _check_event_kinds(path: Path, counts: dict, where: str = "meta.event_counts") -> None:
+    """Refuse a table of event counts that counts a kind of event there is not."""
+    unknown = [kind for kind in counts if kind not in _EVENT_KINDS]
+    if unknown:
+        raise ResultsError(f"{path}: {where} counts the unknown event kind "
+                           f"{', '.join(map(repr, unknown))}; the kinds are "
+                           f"{', '.join(_EVENT_KINDS)}")
+
+
 # ---- a simulation -------------------------------------------------------------------------
 
 _SIMULATION_HEADER = (
@@ -356,9 +371,7 @@ _SIMULATION_HEADER = (
     _Field("settings", "a JSON object", lambda v: isinstance(v, dict)),
     _Field("energy", "the energy ledger: " + ", ".join(f.name for f in dataclasses.fields(
         EnergyLedger)) + " [J]", _number_table(f.name for f in dataclasses.fields(EnergyLedger))),
-    _Field("event_counts", "a table of event counts by kind",
-           lambda v: isinstance(v, dict) and all(isinstance(k, str) and _is_count(n)
-                                                 for k, n in v.items())),
+    _Field("event_counts", "a table of event counts by kind", _is_event_counts),
     _Field("samples_per_period", "an int >= 1", lambda v: _is_count(v) and v >= 1),
     _Field("steps", "an int >= 0", _is_count),
 )
@@ -421,6 +434,10 @@ def save_simulation(path: str | Path, sim: Simulation,
 
     Raises ``ResultsError`` when ``path`` cannot be written (a folder, or under a file).
     """
+    check_instance("results.save_simulation", "sim", sim, Simulation,
+                   expected="a shroudnet.Simulation (what simulate returns)")
+    check_instance("results.save_simulation", "run", run, scenefile.RunSettings,
+                   optional=True, expected="scenefile.RunSettings(...) or None")
     meta = {"format": FORMAT, "kind": "simulation",
             "scene": scenefile.document(sim.scene, run), "settings": sim.settings.as_dict(),
             "energy": asdict(sim.energy), "event_counts": sim.events.counts,
@@ -447,6 +464,8 @@ def load_arrays(path: str | Path) -> SimulationArrays:
     meta, arrays = _load_npz(path, kind="simulation")
     _checked(path, meta, _SIMULATION_HEADER)
     blades, interfaces = _document_counts(path, meta["scene"])
+    _check_event_kinds(path, meta["event_counts"])
+    _check_second_friction(path, meta["scene"], "friction_force_second" in arrays)
     # with substructures, whose coordinates the document does not count, x sets them
     sizes = {"sample": None, "column": blades, "interface": interfaces}
     words = {"column": "coordinate" if blades is None else "blade"}
@@ -480,6 +499,21 @@ def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
     if any(scenefile.is_substructure(entry) for entry in document["blades"]):
         return None, counts[1]
     return counts[0], counts[1]
+
+
+def _check_second_friction(path: Path, document: dict, held: bool) -> None:
+    """Refuse a file that holds ``friction_force_second`` where its scene has no elastic
+    contact (an interface with a ``tangential_stiffness``), or lacks it where it has one:
+    the friction along t₂ would read as 0 N or as whatever the array holds."""
+    elastic = any(isinstance(entry, dict) and "tangential_stiffness" in entry
+                  for entry in document["interfaces"])
+    if elastic and not held:
+        raise ResultsError(f"{path}: has no array 'friction_force_second', which a run of a "
+                           "scene with elastic contacts (tangential_stiffness) records")
+    if held and not elastic:
+        raise ResultsError(f"{path}: holds an array 'friction_force_second', which only a "
+                           "run of a scene with elastic contacts (tangential_stiffness) "
+                           "records, and its scene has none")
 
 
 def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation:
@@ -548,7 +582,12 @@ def _own_law_names(document) -> list[str]:
 
 
 def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefile.RunSettings:
-    """The run settings saved with a simulation or a branch (the defaults if none were)."""
+    """The run settings saved with a simulation or a branch (the defaults if none were).
+
+    A simulation saved without them gets the defaults fitted to it: its own periods, and
+    the transient ``transient_for`` them (``TRANSIENT``, or half a shorter run), so that
+    what reads its steady response after the transient has periods left to read.
+    """
     path = Path(path)
     meta = _load_npz(path)[0]
     if meta.get("kind") == "branch":
@@ -556,7 +595,10 @@ def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefi
         scenes = meta["scenes"]
         return _scene(path, scenes if isinstance(scenes, dict) else scenes[0], laws).run
     data = load_arrays(path)
-    return _scene(data.path, data.document, laws).run
+    run = _scene(data.path, data.document, laws).run
+    if "run" in data.document:
+        return run
+    return dataclasses.replace(run, periods=data.periods, transient=transient_for(data.periods))
 
 
 # ---- a sweep, point by point --------------------------------------------------------------
@@ -841,9 +883,7 @@ _BRANCH_HEADER = (
     _Field("kinds", "a list of bifurcation kinds",
            lambda v: isinstance(v, list) and all(isinstance(k, str) for k in v)),
     _Field("event_counts", "a list of tables of event counts by kind, one per orbit",
-           lambda v: isinstance(v, list) and all(
-               isinstance(c, dict) and all(isinstance(k, str) and _is_count(n)
-                                           for k, n in c.items()) for c in v)),
+           lambda v: isinstance(v, list) and all(_is_event_counts(c) for c in v)),
 )
 
 
@@ -882,6 +922,10 @@ def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
     Each orbit's scene is kept as the scene document of ``scene_at`` (a
     ``scenefile.SceneAt``) with the parameter's path, or else as one document per orbit.
     """
+    check_instance("results.save_branch", "branch", branch, Branch,
+                   expected="a shroudnet.Branch (what continuation returns)")
+    check_instance("results.save_branch", "scene_at", scene_at, scenefile.SceneAt,
+                   optional=True, expected="a scenefile.SceneAt or None")
     orbits = [*branch.orbits, *(b.orbit for b in branch.bifurcations)]
     values = [*branch.parameter, *(b.parameter for b in branch.bifurcations)]
     if isinstance(scene_at, scenefile.SceneAt):
@@ -932,6 +976,8 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
     if len(meta["event_counts"]) != total:
         raise ResultsError(f"{path}: meta.event_counts has {len(meta['event_counts'])} "
                            f"tables for {total} orbits")
+    for k, counts in enumerate(meta["event_counts"]):
+        _check_event_kinds(path, counts, f"meta.event_counts[{k}]")
     sizes = {"orbit": total, "bifurcation": len(kinds), "bracket end": 2,
              "energy term": len(dataclasses.fields(EnergyPerCycle))}
     values = _checked_arrays(path, arrays, _BRANCH_ARRAYS[:1], sizes)["parameter"]

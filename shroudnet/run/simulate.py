@@ -242,7 +242,8 @@ def integrate(scene: Scene, periods: int, *,
     status = Status(run.status)
     if status != Status.FINISHED:
         raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
-                                            zeno.events, zeno_window))
+                                            zeno.events, zeno_window,
+                                            isinstance(method, FixedStep)))
     return Integration(run=run, method=method, event_tolerance=event_tolerance,
                        zeno_window=zeno_window, compile_seconds=compile_seconds,
                        stretches=stretches)
@@ -406,7 +407,8 @@ def split_stretches(scene: Scene, initial, owner: str = "simulate",
     scene with elastic contacts (2 per elastic contact [m], as ``Simulation.stretches``),
     or None where it has none: relaxed sliders."""
     count = scene.arrays.n_stretches
-    if count == 0 or not isinstance(initial, tuple | list) or len(initial) != 3:
+    if count == 0 or not isinstance(initial, tuple | list | np.ndarray) \
+            or getattr(initial, "ndim", 1) == 0 or len(initial) != 3:
         return initial, None
     try:
         stretches = check_array(owner, f"{field} u0", initial[2], shape=(count,))
@@ -420,14 +422,15 @@ def split_stretches(scene: Scene, initial, owner: str = "simulate",
 def initial_state(initial, n: int, owner: str = "simulate",
                   field: str = "initial") -> tuple[np.ndarray, np.ndarray]:
     """(x0, v0) from ``initial``: None (rest) or a pair of sequences of ``n`` finite numbers
-    [m, m/s]; anything else raises naming ``owner.field``."""
+    [m, m/s] (a 2 × n array as the same nested list); anything else raises naming
+    ``owner.field``."""
     if initial is None:
         return np.zeros(n), np.zeros(n)
     pair = (f"{owner}.{field} must be (x0, v0), a pair of {n} displacements [m] and {n} "
             "velocities [m/s], or None for rest")
-    if not isinstance(initial, tuple | list | np.ndarray):
+    if not isinstance(initial, tuple | list | np.ndarray) or getattr(initial, "ndim", 1) == 0:
         raise TypeError(f"{pair}; got {type(initial).__name__} {initial!r:.200}")
-    if isinstance(initial, np.ndarray) or len(initial) != 2:
+    if len(initial) != 2:
         raise ValueError(f"{pair}; got {type(initial).__name__} {initial!r:.200}")
     state = []
     for name, values in zip(("x0", "v0"), initial):
@@ -462,14 +465,15 @@ def check_finished(out, ledger: dict) -> None:
                 "masses, stiffnesses, forces and initial state")
 
 
-def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window):
+def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window,
+                  fixed_step=False):
     where = ""
     if interface >= 0:
         left, right, _ = scene.group.interfaces[interface]
         where = f" on interface {interface} ({left!r}, {right!r})"
     when = f"at t = {t:.9g} s (period {t / period:.6f})"
     return status.message(when, where, zeno_events=zeno_events, zeno_window=zeno_window,
-                          smallest_step=SMALLEST_STEP)
+                          smallest_step=SMALLEST_STEP, fixed_step=fixed_step)
 
 
 #: Nodes and weights of 16-point Gauss–Legendre quadrature on [−1, 1] (computing them

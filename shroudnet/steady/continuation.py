@@ -56,7 +56,7 @@ from .orbits import (
     state_weights,
     symmetry_of,
 )
-from .parametric import checked_scene_at
+from .parametric import checked_scene_at, same_scene
 from .vertex import parabola_vertex
 
 #: Bifurcation kinds.
@@ -388,6 +388,8 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
             raise
         raise type(error)(f"continuation: scene_at refused the range start = {start:g} … "
                           f"stop = {stop:g}: {error}") from error
+    if from_bifurcation is not None:
+        _check_born_here(from_bifurcation, scene_at, start, stop)
     cyclic = None if from_bifurcation is not None and symmetry is None else symmetry_of(
         scene_at(start), periods, symmetry, "continuation")
     if cyclic is not None and from_bifurcation is not None:
@@ -416,6 +418,21 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         periods = point.periods
     point = point.with_tangent(solver.tangent(point, direction))
     return solver.follow(point, step, max_step, max_points, parameter, progress)
+
+
+def _check_born_here(bifurcation: Bifurcation, scene_at, start: float, stop: float) -> None:
+    """Refuse a ``from_bifurcation`` whose branch cannot start here: its parameter outside
+    [start, stop], or its orbit an orbit of another scene than ``scene_at`` gives there."""
+    where = bifurcation.parameter
+    if not min(start, stop) <= where <= max(start, stop):
+        raise ValueError(f"continuation.from_bifurcation lies at {where:g}, outside the "
+                         f"range start = {start:g} … stop = {stop:g}: the branch born there "
+                         "starts at its parameter, so the range must hold it")
+    if not same_scene(bifurcation.orbit.scene,
+                      checked_scene_at("continuation", scene_at, where, where)):
+        raise ValueError(f"continuation.from_bifurcation is a bifurcation of another scene: "
+                         f"its orbit's scene is not scene_at({where:g}); give a bifurcation of "
+                         "a branch of this scene_at")
 
 
 @dataclass(frozen=True)
