@@ -187,11 +187,17 @@ class PeriodicOrbit:
         return harmonics(slip, self.periods * self.scene.excitation_period, order)
 
     def friction_losses(self, samples_per_period: int = 100) -> np.ndarray:
-        """The energy [J] each interface's friction takes per excitation period: the area
-        of its hysteresis loop (``analysis.hysteresis_loop``) over the orbit, from the
-        samples (0 where an interface has no friction)."""
+        """The energy [J] each interface's friction takes per excitation period: the sum of
+        the areas of its hysteresis loops (``analysis.hysteresis_loop``) over the orbit
+        along every tangent direction it slides in (t₁, and t₂ of a face that slides in its
+        plane), from the samples (0 where an interface has no friction). Summed over the
+        interfaces, it is the friction loss per cycle of ``energy_per_cycle`` to the
+        samples' trapezoidal error (falling as their spacing squared), less the kinetic
+        energy lost where a slipping interface sticks rigidly, which loops do not hold."""
         run = self.simulation(samples_per_period)
-        return np.array([hysteresis_loop(run, e, 0).area_per_cycle()
+        planar = np.any(self.scene.arrays.slip_rows(2) != 0.0, axis=1)
+        return np.array([sum(hysteresis_loop(run, e, 0, direction).area_per_cycle()
+                             for direction in ((1, 2) if planar[e] else (1,)))
                          if law is not None else 0.0
                          for e, law in enumerate(self.scene.arrays.friction_laws)])
 
