@@ -189,6 +189,17 @@ class Simulation:
                            self.friction_force_second[:, elastic] / stiffness[elastic])
         return values
 
+    def state(self, sample: int = -1) -> tuple[np.ndarray, ...]:
+        """The whole state at sample ``sample`` (a row index; −1, the default, is the
+        last), as ``initial`` takes it: (x, ẋ) [m, m/s], and with elastic contacts their
+        springs' stretches u [m] (``stretches``). A run from the state at a sample
+        t = k T_e (every ``samples_per_period``-th) goes on as this one went on from
+        there: the excitation is the same at t = 0."""
+        sample = check_int("Simulation.state", "sample", sample, low=-len(self.t),
+                           high=len(self.t) - 1)
+        stretches = (self.stretches[sample],) if self.scene.arrays.n_stretches else ()
+        return (self.x[sample].copy(), self.v[sample].copy()) + stretches
+
     def friction_along(self, interface: int, direction: int = 1) -> np.ndarray:
         """The friction force [N] of the interface at position ``interface`` along its
         tangent t₁ (``direction`` 1: ``friction_force``) or t₂ (2: 0 where the interface

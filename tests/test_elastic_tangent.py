@@ -226,3 +226,34 @@ def test_an_orbits_friction_losses_sum_both_directions_of_each_face_to_the_ledge
     assert gaps[1] <= 1e-3 and gaps[0] / gaps[1] > 4.0
     along_first = sn.hysteresis_loop(orbit.simulation(400), 0, 0).area_per_cycle()
     assert ledger - along_first > 0.02 * ledger
+
+
+def test_classify_runs_its_lyapunov_exponent_from_the_whole_state_it_reads(monkeypatch):
+    """Where no period repeats, λ_max is measured from the run's state at ``skip``
+    periods, the elastic faces' stretches included: the exponent's run starts where the
+    simulation was, not with its sliders relaxed. (At the run's rtol 1e-8 the tangent
+    flow of one column collapses its step where a face separates, from either start.)"""
+    scene = sn.scenes.modal_packet(blades=3, tangential_stiffness=3e5, speed_rpm=2800.0)
+    sim = sn.simulate(scene, 12, method=sn.Adaptive(rtol=1e-10), samples_per_period=20)
+    skip, row = 2, 2 * 20
+    stretched = sim.stretches[row]
+    assert np.abs(stretched).max() > 1e-7  # a face is closed and strained there
+    runs = []
+
+    def recorded(*args, **kwargs):
+        runs.append(integrate(*args, **kwargs))
+        return runs[-1]
+
+    monkeypatch.setattr(sn.stability, "integrate", recorded)
+    kind = sn.classify(sim, scene.responses[0], skip)
+    assert np.isfinite(kind.lyapunov) and len(runs) == 1
+    first, start = runs[0].run.output, runs[0].stretches[0]
+    size = np.abs(sim.x[row]).max()
+    assert np.abs(first.x[0] - sim.x[row]).max() <= 1e-14 * size
+    assert np.abs(first.v[0] - sim.v[row]).max() <= 1e-14 * np.abs(sim.v[row]).max()
+    # Measured: 4.8e-9 of the stretches: a face slipping there starts with its stretch put
+    # on its friction limit, which the run's state meets to its integration error.
+    assert np.abs(start - stretched).max() <= 1e-7 * np.abs(stretched).max()
+    with pytest.raises(ValueError, match=r"Simulation\.state\.sample must be an int >= -241 "
+                                         r"and <= 240, got 241"):
+        sim.state(241)
