@@ -26,7 +26,7 @@ shape by a discrete Fourier transform over the sectors (harmonics k and N − k 
 ND), so that mistuned rings are labelled by their dominant diameter. An engine order l
 excites the diameter ND = min(l mod N, N − l mod N) only (``excited_diameter``).
 
-A group with substructures (DESIGN §7) is solved in the coordinates of its state
+A group with substructures (DESIGN §7) is solved in the engine's coordinates
 (``SceneArrays.layout``: each node's modal coordinates, mass diag(m̃)), with the same two
 limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, v_e = t_e·ẋ):
 
@@ -41,9 +41,10 @@ limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, 
   blades (t_e ∥ n_e) this is the stick clusters above. An elastic contact adds, in place
   of its constraint, the spring k_t (t₁t₁ᵀ + t₂t₂ᵀ) over its tangent directions.
 
-``shapes`` stay by coordinate (mass-normalised: the kinetic energy is the physical one);
-``LinearModes.node_shapes`` and ``point_shapes`` read them in a node's own degrees of
-freedom q_i or as a point's displacement r_p. The nodal diameter of a ring of substructures
+``shapes`` are then taken to the nodes' own degrees of freedom q (``structural.to_dofs``;
+mass-normalised with the nodes' mass matrices, the kinetic energy being the physical one);
+``LinearModes.node_shapes`` and ``point_shapes`` read them node by node or as a point's
+displacement r_p. The nodal diameter of a ring of substructures
 is read, as for blades, from the DFT over the sectors of each node's own degrees of freedom
 q_i (so that sectors whose coordinates differ, as mistuned ones do, are compared in the same
 physical terms).
@@ -63,6 +64,7 @@ from contact_laws import check_array, check_instance, check_int, check_sequence
 from .checked_records import check_record
 from .engine.clusters import cluster_labels
 from .scene import Scene, edge_matrix
+from .structural import to_dofs
 
 CONTACTS = ("open", "stuck")
 
@@ -72,9 +74,11 @@ class LinearModes:
     """Natural frequencies and mode shapes of a scene's linearised group.
 
     ``frequencies`` [Hz] ascending; ``shapes`` one mass-normalised column per mode, rows
-    by blade position [1/√kg] (with substructures, by coordinate of the state: read them
-    with ``node_shapes`` or ``point_shapes``); ``nodal_diameters`` the ND of each mode for a
-    group of ``sectors`` identical sectors, else None; ``scene`` the scene they are of.
+    by blade position [1/√kg] (with substructures, by every node's own degrees of freedom
+    q, stacked in ``Scene.blades`` order as a state's displacements are: read them by
+    node with ``node_shapes`` or ``point_shapes``); ``nodal_diameters`` the ND of each
+    mode for a group of ``sectors`` identical sectors, else None; ``scene`` the scene they
+    are of.
     """
 
     frequencies: np.ndarray
@@ -186,7 +190,7 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
     mass = basis.T @ np.diag(a.mass) @ basis
     eigenvalues, vectors = scipy.linalg.eigh(basis.T @ stiffness @ basis, mass)
     frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
-    shapes = basis @ vectors
+    shapes = to_dofs(a.layout, basis @ vectors, axis=0)
     diameters = None
     if sectors is not None:
         diameters = nodal_diameters(_by_degree_of_freedom(scene, shapes, sectors), sectors)

@@ -30,6 +30,7 @@ import numpy as np
 from .checked_records import check_record
 from .linear import CONTACTS, interface_limit
 from .scene import Scene
+from .structural import to_dofs
 
 #: Where the smallest singular value of K − ω²M + iωC is below this share (√ε of double
 #: precision) of ‖K‖ or ω²‖M‖, the response is rounding: a resonance nothing damps (a
@@ -42,8 +43,9 @@ class FrequencyResponse:
     """The complex steady response of a scene's group to its excitation's first harmonic.
 
     ``frequencies`` [Hz] are the excitation frequencies f; ``response[k]`` is X at
-    ``frequencies[k]`` by coordinate of the state (by blade without substructures) [m]:
-    coordinate i moves as Im(X_i e^{i 2π f t}), so |X_i| is its amplitude and arg X_i its
+    ``frequencies[k]`` by blade (with substructures, by every node's own degree of freedom,
+    stacked in ``Scene.blades`` order as a state's displacements are) [m]: degree of
+    freedom i moves as Im(X_i e^{i 2π f t}), so |X_i| is its amplitude and arg X_i its
     phase against the excitation's sine. Read it by node with ``dofs`` and by point with
     ``displacement`` and ``amplitude``.
     """
@@ -143,8 +145,8 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
                              "that nothing damps (K − ω²M + iωC is singular to within rounding); "
                              "give damping or leave this frequency out")
         response[k] = basis @ np.linalg.solve(dynamic, load)
-    return FrequencyResponse(frequencies=frequencies, response=response, contacts=contacts,
-                             scene=scene)
+    return FrequencyResponse(frequencies=frequencies, response=to_dofs(a.layout, response),
+                             contacts=contacts, scene=scene)
 
 
 #: The largest frequency [Hz] a response is computed at: (2π f)² times a mass stays far

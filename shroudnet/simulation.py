@@ -15,6 +15,7 @@ from .checked_records import check_record
 from .classification import Classification
 from .methods import SimulationSettings
 from .scene import Scene
+from .structural import from_dofs
 
 
 class SimulationError(RuntimeError):
@@ -71,8 +72,11 @@ class EnergyLedger:
 class Simulation:
     """A trajectory of a scene, sampled uniformly with a sample at every t = k T_e.
 
-    Arrays have one row per sample: ``x``, ``v`` by blade position (n_t × n_blades),
-    ``normal_force``, ``friction_force`` and ``modes`` by interface (n_t × n_interfaces);
+    Arrays have one row per sample: ``x`` [m], ``v`` [m/s] by blade position (n_t ×
+    n_blades); with substructures, every node's own degrees of freedom q (of
+    ``Substructure.matrices_at``, in its units) and their rates, stacked in
+    ``Scene.blades`` order (n_t × n_dofs; ``dofs`` picks a node's); ``normal_force``,
+    ``friction_force`` and ``modes`` by interface (n_t × n_interfaces);
     ``friction_force`` is along the tangent t (t₁ of a face's plane), and
     ``friction_force_second`` along t₂ where the scene has elastic contacts (0 on
     interfaces with one direction; None without elastic contacts).
@@ -151,16 +155,16 @@ class Simulation:
         direction, whose area is the energy friction takes along it
         (``analysis.hysteresis_loop``)."""
         row = self._slip_row(interface, "Simulation.slip_displacement", direction)
-        return np.concatenate([self.x, self.scene.arrays.prescribed_state(self.t)[0]],
-                              axis=1) @ row
+        return np.concatenate([from_dofs(self.scene.arrays.layout, self.x),
+                               self.scene.arrays.prescribed_state(self.t)[0]], axis=1) @ row
 
     def slip_velocity(self, interface: int) -> np.ndarray:
         """The slip velocity u̇_t [m/s] of the interface at position ``interface`` at every
         sample: t·(ṙ_a − ṙ_b) (blades: (ẋ_i − ẋ_j) cos α), prescribed nodes moving as
         they do."""
         row = self._slip_row(interface, "Simulation.slip_velocity")
-        return np.concatenate([self.v, self.scene.arrays.prescribed_state(self.t)[1]],
-                              axis=1) @ row
+        return np.concatenate([from_dofs(self.scene.arrays.layout, self.v),
+                               self.scene.arrays.prescribed_state(self.t)[1]], axis=1) @ row
 
     def checked_interface(self, interface, caller: str) -> int:
         """``interface`` as a position among the scene's interfaces, or an error naming
@@ -171,6 +175,8 @@ class Simulation:
         return check_int(caller, "interface", interface, low=0, high=count - 1)
 
     def _slip_row(self, interface, caller: str, direction: int = 1) -> np.ndarray:
+        """The interface's row of ``SceneArrays.slip_rows``: by the engine's coordinates
+        (then the prescribed nodes), which ``from_dofs`` gives the samples in."""
         direction = check_int(caller, "direction", direction, low=1, most=2)
         return self.scene.arrays.slip_rows(direction)[self.checked_interface(interface,
                                                                              caller)]
@@ -246,7 +252,9 @@ class SweepPoint:
 
     A *failed* point (``error`` set: the message of the ``SimulationError`` that stopped
     its simulation) has no Poincaré points (shape (0, 2)), NaN for E_ρ and the friction
-    loss, the classification label "failed" and an empty final state.
+    loss, the classification label "failed" and an empty final state. The final state is
+    in the coordinates of ``Simulation.x`` (with substructures, the nodes' own degrees of
+    freedom), as ``sweep``'s ``initial`` takes it.
     """
 
     value: float
