@@ -9,6 +9,8 @@ first-order system, and the engine's raw record taken to q by the block-diagonal
 its modes. The scenes' modal blades have masses 0.06, 0.05 and 0.04 kg, so that the
 engine's coordinates are not their degrees of freedom."""
 
+import json
+
 import numpy as np
 import pytest
 import scipy.linalg
@@ -16,7 +18,8 @@ import scipy.linalg
 import shroudnet as sn
 from contact_laws import Coulomb, LinearSpring
 from shroudnet import scenes
-from shroudnet.results import load_branch, save_branch
+from shroudnet.results import (ResultsError, load_branch, load_simulation, load_sweep,
+                               save_branch, save_simulation)
 from shroudnet.simulate import integrate
 from shroudnet.structural import to_dofs
 
@@ -212,3 +215,54 @@ def test_scenes_of_blades_cross_the_boundary_untouched():
     layout = elastic.arrays.layout
     column = np.ones((4, 1))
     assert layout.identity and to_dofs(layout, column) is column
+
+
+# ---- files written before states were by dofs ------------------------------------------------
+
+def _as_format_one(path):
+    """Rewrite a results file's header as format 1, its arrays as they are."""
+    with np.load(path) as data:
+        arrays = {name: data[name] for name in data.files}
+    meta = json.loads(arrays.pop("meta").tobytes())
+    meta["format"] = 1
+    np.savez(path, meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8), **arrays)
+
+
+def test_files_of_substructures_in_format_one_are_refused_by_name(tmp_path):
+    scene = open_pair()
+    run = save_simulation(tmp_path / "run.npz", sn.simulate(scene, 1))
+    orbit = sn.periodic_orbit(scene)
+    branch = save_branch(tmp_path / "branch.npz", sn.Branch(
+        parameter=np.array([SPEED]), orbits=(orbit,), bifurcations=(), periods=1,
+        name="speed", ended="test"))
+    for path, read, what in ((run, load_simulation, "x and v"),
+                             (branch, load_branch, "initial states and monodromy")):
+        _as_format_one(path)
+        with pytest.raises(ResultsError, match=rf"{path.name}: written in results format 1, "
+                                               rf".*{what}.* engine's modal coordinates"):
+            read(path)
+
+
+def test_files_of_blades_in_format_one_read_as_they_are(tmp_path):
+    sim = sn.simulate(scenes.three_blade_paper(), 2)
+    path = save_simulation(tmp_path / "run.npz", sim)
+    _as_format_one(path)
+    np.testing.assert_array_equal(load_simulation(path).x, sim.x)
+
+
+def test_a_sweep_folder_of_format_one_is_read_only_where_it_shows_blades(tmp_path):
+    folder = tmp_path / "sweep"
+    sn.sweep(lambda q1: scenes.three_blade_paper(q1=q1), [10.0, 20.0], transient=2,
+             record=3, workers=1, progress=False, save_to=folder)
+    manifest = json.loads((folder / "sweep.json").read_text())
+    manifest["format"] = 1
+    (folder / "sweep.json").write_text(json.dumps(manifest))
+    with pytest.raises(ResultsError, match=r"sweep\.json: written in results format 1, "
+                                           r".*nothing in it says whether"):
+        load_sweep(folder)
+    with pytest.raises(ResultsError, match=r"holds a sweep written in results format 1"):
+        sn.sweep(lambda q1: scenes.three_blade_paper(q1=q1), [10.0, 20.0], transient=2,
+                 record=3, workers=1, progress=False, save_to=folder)
+    manifest["settings"]["scenes"] = {"document": {"blades": [{"mass": 0.1}]}, "path": "q1"}
+    (folder / "sweep.json").write_text(json.dumps(manifest))
+    assert len(load_sweep(folder).points) == 2
