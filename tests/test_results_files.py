@@ -136,7 +136,7 @@ def replacing(name, value):
 
 
 @pytest.mark.parametrize("change, message", [
-    (replacing("format", 99), r"results format 99; this shroudnet reads format 1"),
+    (replacing("format", 99), r"results format 99; this shroudnet reads formats 1 and 2"),
     (replacing("kind", "sweep point"), r"holds a 'sweep point', not a simulation"),
     (without("energy"), r"its meta header has no 'energy'"),
     (replacing("energy", {"excitation_work": 1.0}),

@@ -305,7 +305,7 @@ def test_a_run_of_a_substructure_scene_saves_and_loads_back_without_loss(tmp_pat
     content["v"] = content["v"][:, :-1]
     np.savez(damaged, **content)
     with pytest.raises(results.ResultsError, match=r"array 'v' has shape \(61, 7\); it must "
-                                                   r"be 61 × 8 \(61 samples × 8 coordinates"):
+                                                   r"be 61 × 8 \(61 samples × 8 dofs"):
         results.load(damaged)
 
 

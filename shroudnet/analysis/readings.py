@@ -225,8 +225,9 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
     See ``classify_section``. Distances are relative to the largest |x| and |ẋ| of the
     steady response; 2N + 1 recorded periods recognise pN. When no period repeats, the
     largest Lyapunov exponent over the recorded periods decides (``exponent_label``): it
-    is computed by ``stability.lyapunov`` from the state at ``skip`` periods, with the
-    run's rtol (the first time, that compiles the integrator with its tangent flow).
+    is computed by ``stability.lyapunov`` from the whole state at ``skip`` periods
+    (``Simulation.state``: with elastic contacts, their stretches too), with the run's
+    rtol (the first time, that compiles the integrator with its tangent flow).
     Fewer than ``stability.LYAPUNOV_BLOCKS`` recorded periods give "undetermined". With
     ``exponent=False`` the 0–1 test decides instead, as ``classify_section`` does without
     an exponent.
@@ -252,8 +253,8 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
         # The tangent flow to the run's rtol; after a fixed-step run, to the default one.
         run = sim.settings.method
         rtol = run.rtol if isinstance(run, Adaptive) else Adaptive().rtol
-        result = lyapunov(sim.scene, recorded, transient=0,
-                          initial=(sim.x[start], sim.v[start]), method=Adaptive(rtol=rtol))
+        result = lyapunov(sim.scene, recorded, transient=0, initial=sim.state(start),
+                          method=Adaptive(rtol=rtol))
     return classify_section(points, scale=scale, tolerance=tolerance, max_period=max_period,
                             broadband=broadband, exponent=result)
 

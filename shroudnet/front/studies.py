@@ -32,9 +32,10 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
 
     Each point runs ``transient`` periods, then records ``record`` periods of which it keeps
     the Poincaré points of ``blade``, E_ρ, the friction loss per cycle and the
-    classification. Every point starts from ``initial`` (default rest) and is independent
-    of the others, so the points run in parallel and the result is the same, bit for bit,
-    however they are spread.
+    classification. Every point starts from ``initial`` (default rest; (x0, v0) as
+    ``simulate`` takes it: with substructures, the nodes' own degrees of freedom) and is
+    independent of the others, so the points run in parallel and the result is the same,
+    bit for bit, however they are spread.
 
     A point whose simulation stops with a ``SimulationError`` is kept as a failed point
     (``SweepPoint.failed``, listed in ``Sweep.failures``) and reported as a notice (see

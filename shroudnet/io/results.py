@@ -54,8 +54,15 @@ from ..steady.cycle import EnergyPerCycle
 from ..steady.orbits import PeriodicOrbit
 from . import scenefile
 
-#: Version of the file layout, stored in every file.
-FORMAT = 1
+#: Version of the file layout, stored in every file: 2 since every state a file holds
+#: (a run's x and v, a branch's initial states and monodromy matrices, a sweep point's
+#: final state) is by the nodes' own degrees of freedom, as the runs give them.
+FORMAT = 2
+#: The formats read. Format 1 held the states of scenes with substructures by the
+#: engine's modal coordinates, which nothing in such a file allows to convert (the
+#: modes are not in it, and an eigensolver may give them other signs, or other bases of
+#: equal frequencies): those files are refused by name; the others read as they are.
+READABLE = (1, 2)
 
 
 class ResultsError(ValueError):
@@ -108,12 +115,32 @@ def _load_npz(path, kind: str | None = None) -> tuple[dict, dict]:
     path = Path(path)
     arrays = _read_archive(path)
     meta = _header(path, arrays.pop("meta", None))
-    if meta.get("format") != FORMAT:
+    if meta.get("format") not in READABLE:
         raise ResultsError(f"{path}: results format {meta.get('format')!r}; this shroudnet "
-                           f"reads format {FORMAT}")
+                           f"reads formats {' and '.join(map(str, READABLE))}")
     if kind is not None and meta.get("kind") != kind:
         raise ResultsError(f"{path}: holds a {meta.get('kind')!r}, not a {kind}")
     return meta, arrays
+
+
+def _check_states(path: Path, meta: dict, documents: list | None, states: str) -> None:
+    """Refuse a file of format 1 whose ``states`` (what it holds of them, in words) may be
+    by the engine's modal coordinates: where a scene document of ``documents`` has a
+    substructure, or where there are none to tell (None)."""
+    if meta.get("format") != 1:
+        return
+    if documents is not None and not any(
+            scenefile.is_substructure(entry) for document in documents
+            for entry in (document.get("blades") or [] if isinstance(document, dict) else [])):
+        return  # blades only: their coordinates are their displacements
+    why = ("its scenes have substructures" if documents is not None else
+           "nothing in it says whether its scenes have substructures")
+    raise ResultsError(
+        f"{path}: written in results format 1, which kept the {states} of a scene with "
+        f"substructures by the engine's modal coordinates, not by the nodes' own degrees of "
+        f"freedom, and {why}; the file does not hold the modes that would convert them (an "
+        f"eigensolver may give them other signs, or other bases of equal frequencies), so "
+        f"they cannot be read correctly. Compute it again to write it in format {FORMAT}.")
 
 
 def _read_archive(path: Path) -> dict[str, np.ndarray]:
@@ -378,7 +405,7 @@ _SIMULATION_HEADER = (
 
 
 #: The arrays of a simulation file, in the order checked: a column is a blade (with
-#: substructures, a coordinate); the events are in time order.
+#: substructures, a degree of freedom of a node); the events are in time order.
 _EVENT_ARRAYS = (
     _Array("event_time", ("event",), rising="not decrease"),
     _Array("event_interface", ("event",), _INTEGER, indexes="interface"),
@@ -409,7 +436,7 @@ class SimulationArrays:
     document: dict           # the scene (and run settings), as ``scenefile.read`` takes it
     settings: SimulationSettings
     t: np.ndarray            # (n_t,) [s]
-    x: np.ndarray            # (n_t × n_blades) [m]; with substructures, by coordinate
+    x: np.ndarray            # (n_t × n_blades) [m]; with substructures, by dof
     v: np.ndarray            # (n_t × n_blades) [m/s]
     normal_force: np.ndarray     # (n_t × n_interfaces) [N]
     friction_force: np.ndarray   # (n_t × n_interfaces) [N]
@@ -456,8 +483,8 @@ def load_arrays(path: str | Path) -> SimulationArrays:
 
     Every array is checked as ``_SIMULATION_ARRAYS`` says: there, numbers of its kind,
     finite, its shape consistent with the others and with the numbers of blades and
-    interfaces of the scene document (with substructures, whose coordinates the document
-    does not count, x and v with each other), its times in order, its modes and event
+    interfaces of the scene document (with substructures, whose degrees of freedom the
+    document does not count, x and v with each other), its times in order, its modes and event
     kinds known; raises ``ResultsError`` naming the file, the array and what is wrong.
     """
     path = Path(path)
@@ -466,9 +493,10 @@ def load_arrays(path: str | Path) -> SimulationArrays:
     blades, interfaces = _document_counts(path, meta["scene"])
     _check_event_kinds(path, meta["event_counts"])
     _check_second_friction(path, meta["scene"], "friction_force_second" in arrays)
-    # with substructures, whose coordinates the document does not count, x sets them
+    _check_states(path, meta, [meta["scene"]], "displacements and velocities x and v")
+    # with substructures, whose degrees of freedom the document does not count, x sets them
     sizes = {"sample": None, "column": blades, "interface": interfaces}
-    words = {"column": "coordinate" if blades is None else "blade"}
+    words = {"column": "dof" if blades is None else "blade"}
     checked = _checked_arrays(path, arrays, _SIMULATION_ARRAYS[:1], sizes, words)
     n = len(checked["t"])
     if n < 1 or (n - 1) % meta["samples_per_period"]:
@@ -489,7 +517,7 @@ def load_arrays(path: str | Path) -> SimulationArrays:
 
 def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
     """(blades, interfaces) listed in a saved scene document; blades is None where a node
-    is a substructure (the state is then by coordinate, which the scene counts)."""
+    is a substructure (the state is then by degree of freedom, which the scene counts)."""
     counts = []
     for key in ("blades", "interfaces"):
         entries = document.get(key)
@@ -526,10 +554,10 @@ def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulatio
     """
     data = load_arrays(path)
     scene = _scene(data.path, data.document, laws).scene
-    columns = scene.arrays.n_blades  # blades, or with substructures coordinates
+    columns = scene.arrays.n_blades  # blades, or with substructures degrees of freedom
     if columns != data.x.shape[1] or len(scene.group.interfaces) != \
             data.normal_force.shape[1]:
-        what = "coordinates" if scene.arrays.is_structure else "blades"
+        what = "degrees of freedom" if scene.arrays.is_structure else "blades"
         raise ResultsError(f"{path}: its arrays are for {data.x.shape[1]} {what} and "
                            f"{data.normal_force.shape[1]} interfaces; its scene has "
                            f"{columns} and {len(scene.group.interfaces)}")
@@ -621,9 +649,9 @@ _FAILURE_HEADER = (
     _Field("message", "text", lambda v: isinstance(v, str)),
 )
 _POINT, _FAILED_POINT = "sweep point", "failed sweep point"
-#: The arrays of a sweep point: its Poincaré points (x, v), its final state by
-#: coordinate, and its peak per response (which the file does not count; files written
-#: before peaks were kept have none).
+#: The arrays of a sweep point: its Poincaré points (x, v), its final state (by blade, or
+#: by degree of freedom of a node), and its peak per response (which the file does not
+#: count; files written before peaks were kept have none).
 _POINT_ARRAYS = (
     _Array("poincare", ("recorded period", "phase coordinate")),
     _Array("final_x", ("coordinate",)),
@@ -682,7 +710,7 @@ def _read_point(path: Path) -> tuple[SweepPoint, str | None]:
 
 
 _MANIFEST_FIELDS = (
-    _Field("format", f"{FORMAT}", lambda v: v == FORMAT),
+    _Field("format", " or ".join(map(str, READABLE)), lambda v: v in READABLE),
     _Field("kind", "'sweep'", lambda v: v == "sweep"),
     _Field("parameter", "text", lambda v: isinstance(v, str)),
     _Field("values", "a list of numbers",
@@ -755,6 +783,12 @@ class SweepStore:
             else:
                 self._write_manifest(path)
             return
+        if found["format"] != FORMAT:
+            raise ResultsError(
+                f"{self.folder} holds a sweep written in results format {found['format']}; "
+                f"this shroudnet writes format {FORMAT} (states by the nodes' own degrees of "
+                "freedom) and adds no points to an older one: read it with "
+                "results.load_sweep, or save this sweep to another folder")
         if found != self.manifest:
             changed = sorted(k for k in set(found) | set(self.manifest)
                              if found.get(k) != self.manifest.get(k))
@@ -849,6 +883,10 @@ def load_sweep(folder: str | Path) -> Sweep:
             raise
         raise ResultsError(f"{error}; run the same sweep again with save_to={folder} to "
                            "write it again") from None
+    source = manifest["settings"].get("scenes")
+    document = source.get("document") if isinstance(source, dict) else None
+    _check_states(path, manifest, None if document is None else [document],
+                  "points' final states")
     count = len(manifest["values"])
     points = {}
     for index in range(count):
@@ -981,6 +1019,9 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
     sizes = {"orbit": total, "bifurcation": len(kinds), "bracket end": 2,
              "energy term": len(dataclasses.fields(EnergyPerCycle))}
     values = _checked_arrays(path, arrays, _BRANCH_ARRAYS[:1], sizes)["parameter"]
+    scenes = meta["scenes"]
+    _check_states(path, meta, [scenes] if isinstance(scenes, dict) else scenes,
+                  "orbits' initial states and monodromy matrices")
     if meta["parameter_path"] is not None:
         document = _scene(path, meta["scenes"], laws).document
         scene_at = scenefile.SceneAt(document, meta["parameter_path"], laws=laws)

@@ -52,7 +52,7 @@ the diameter holding most of its square, so that a mistuned ring's modes are lab
 their dominant diameter. An engine order l excites the diameter
 ND = min(l mod N, N − l mod N) only (``excited_diameter``).
 
-A group with substructures (DESIGN §7) is solved in the coordinates of its state
+A group with substructures (DESIGN §7) is solved in the engine's coordinates
 (``SceneArrays.layout``: each node's modal coordinates, mass diag(m̃)), with the same
 limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, v_e = t_e·ẋ):
 
@@ -71,9 +71,10 @@ limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, 
 - ``"closed"``: as "stuck", with the spring ∂N/∂δ n_e n_eᵀ of every interface (its law
   read as above).
 
-``shapes`` stay by coordinate (mass-normalised: the kinetic energy is the physical one);
-``LinearModes.node_shapes`` and ``point_shapes`` read them in a node's own degrees of
-freedom q_i or as a point's displacement r_p. The nodal diameter of a ring of substructures
+``shapes`` are then taken to the nodes' own degrees of freedom q (``model.lowering.to_dofs``;
+mass-normalised with the nodes' mass matrices, the kinetic energy being the physical one);
+``LinearModes.node_shapes`` and ``point_shapes`` read them node by node or as a point's
+displacement r_p. The nodal diameter of a ring of substructures
 is read, as for blades, from the DFT over the sectors of each node's own degrees of freedom
 q_i (so that sectors whose coordinates differ, as mistuned ones do, are compared in the same
 physical terms).
@@ -92,6 +93,7 @@ from contact_laws import check_array, check_instance, check_int, check_sequence
 
 from ..checked_records import check_record
 from ..engine.clusters import cluster_labels
+from ..model.lowering import to_dofs
 from ..model.scene import Scene, edge_matrix
 
 CONTACTS = ("open", "stuck", "closed")
@@ -119,9 +121,11 @@ class LinearModes:
     """Natural frequencies and mode shapes of a scene's linearised group.
 
     ``frequencies`` [Hz] ascending; ``shapes`` one mass-normalised column per mode, rows
-    by blade position [1/√kg] (with substructures, by coordinate of the state: read them
-    with ``node_shapes`` or ``point_shapes``); ``nodal_diameters`` the ND of each mode for a
-    group of ``sectors`` identical sectors, else None; ``scene`` the scene they are of.
+    by blade position [1/√kg] (with substructures, by every node's own degrees of freedom
+    q, stacked in ``Scene.blades`` order as a state's displacements are: read them by
+    node with ``node_shapes`` or ``point_shapes``); ``nodal_diameters`` the ND of each
+    mode for a group of ``sectors`` identical sectors, else None; ``scene`` the scene they
+    are of.
     """
 
     frequencies: np.ndarray
@@ -245,6 +249,7 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
     if sectors is not None:
         eigenvalues, shapes, diameters = cyclic_eigenspaces(
             eigenvalues, shapes, stiffness, _dof_matrix(scene, sectors), sectors)
+    shapes = to_dofs(a.layout, shapes, axis=0)
     frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
     return LinearModes(frequencies=frequencies, shapes=shapes, nodal_diameters=diameters,
                        contacts=contacts, sectors=sectors, speed_rpm=scene.speed_rpm,
@@ -349,18 +354,18 @@ def _structure_limit(a, closing: _NormalSprings) -> tuple[np.ndarray, np.ndarray
 
 
 def _dof_matrix(scene: Scene, sectors: int) -> np.ndarray:
-    """D: the nodes' own degrees of freedom q = D x, nodes by position (a scene of blades:
-    the identity), checked to give every sector as many rows."""
-    if not scene.arrays.is_structure:
-        return np.eye(scene.arrays.n_blades)
-    rows = [scene.dof_rows(node) for node in scene.blades]
-    per_sector = len(rows) // sectors
-    sizes = {sum(len(r) for r in rows[s * per_sector:(s + 1) * per_sector])
-             for s in range(sectors)}
+    """D: the nodes' own degrees of freedom q = D x of the engine's coordinates x, nodes by
+    position (a scene of blades: the identity), checked to give every sector as many
+    rows."""
+    a = scene.arrays
+    if not a.is_structure:
+        return np.eye(a.n_blades)
+    per_sector = len(a.layout.sizes) // sectors
+    sizes = {sum(a.layout.sizes[s * per_sector:(s + 1) * per_sector]) for s in range(sectors)}
     if len(sizes) != 1:
         raise ValueError(f"linear_modes: the {sectors} sectors have different numbers of "
                          f"degrees of freedom ({sorted(sizes)}): they are not identical")
-    return np.vstack(rows)
+    return to_dofs(a.layout, np.eye(a.n_blades), axis=0)
 
 
 def _sliding_contacts(a, candidates, closing: _NormalSprings) -> tuple[np.ndarray, np.ndarray]:

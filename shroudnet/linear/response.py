@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checked_records import check_record
+from ..model.lowering import to_dofs
 from ..model.scene import Scene
 from .modes import CONTACTS, interface_limit
 
@@ -46,8 +47,9 @@ class FrequencyResponse:
     """The complex steady response of a scene's group to its excitation's first harmonic.
 
     ``frequencies`` [Hz] are the excitation frequencies f; ``response[k]`` is X at
-    ``frequencies[k]`` by coordinate of the state (by blade without substructures) [m]:
-    coordinate i moves as Im(X_i e^{i 2π f t}), so |X_i| is its amplitude and arg X_i its
+    ``frequencies[k]`` by blade (with substructures, by every node's own degree of freedom,
+    stacked in ``Scene.blades`` order as a state's displacements are) [m]: degree of
+    freedom i moves as Im(X_i e^{i 2π f t}), so |X_i| is its amplitude and arg X_i its
     phase against the excitation's sine. Read it by node with ``dofs`` and by point with
     ``displacement`` and ``amplitude``.
     """
@@ -147,8 +149,8 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
                              "that nothing damps (K − ω²M + iωC is singular to within rounding); "
                              "give damping or leave this frequency out")
         response[k] = basis @ np.linalg.solve(dynamic, load)
-    return FrequencyResponse(frequencies=frequencies, response=response, contacts=contacts,
-                             scene=scene)
+    return FrequencyResponse(frequencies=frequencies, response=to_dofs(a.layout, response),
+                             contacts=contacts, scene=scene)
 
 
 #: The largest frequency [Hz] a response is computed at: (2π f)² times a mass stays far

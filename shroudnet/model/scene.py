@@ -31,7 +31,10 @@ class SceneArrays:
 
     Blade arrays have length n_blades, interface arrays length n_interfaces. ``left`` and
     ``right`` hold node positions: a blade's (0 … n_blades − 1), n_blades + p for the
-    prescribed-motion node ``motions[p]``, −1 for a fixed node (x ≡ 0).
+    prescribed-motion node ``motions[p]``, −1 for a fixed node (x ≡ 0). With substructures
+    (or elastic contacts) they are by the engine's coordinates (``model.lowering``), which
+    never reach a user: states are given and returned in the nodes' own degrees of
+    freedom (``model.lowering.to_dofs``).
     """
 
     mass: np.ndarray           # m_i [kg]
@@ -60,7 +63,7 @@ class SceneArrays:
     coupling_stiffness: np.ndarray  # k_c [N/m]
     coupling_damping: np.ndarray    # c_c [N·s/m]
     motions: tuple[Motion, ...] = ()  # the prescribed-motion nodes, by position − n_blades
-    # A scene with substructures (``structural``): its "blades" are coordinates, and these
+    # A scene with substructures (``model.lowering``): its "blades" are coordinates, and these
     # hold what per-blade arrays cannot (None for a scene of blades):
     normal_rows: np.ndarray | None = None   # n_e over all coordinates (prescribed last)
     tangent_rows: np.ndarray | None = None  # t_e (t₁ of a face with two directions)
@@ -305,7 +308,8 @@ class Scene:
 
     @cached_property
     def response_matrix(self) -> np.ndarray:
-        """R (n_responses × n_coordinates): the ``responses`` are R x."""
+        """R (n_responses × n_dofs): the ``responses`` are R q, q the nodes' own degrees
+        of freedom stacked in ``blades`` order (a state's displacements, ``dof_matrix``)."""
         a = self.arrays
         if not a.is_structure:
             return np.eye(a.n_blades)
@@ -335,8 +339,9 @@ class Scene:
                          f"or a position 0..{len(labels) - 1}")
 
     def response_of(self, values: np.ndarray, target) -> np.ndarray:
-        """``target``'s response (``response_position``) from state rows ``values`` (by
-        blade, or by coordinate): a column of them for blades, R_target · values else."""
+        """``target``'s response (``response_position``) from state rows ``values`` (the
+        nodes' own degrees of freedom, or their velocities): a column of them for blades,
+        R_target · values else."""
         i = self.response_position(target)
         if not self.arrays.is_structure:
             return values[..., i]
@@ -347,10 +352,11 @@ class Scene:
         return values if not self.arrays.is_structure else values @ self.response_matrix.T
 
     def point_rows(self, node: Hashable, point: str | None = None) -> np.ndarray:
-        """R (d × n_coordinates): the displacement r = R x [m] of ``node``'s ``point`` from
-        the state's displacements x (by coordinate; by blade without substructures). A
-        ``Blade``'s one point is its displacement (R = e_i); a substructure's point needs
-        its name unless it has one point only."""
+        """R (d × n_dofs): the displacement r = R q [m] of ``node``'s ``point`` from the
+        state's displacements q (the nodes' own degrees of freedom stacked in ``blades``
+        order: R holds the point's Φ_p in ``node``'s columns). A ``Blade``'s one point is
+        its displacement (R = e_i); a substructure's point needs its name unless it has
+        one point only."""
         a = self.arrays
         if not a.is_structure:
             rows = np.zeros((1, a.n_blades))
@@ -365,24 +371,26 @@ class Scene:
         return rows
 
     def dof_rows(self, node: Hashable) -> np.ndarray:
-        """T (n_i × n_coordinates): ``node``'s own degrees of freedom q_i = T x from the
-        state's displacements (for a ``Blade``, its x)."""
+        """T (n_i × n_dofs): ``node``'s own degrees of freedom q_i = T q from the state's
+        displacements q, which stack every node's in ``blades`` order (T picks ``node``'s;
+        for a ``Blade``, its x)."""
         a = self.arrays
         if not a.is_structure:
             return self.point_rows(node)
         rows = np.zeros((a.layout.sizes[a.layout.position(node)], a.n_blades))
-        rows[:, a.layout.coordinates(node)] = a.layout.bases[a.layout.position(node)]
+        rows[:, a.layout.coordinates(node)] = np.eye(rows.shape[0])
         return rows
 
     def dof_matrix(self) -> np.ndarray:
         """D: every node's own degrees of freedom, stacked in ``blades`` order, from the
-        state's displacements (q = D x; ``dof_rows`` of each node)."""
+        state's displacements (``dof_rows`` of each node): the identity, as every state a
+        run takes and gives holds them already."""
         return np.vstack([self.dof_rows(name) for name in self.blades])
 
     @cached_property
     def arrays(self) -> SceneArrays:
         """The scene lowered to flat arrays (computed once): by blade, or with
-        substructures or elastic contacts by coordinate (``structural``)."""
+        substructures or elastic contacts by coordinate (``model.lowering``)."""
         if self.group.has_substructures or any(
                 interface.elastic for _, _, interface in self.group.interfaces):
             return SceneArrays(**lower(self))

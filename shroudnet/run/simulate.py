@@ -15,6 +15,7 @@ from ..engine.controller import SMALLEST_STEP, first_step, smallest_step
 from ..engine.dynamics import interface_kinematics
 from ..engine.generate import compiled, kernel_scene, load_kernel
 from ..engine.records import Controls, Run, allocate, finish, new_propagation
+from ..model.lowering import from_dofs, to_dofs
 from ..model.motion import motion_span
 from ..model.scene import Scene, edge_matrix
 from .footprint import check_footprint
@@ -66,11 +67,14 @@ def simulate(scene: Scene, periods: int, *,
     zeno : ZenoGuard
         When to stop a run whose switches pile up.
     initial : (x0, v0) or (x0, v0, u0), optional
-        Initial displacements [m] and velocities [m/s] by blade position; default at rest.
-        With elastic contacts, u0 gives their springs' stretches [m] (two each, as
-        ``Simulation.stretches``; relaxed where not given): a closed face whose stretch
-        holds its force at the friction limit or beyond starts slipping, its stretch put
-        on the limit; an open face's is relaxed.
+        Initial displacements [m] and velocities [m/s] by blade position: with
+        substructures, every node's own degrees of freedom q (of
+        ``Substructure.matrices_at``, in its units) and their rates, stacked in
+        ``Scene.blades`` order (``Simulation.x`` and ``Simulation.state`` give them so);
+        default at rest. With elastic contacts, u0 gives their springs' stretches [m] (two
+        each, as ``Simulation.stretches``; relaxed where not given): a closed face whose
+        stretch holds its force at the friction limit or beyond starts slipping, its
+        stretch put on the limit; an open face's is relaxed.
     event_capacity : int
         Most events kept in the log, ≥ 0 (counts stay exact beyond it).
 
@@ -91,9 +95,10 @@ def simulate(scene: Scene, periods: int, *,
         A run never returns a non-finite value: one found in the record or the energy ledger
         at the end raises this, naming the quantity.
     """
+    check_instance("simulate", "scene", scene, Scene, expected="a shroudnet.Scene")
     done = integrate(scene, periods, method=method, samples_per_period=samples_per_period,
-                     event_tolerance=event_tolerance, zeno=zeno, initial=initial,
-                     event_capacity=event_capacity)
+                     event_tolerance=event_tolerance, zeno=zeno,
+                     initial=start_coordinates(scene, initial), event_capacity=event_capacity)
     run, method = done.run, done.method
     out = run.output
     events = EventLog(time=run.events.time, interface=run.events.interface,
@@ -106,7 +111,9 @@ def simulate(scene: Scene, periods: int, *,
     with np.errstate(over="ignore", invalid="ignore"):
         ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy, done.stretches)
     check_finished(out, ledger)
-    return Simulation(scene=scene, settings=settings, t=out.t, x=out.x, v=out.v,
+    layout = scene.arrays.layout
+    return Simulation(scene=scene, settings=settings, t=out.t, x=to_dofs(layout, out.x),
+                      v=to_dofs(layout, out.v),
                       normal_force=out.normal, friction_force=out.friction, modes=out.modes,
                       events=events, energy=EnergyLedger(**ledger), work=out.energy,
                       samples_per_period=samples_per_period, steps=int(run.steps),
@@ -150,7 +157,9 @@ def integrate(scene: Scene, periods: int, *,
               zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
               tangent: np.ndarray | None = None,
               orthonormalise: bool = False, until: float | None = None) -> Integration:
-    """``simulate``'s checks and run, returning the kernel's raw record.
+    """``simulate``'s checks and run, returning the kernel's raw record: the engine's own,
+    whose ``initial``, record and tangent are by its coordinates (``model.lowering``), not the
+    nodes' degrees of freedom that ``simulate`` takes and gives.
 
     With ``tangent`` (2 n_blades × k; with elastic contacts, its rows δx and δẋ may be
     followed by the stretches' δu, 0 where they are not), the run integrates those k
@@ -399,6 +408,20 @@ def _check_memory(scene, periods, samples_per_period, event_capacity):
                          f"events, more than {what}. Run fewer periods, "
                          "take fewer samples per period, or run in pieces, each starting from "
                          "the last state of the one before (initial=).")
+
+
+def start_coordinates(scene: Scene, initial, owner: str = "simulate",
+                      field: str = "initial") -> tuple | None:
+    """``initial`` as a user gives it (None, (q0, q̇0) or (q0, q̇0, u0): the nodes' own
+    degrees of freedom, ``simulate``), checked as ``owner.field``, and as the engine takes
+    it: (η0, η̇0[, u0]) by its coordinates (``model.lowering.from_dofs``); None for rest."""
+    if initial is None:
+        return None
+    initial, stretches = split_stretches(scene, initial, owner, field)
+    x0, v0 = initial_state(initial, scene.arrays.n_blades, owner, field)
+    layout = scene.arrays.layout
+    return (from_dofs(layout, x0), from_dofs(layout, v0)) + (
+        () if stretches is None else (stretches,))
 
 
 def split_stretches(scene: Scene, initial, owner: str = "simulate",

@@ -12,6 +12,7 @@ import numpy as np
 from contact_laws import check_int
 
 from ..checked_records import check_record
+from ..model.lowering import from_dofs
 from ..model.scene import Scene
 from .classification import Classification
 from .methods import SimulationSettings
@@ -71,8 +72,11 @@ class EnergyLedger:
 class Simulation:
     """A trajectory of a scene, sampled uniformly with a sample at every t = k T_e.
 
-    Arrays have one row per sample: ``x``, ``v`` by blade position (n_t × n_blades),
-    ``normal_force``, ``friction_force`` and ``modes`` by interface (n_t × n_interfaces);
+    Arrays have one row per sample: ``x`` [m], ``v`` [m/s] by blade position (n_t ×
+    n_blades); with substructures, every node's own degrees of freedom q (of
+    ``Substructure.matrices_at``, in its units) and their rates, stacked in
+    ``Scene.blades`` order (n_t × n_dofs; ``dofs`` picks a node's); ``normal_force``,
+    ``friction_force`` and ``modes`` by interface (n_t × n_interfaces);
     ``friction_force`` is along the tangent t (t₁ of a face's plane), and
     ``friction_force_second`` along t₂ where the scene has elastic contacts (0 on
     interfaces with one direction; None without elastic contacts).
@@ -151,16 +155,16 @@ class Simulation:
         direction, whose area is the energy friction takes along it
         (``analysis.hysteresis_loop``)."""
         row = self._slip_row(interface, "Simulation.slip_displacement", direction)
-        return np.concatenate([self.x, self.scene.arrays.prescribed_state(self.t)[0]],
-                              axis=1) @ row
+        return np.concatenate([from_dofs(self.scene.arrays.layout, self.x),
+                               self.scene.arrays.prescribed_state(self.t)[0]], axis=1) @ row
 
     def slip_velocity(self, interface: int) -> np.ndarray:
         """The slip velocity u̇_t [m/s] of the interface at position ``interface`` at every
         sample: t·(ṙ_a − ṙ_b) (blades: (ẋ_i − ẋ_j) cos α), prescribed nodes moving as
         they do."""
         row = self._slip_row(interface, "Simulation.slip_velocity")
-        return np.concatenate([self.v, self.scene.arrays.prescribed_state(self.t)[1]],
-                              axis=1) @ row
+        return np.concatenate([from_dofs(self.scene.arrays.layout, self.v),
+                               self.scene.arrays.prescribed_state(self.t)[1]], axis=1) @ row
 
     def checked_interface(self, interface, caller: str) -> int:
         """``interface`` as a position among the scene's interfaces, or an error naming
@@ -171,6 +175,8 @@ class Simulation:
         return check_int(caller, "interface", interface, low=0, high=count - 1)
 
     def _slip_row(self, interface, caller: str, direction: int = 1) -> np.ndarray:
+        """The interface's row of ``SceneArrays.slip_rows``: by the engine's coordinates
+        (then the prescribed nodes), which ``from_dofs`` gives the samples in."""
         direction = check_int(caller, "direction", direction, low=1, most=2)
         return self.scene.arrays.slip_rows(direction)[self.checked_interface(interface,
                                                                              caller)]
@@ -188,6 +194,17 @@ class Simulation:
         values[:, 1::2] = (0.0 if self.friction_force_second is None else
                            self.friction_force_second[:, elastic] / stiffness[elastic])
         return values
+
+    def state(self, sample: int = -1) -> tuple[np.ndarray, ...]:
+        """The whole state at sample ``sample`` (a row index; −1, the default, is the
+        last), as ``initial`` takes it: (x, ẋ) [m, m/s], and with elastic contacts their
+        springs' stretches u [m] (``stretches``). A run from the state at a sample
+        t = k T_e (every ``samples_per_period``-th) goes on as this one went on from
+        there: the excitation is the same at t = 0."""
+        sample = check_int("Simulation.state", "sample", sample, low=-len(self.t),
+                           high=len(self.t) - 1)
+        stretches = (self.stretches[sample],) if self.scene.arrays.n_stretches else ()
+        return (self.x[sample].copy(), self.v[sample].copy()) + stretches
 
     def friction_along(self, interface: int, direction: int = 1) -> np.ndarray:
         """The friction force [N] of the interface at position ``interface`` along its
@@ -240,7 +257,9 @@ class SweepPoint:
 
     A *failed* point (``error`` set: the message of the ``SimulationError`` that stopped
     its simulation) has no Poincaré points (shape (0, 2)), NaN for E_ρ and the friction
-    loss, the classification label "failed" and an empty final state.
+    loss, the classification label "failed" and an empty final state. The final state is
+    in the coordinates of ``Simulation.x`` (with substructures, the nodes' own degrees of
+    freedom), as ``sweep``'s ``initial`` takes it.
     """
 
     value: float

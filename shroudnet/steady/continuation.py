@@ -1,9 +1,10 @@
 """Families of periodic orbits in one parameter: pseudo-arclength continuation.
 
 The unknowns are u = (y, p): the orbit's start y = (x, ẋ) at t = 0 mod T_e (with
-elastic contacts, their springs' stretches too: ``stability.state_parts``) and the
-parameter p. Each step predicts along the branch's tangent τ (the kernel of
-[M − I, ∂φ/∂p], DESIGN §6) and corrects by Newton on
+elastic contacts, their springs' stretches too: ``stability.state_parts``; with
+substructures, by the engine's coordinates, while the orbits of the ``Branch`` hold their
+nodes' own degrees of freedom) and the parameter p. Each step predicts along the branch's
+tangent τ (the kernel of [M − I, ∂φ/∂p], DESIGN §6) and corrects by Newton on
 
     φ(y, p) − y = 0,    τ · (u − u_predicted) = 0,
 
@@ -39,6 +40,7 @@ from contact_laws import check_callable, check_calls_with, check_instance, check
 from ..analysis.stability import TANGENT_METHOD, state_parts, stroboscopic_step
 from ..checked_records import check_record
 from ..linear.response import frequency_response
+from ..model.lowering import from_dofs
 from ..model.scene import Scene
 from ..run.methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
 from ..run.simulate import MAX_PERIODS, integrate
@@ -318,8 +320,9 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         The parameter range; the branch starts at ``start`` (or at ``from_bifurcation``).
     periods : int
         k ≥ 1: orbits of period k T_e.
-    guess : (x0, v0), optional
-        Near the orbit at ``start``; default the state after ``transient`` periods.
+    guess : (x0, v0) or (x0, v0, u0), optional
+        Near the orbit at ``start``, as ``periodic_orbit`` takes it (with substructures,
+        the nodes' own degrees of freedom); default the state after ``transient`` periods.
     step, max_step : float, optional
         The first and the largest arclength step, in the scaled units: about the
         fraction of [start, stop] a step crosses where the orbit changes little. Default
@@ -406,8 +409,9 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
                                transient=transient, tolerance=tolerance,
                                event_tolerance=event_tolerance,
                                symmetry="none" if cyclic is None else "cyclic")
-        solver.weights = state_weights(first.scene, first.state)
-        point = solver.point(first.state, start, periods)
+        y = from_dofs(first.scene.arrays.layout, first.state)
+        solver.weights = state_weights(first.scene, y)
+        point = solver.point(y, start, periods)
         direction = np.zeros(len(point.u))
         direction[-1] = math.copysign(1.0, stop - start)
     elif from_bifurcation.kind == "period-doubling":
@@ -759,13 +763,15 @@ class Solver:
         ``DOUBLED_OFFSET`` along the eigenvector of its orbit's multiplier nearest
         ``multiplier``, and the direction away from it."""
         orbit = bifurcation.orbit
-        self.weights = state_weights(orbit.scene, orbit.state)
+        layout = orbit.scene.arrays.layout  # the orbit's state and monodromy are by dofs
+        state = from_dofs(layout, orbit.state)
+        self.weights = state_weights(orbit.scene, state)
         values, vectors = np.linalg.eig(orbit.monodromy)
         k = np.argmin(np.abs(values - multiplier))
         w = self.weights
-        away = np.append(w * np.real(vectors[:, k]), 0.0)
+        away = np.append(w * from_dofs(layout, np.real(vectors[:, k])), 0.0)
         away /= np.linalg.norm(away)
-        base = np.append(w * orbit.state, bifurcation.parameter / self.span)
+        base = np.append(w * state, bifurcation.parameter / self.span)
         size = DOUBLED_OFFSET
         point, _ = self.correct(base + size * away, away, away @ base + size, periods,
                                 reach=1.0)
