@@ -100,11 +100,15 @@ def has_drawing(axes: Axes) -> bool:
     return bool(axes.lines or axes.patches or axes.collections)
 
 
+#: What the module offers beside its figures: the one way to write a figure to a file.
+NOT_DRAWING = {"save_figure"}
+
+
 def test_every_plotting_function_is_listed_here():
     public = {name for name, value in vars(figures).items()
               if callable(value) and not name.startswith("_")
               and getattr(value, "__module__", None) == figures.__name__}
-    assert public == set(FUNCTIONS)
+    assert public == set(FUNCTIONS) | NOT_DRAWING
 
 
 @pytest.mark.slow  # a sweep with exponents, a continuation and a mistuning study

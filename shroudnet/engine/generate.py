@@ -42,6 +42,7 @@ from contact_laws import base as law_base
 
 from ..model.scene import Scene
 from .cache import cache_folder, keep
+from .compiled import compile_seconds
 from .header import derivative_function, has_derivative, header, law_function
 from .kernel import PHASES
 from .records import KernelScene, StructureScene
@@ -52,24 +53,6 @@ _PHASES = [_ENGINE / "kernel" / f"{phase}.py" for phase in PHASES]
 #: The phase modules whose code is the same for every method: they never read ``ADAPTIVE``
 #: or ``EXPONENTIAL``, nor call a function of another phase (which their module lacks).
 METHOD_FREE = ("forces", "tangent", "resolve")
-
-#: How long compiling each flavour of kernel takes [s of processor time], by (method,
-#: substructures, elastic contacts, tangent flow): measured from an empty cache, each in a
-#: fresh process, on a 2-core machine (``shroudnet cache --warm`` compiles them all). A
-#: kernel of laws of one's own compiles fewer effects, so a little faster.
-COMPILE_SECONDS = {
-    ("adaptive", False, False, False): 32,
-    ("adaptive", False, False, True): 79,
-    ("fixed_step", False, False, False): 40,
-    ("adaptive", True, False, False): 41,
-    ("adaptive", True, False, True): 92,
-    ("fixed_step", True, False, False): 54,
-    ("exponential", True, False, False): 70,
-    ("adaptive", True, True, False): 45,
-    ("adaptive", True, True, True): 94,
-    ("fixed_step", True, True, False): 63,
-}
-
 
 def announce(message: str) -> None:
     """Tell the user about a compile before it starts (replaceable, e.g. by a GUI)."""
@@ -284,14 +267,6 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
         driver.compile(tuple(numba.typeof(a) for a in arguments))
         return driver, time.perf_counter() - began
     return driver, 0.0
-
-
-def compile_seconds(kernel: ModuleType) -> int:
-    """About how long compiling ``kernel``'s driver takes (``COMPILE_SECONDS``; the
-    longest of its method's where a flavour is not listed)."""
-    key = (kernel.METHOD, kernel.HAS_STRUCTURES, kernel.HAS_SLIDERS, kernel.TANGENT)
-    return COMPILE_SECONDS.get(key) or max(
-        seconds for flavour, seconds in COMPILE_SECONDS.items() if flavour[0] == kernel.METHOD)
 
 
 def _cached(driver) -> bool:

@@ -211,7 +211,7 @@ def _diagram_only(points, transient, record, workers) -> None:
         "worker_mb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}))
 
 
-RING = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "ring_24_travelling_wave.toml"
+RING = Path(__file__).resolve().parents[2] / "examples" / "scenes" / "ring_24_travelling_wave.toml"
 
 
 def tangent_costs(scene, periods: int, repeats: int) -> tuple[float, float, float]:

@@ -64,7 +64,8 @@ BAD_INPUT, FAULT, INTERRUPTED = 2, 1, 130
 _INPUT_ERRORS = (ValueError, OSError, EOFError, zipfile.BadZipFile, SimulationError)
 
 #: The folders of the packages whose ``raise TypeError(...)`` is a check of an argument.
-_CHECKING_CODE = (Path(__file__).resolve().parent, Path(contact_laws.__file__).resolve().parent)
+_CHECKING_CODE = (Path(__file__).resolve().parents[1],  # shroudnet
+                  Path(contact_laws.__file__).resolve().parent)
 
 
 class UsageError(ValueError):
