@@ -1,0 +1,13 @@
+"""Harmonic balance with alternating frequency–time contact forces, condensed onto the
+contacts (DESIGN §8): a module per job —
+
+- ``fourier``: the truncated series and the time samples they are read at;
+- ``model``: what harmonic balance needs of a scene, the contacts in coordinates of
+  their own;
+- ``condensation``: the structure's dynamic compliance at the contacts, per harmonic;
+- ``hysteresis``: elastic contacts' sliders marched over a period;
+- ``aft``: the contacts' forces in time and their exact Jacobian;
+- ``newton``: Newton's method with a line search;
+- ``balance``: ``harmonic_balance``, a scene's orbit as a ``HarmonicOrbit`` (``orbit``);
+- ``hill``: stability by Hill's method.
+"""
