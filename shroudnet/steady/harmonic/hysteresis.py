@@ -196,7 +196,6 @@ def slider_pass(rt, limit, depth, drt, dlimit, ddepth, kt, w, f, df, dfw):
             moved = True
             slipped = True
             u0, u1 = f0 / size, f1 / size
-            ratio = bound / size
             direction[0], direction[1] = u0, u1
             f[n, 0] = bound * u0
             f[n, 1] = bound * u1

@@ -1,10 +1,15 @@
 """Newton's method with a backtracking line search, on the condensed equations.
 
 Each step solves J Δ = −R and takes z + α Δ with the largest α of 1, ½, ¼, … that
-lowers ‖R‖₂ by the fraction ``DESCENT`` α of it (Armijo's rule on ½‖R‖²); where no α
-down to 2⁻``HALVINGS`` does, the iteration stops there and says so. The residual is
-measured as max |R| over a scale (the contacts' motion), so that a tolerance means a
-fraction of it.
+lowers ‖R‖₂ by the fraction ``DESCENT`` α of it (Armijo's rule on ½‖R‖²). The balance
+is only piecewise smooth (a contact's samples switch between stick and slip, open and
+closed), and where Newton's direction, taken from one piece, lowers ‖R‖ by no step
+(an impact's contact changing pieces at every step, say), Levenberg–Marquardt steps
+(JᵀJ + μ I) Δ = −JᵀR are tried, μ growing tenfold from ``DAMPING_START`` of JᵀJ's
+largest diagonal entry until one lowers ‖R‖: they turn towards steepest descent, which
+lowers it wherever R is differentiable. Where none does, the iteration stops there and
+says so. The residual is measured as max |R| over a scale (the contacts' motion), so
+that a tolerance means a fraction of it.
 """
 
 from __future__ import annotations
@@ -18,6 +23,10 @@ import numpy as np
 ITERATIONS = 50
 HALVINGS = 30
 DESCENT = 1e-4
+#: The first Levenberg–Marquardt damping, as a fraction of JᵀJ's largest diagonal entry,
+#: and the tenfold increases tried.
+DAMPING_START = 1e-6
+DAMPINGS = 8
 
 
 @dataclass(frozen=True, eq=False)
@@ -56,14 +65,10 @@ def newton(evaluate: Callable, z: np.ndarray, scale: Callable[[np.ndarray], floa
         except np.linalg.LinAlgError:
             change = -np.linalg.lstsq(jacobian, residual_vector, rcond=None)[0]
         norm = np.linalg.norm(residual_vector)
-        fraction = 1.0
-        for _ in range(HALVINGS + 1):
-            trial = z + fraction * change.reshape(z.shape)
-            trial_vector, _, _ = evaluate(trial, False)
-            if np.linalg.norm(trial_vector) <= (1.0 - DESCENT * fraction) * norm:
-                break
-            fraction /= 2.0
-        else:
+        trial = line_search(evaluate, z, change, norm)
+        if trial is None:
+            trial = damped_step(evaluate, z, jacobian, residual_vector, norm)
+        if trial is None:
             return NewtonOutcome(z, value, size, iteration, tolerance,
                                  f"stopped: no step along Newton's direction lowers the "
                                  f"residual {size:.3g} (the equations are not smooth "
@@ -75,3 +80,30 @@ def newton(evaluate: Callable, z: np.ndarray, scale: Callable[[np.ndarray], floa
     return NewtonOutcome(z, value, size, iterations, tolerance,
                          f"stopped after {iterations} Newton steps at the residual "
                          f"{size:.3g} (asked {tolerance:.3g})")
+
+
+def line_search(evaluate, z, change, norm):
+    """z + α Δ with the largest α = 2⁻ᵏ, k ≤ ``HALVINGS``, that meets Armijo's rule; None
+    where none does."""
+    fraction = 1.0
+    for _ in range(HALVINGS + 1):
+        trial = z + fraction * change.reshape(z.shape)
+        if np.linalg.norm(evaluate(trial, False)[0]) <= (1.0 - DESCENT * fraction) * norm:
+            return trial
+        fraction /= 2.0
+    return None
+
+
+def damped_step(evaluate, z, jacobian, residual_vector, norm):
+    """z + Δ with (JᵀJ + μI) Δ = −JᵀR for the least μ tried that lowers ‖R‖; None where
+    none does."""
+    normal = jacobian.T @ jacobian
+    gradient = jacobian.T @ residual_vector
+    damping = DAMPING_START * float(np.diag(normal).max())
+    for _ in range(DAMPINGS):
+        change = -np.linalg.solve(normal + damping * np.eye(len(gradient)), gradient)
+        trial = z + change.reshape(z.shape)
+        if np.linalg.norm(evaluate(trial, False)[0]) < norm:
+            return trial
+        damping *= 10.0
+    return None
