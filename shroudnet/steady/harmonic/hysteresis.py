@@ -131,12 +131,14 @@ def slider_pass(rt, limit, depth, drt, dlimit, ddepth, kt, w, f, df, dfw):
     ``dfw`` (N × 2 × 2). Returns (w_N, ∂w_N/∂z at a fixed start (2 × P), ∂w_N/∂w_0
     (2 × 2), whether the slider moved: slipped or was released by an open contact).
 
-    Where a slip ends between samples n − 1 and n (slipping at n − 1, stuck at n), the
-    slider stops at the peak of its position along the slip direction û,
-    g(t) = û·r_t(t) − μ_s N(t)/k_t (the 1-D slider's position while it slips, which
-    stops where g turns back), g interpolated by the cubic through samples n − 2 … n + 1:
-    w ← w_{n−1} + û (max g − g_{n−1}), exact to O(h⁴) where the plain return mapping
-    stops the slider at sample n − 1, O(h²) short of the reversal. Where the contact
+    Where a slip ends between samples n − 1 and n (slipping at n − 1, its slider's
+    position along the slip direction û, g(t) = û·r_t(t) − μ_s N(t)/k_t — the 1-D
+    slider's position while it slips — peaking inside the interval), the slider moves on
+    to the peak before sample n is taken, g interpolated by the cubic through samples
+    n − 2 … n + 1: w ← w_{n−1} + û (max g − g_{n−1}), exact to O(h⁴) where the plain
+    return mapping stops the slider at sample n − 1, O(h²) short of the reversal. As the
+    peak crosses a sample the forces change continuously (the cubic interpolates the
+    samples), so the balance stays continuous in its unknowns. Where the contact
     closes between samples n − 1 and n (δ crossing 0), the slider starts relaxed at the
     closing instant, where the cubic through δ crosses 0, not at sample n − 1, O(h) of
     the motion away."""
@@ -158,8 +160,7 @@ def slider_pass(rt, limit, depth, drt, dlimit, ddepth, kt, w, f, df, dfw):
         if was_open and bound > 0.0 and depth[n - 1] <= 0.0 < depth[n]:
             relax_at_closing(n, rt, depth, drt, ddepth, w, dw, dww, values)
         was_open = bound <= 0.0
-        if slipped and bound > 0.0 and math.hypot(kt * (rt[n, 0] - w[0]),
-                                                  kt * (rt[n, 1] - w[1])) <= bound:
+        if slipped and bound > 0.0:
             refine_stop(n, rt, limit, drt, dlimit, kt, w, dw, dww, direction,
                         d_direction, d_direction_w, values)
         f0 = kt * (rt[n, 0] - w[0])
@@ -255,16 +256,17 @@ def relax_at_closing(n, rt, depth, drt, ddepth, w, dw, dww, values):
 @numba.njit(cache=True)
 def refine_stop(n, rt, limit, drt, dlimit, kt, w, dw, dww, direction, d_direction,
                 d_direction_w, values):
-    """The slider of a slip that ended between samples n − 1 and n moved on to where
-    g = û·r_t − μ_s N/k_t peaks (``slider_pass``), w, dw (∂/∂z) and dww (∂/∂w_0) in
-    place; û and its derivatives are sample n − 1's."""
+    """The slider of a slip at sample n − 1 moved on to where g = û·r_t − μ_s N/k_t
+    peaks between samples n − 1 and n (``slider_pass``), where it peaks inside the
+    interval: w, dw (∂/∂z) and dww (∂/∂w_0) in place; û and its derivatives are sample
+    n − 1's."""
     count, unknowns = drt.shape[0], drt.shape[2]
     u0, u1 = direction[0], direction[1]
     for k in range(4):
         i = (n - 2 + k) % count
         values[k] = u0 * rt[i, 0] + u1 * rt[i, 1] - limit[i] / kt
     s, peak, weights = cubic_peak(values)
-    if s == 0.0:
+    if s == 0.0 or s == 1.0:  # g turned back at t_{n−1}, or still rises at t_n
         return
     rise = peak - values[1]
     w[0] += u0 * rise
