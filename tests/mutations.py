@@ -545,8 +545,8 @@ MUTATIONS = (
              "move with the normal load: the Jacobian is not the forces' derivative",
              (HARMONIC,)),
     Mutation("aft-reversal-at-the-last-sample", "harmonic",
-             "    if s == 0.0:\n        return\n    rise = peak - values[1]",
-             "    if s <= 1.0:\n        return\n    rise = peak - values[1]",
+             "    if s == 0.0 or s == 1.0:  # g turned back at t_{n−1}, or still rises at t_n",
+             "    if s <= 1.0:  # g turned back at t_{n−1}, or still rises at t_n",
              "a slip that ends between samples stops the slider at the sample before: "
              "O(h²) of the motion, the accuracy stalls near 1e-5", (HARMONIC,)),
     Mutation("aft-regularised-slope-sign", "harmonic",
@@ -559,11 +559,12 @@ MUTATIONS = (
              "return model.stiffness - rate * rate * model.mass - 1j * rate * model.damping",
              "the dynamic compliance's damping leads the motion: every phase is mirrored",
              (HARMONIC,)),
-    Mutation("condensation-real-block-sign", "harmonic",
-             "            matrix[b, a], matrix[b, b] = -q, p",
-             "            matrix[b, a], matrix[b, b] = q, p",
-             "W as a real matrix conjugates each harmonic's compliance: Newton's Jacobian is "
-             "not the balance's", (HARMONIC,)),
+    Mutation("condensation-jacobian-conjugated", "harmonic",
+             'product = np.einsum("kab,kbc->kac", self.compliance, complex_amplitudes(columns))',
+             'product = np.einsum("kab,kbc->kac", self.compliance.conj(), '
+             'complex_amplitudes(columns))',
+             "W applied to the Jacobian's columns conjugates each harmonic's compliance: "
+             "Newton's Jacobian is not the balance's", (HARMONIC,)),
     Mutation("condensation-recovery-sign", "harmonic",
              "        response = self.to_load - np.einsum(",
              "        response = self.to_load + np.einsum(",

@@ -142,22 +142,25 @@ def contact_forces(model: HarmonicModel, basis: FourierBasis, z: np.ndarray,
             periods = max(periods, slider.periods)
             repeated = repeated and slider.repeated
             if jacobian:  # ∂λ/∂z through the slider: τᵀ ∂f/∂z (N × ρ × J ρ)
-                hysteretic = np.einsum("ncp,ca->nap", slider.jacobian, contact.tangents)
+                hysteretic = slider.jacobian
         generalised[:, columns] = local
         if jacobian:
-            # Σ_n F_jn (A_n E_nl + B_n Ė_nl) as one product over the samples
-            samples = (by_r[..., None] * synthesis[:, None, None, :]
-                       + by_rate[..., None] * rate_synthesis[:, None, None, :])
+            # Σ_n F_jn (A_n E_nl + B_n Ė_nl) as one product over the samples; the terms in
+            # ṙ only where a force depends on it (a damped law, regularised friction)
+            rate_dependent = bool(np.any(by_rate))
+            samples = by_r[..., None] * synthesis[:, None, None, :]
+            if rate_dependent:
+                samples = samples + by_rate[..., None] * rate_synthesis[:, None, None, :]
             block = (analysis @ samples.reshape(count, -1)).reshape(size, rho, rho, size)
             block = block.transpose(0, 1, 3, 2)
             if hysteretic is not None:
                 block = block + (analysis @ hysteretic.reshape(count, -1)).reshape(
                     size, rho, size, rho)
-            rate_samples = by_rate[..., None] * synthesis[:, None, None, :]
-            rate_block = (analysis @ rate_samples.reshape(count, -1)).reshape(
-                size, rho, rho, size).transpose(0, 1, 3, 2)
             place(total, block, columns, m)
-            place(through_rate, rate_block, columns, m)
+            if rate_dependent:
+                rate_samples = by_rate[..., None] * synthesis[:, None, None, :]
+                place(through_rate, (analysis @ rate_samples.reshape(count, -1)).reshape(
+                    size, rho, rho, size).transpose(0, 1, 3, 2), columns, m)
     stretch_array = np.concatenate(stretches) if stretches else np.zeros(0)
     return ContactForces(normal=normal_force, friction=friction, generalised=generalised,
                          coefficients=analysis @ generalised, stretches=stretch_array,
@@ -187,7 +190,8 @@ def elastic_forces(contact: Contact, basis: FourierBasis, local_r, penetration, 
         drt, dlimit, ddepth = np.zeros((count, 2, 0)), np.zeros((count, 0)), \
             np.zeros((count, 0))
     return periodic_hysteresis(tangential, limit, penetration, drt, dlimit, ddepth,
-                               contact.tangential_stiffness)
+                               contact.tangential_stiffness,
+                               np.ascontiguousarray(contact.tangents))
 
 
 def place(matrix: np.ndarray, block: np.ndarray, columns: slice, m: int) -> None:

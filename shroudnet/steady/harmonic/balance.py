@@ -29,12 +29,15 @@ from .aft import ContactForces, contact_forces
 from .condensation import Condensed, condense
 from .fourier import FourierBasis, extremes, mean_product, samples_for
 from .hill import hill_exponents, multipliers_of
-from .model import HarmonicModel, harmonic_model
+from .model import ELASTIC, HarmonicModel, harmonic_model
 from .newton import ITERATIONS, NewtonOutcome, newton
 from .orbit import HarmonicOrbit, energy_per_cycle, kinetic_peak
 
 #: The residual max |R| / scale a balance is solved to by default.
 BALANCE_TOLERANCE = 1e-10
+#: The residual the levels of the ``ladder`` below the last are solved to: they are
+#: starts, nearer the orbit than their own truncation error is.
+LADDER_TOLERANCE = 1e-4
 #: The most harmonics a series may hold, and the most time samples a period.
 MOST_HARMONICS = 1000
 MOST_SAMPLES = 100_000
@@ -48,7 +51,6 @@ class Balance:
     model: HarmonicModel
     basis: FourierBasis
     condensed: Condensed
-    compliance: np.ndarray  # W as a real matrix on the flattened coefficients
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -61,7 +63,8 @@ class Balance:
         residual = self.condensed.residual(z, forces.coefficients).ravel()
         if not jacobian:
             return residual, None, forces
-        return residual, np.eye(len(residual)) + self.compliance @ forces.jacobian, forces
+        return residual, np.eye(len(residual)) + self.condensed.apply_columns(
+            forces.jacobian), forces
 
     def scale(self, z: np.ndarray) -> float:
         """The contacts' motion [m]: the largest coefficient of z or of z^lin."""
@@ -79,7 +82,7 @@ def balance_of(scene: Scene, harmonics: int, periods: int, samples: int,
             np.isfinite(condensed.to_load)):
         raise ValueError(f"{owner}: the structure is at a resonance nothing damps at one of "
                          f"its harmonics (K − (kω)²M + ikωC is singular): give it damping")
-    return Balance(model, basis, condensed, condensed.real_blocks())
+    return Balance(model, basis, condensed)
 
 
 def resized(coefficients: np.ndarray, harmonics: int) -> np.ndarray:
@@ -113,19 +116,21 @@ def truncated(balance: Balance, harmonics: int) -> Balance:
     them."""
     condensed = balance.condensed.truncated(harmonics)
     basis = FourierBasis(harmonics, balance.basis.frequency, samples_for(harmonics))
-    return Balance(balance.model, basis, condensed, condensed.real_blocks())
+    return Balance(balance.model, basis, condensed)
 
 
 def ladder(balance: Balance, tolerance: float, iterations: int) -> NewtonOutcome:
     """Newton on the balances of 1, 2, 4, … harmonics in turn, each from the last one's
     orbit, up to the balance's own: a hard nonlinearity (an impact, say) whose full
     series Newton cannot reach from the linear response is reached harmonic by
-    harmonic (a level that does not converge hands on where its Newton stopped)."""
+    harmonic (a level that does not converge hands on where its Newton stopped). The
+    levels below the last are starts only, solved to ``LADDER_TOLERANCE``."""
     z = balance.condensed.linear[:3].copy()
     level = 1
     while level < balance.basis.harmonics:
         step = truncated(balance, level)
-        z = newton(step.evaluate, resized(z, level), step.scale, tolerance, iterations).z
+        z = newton(step.evaluate, resized(z, level), step.scale,
+                   max(tolerance, LADDER_TOLERANCE), iterations).z
         level = 2 * level
     return newton(balance.evaluate, resized(z, balance.basis.harmonics), balance.scale,
                   tolerance, iterations)
@@ -185,7 +190,28 @@ def orbit_from(balance: Balance, found: NewtonOutcome, stability: bool) -> Harmo
         energy_per_cycle=energy_per_cycle(model, basis, coefficients, found.z, forces),
         kinetic_peak=kinetic_peak(coefficients, model.mass, basis.frequency,
                                   basis.harmonics),
-        hysteresis_periods=forces.hysteresis_periods)
+        hysteresis_periods=forces.hysteresis_periods, smooth=smooth_forces(model, forces))
+
+
+#: A slider's force within this fraction of its limit μ_s N counts as slipping.
+ON_THE_LIMIT = 1e-9
+
+
+def smooth_forces(model: HarmonicModel, forces: ContactForces) -> bool:
+    """Whether no contact both opens and closes over the period (an opening law's force 0
+    at some samples and not at others), and no elastic contact both sticks and slips (its
+    force on the limit μ_s N at some samples and inside it at others)."""
+    for contact in model.contacts:
+        normal = forces.normal[:, contact.index]
+        closed = normal > 0.0
+        if contact.opens and closed.any() and not closed.all():
+            return False
+        if contact.friction_kind == ELASTIC:
+            size = np.hypot(*forces.friction[:, contact.index].T)
+            slipping = closed & (size >= (1.0 - ON_THE_LIMIT) * contact.static_mu * normal)
+            if slipping.any() and not slipping.all():
+                return False
+    return True
 
 
 def stretches_by_interface(model: HarmonicModel, forces: ContactForces) -> np.ndarray:

@@ -17,7 +17,9 @@ first line (``recover``). Per harmonic this costs one factorisation of an n × n
 matrix, once per scene and frequency, not per Newton step.
 
 In the real coefficients (a_k, b_k) of ``fourier`` (X = a − ib), the complex product
-W X with W = P + iQ is the real block [[P, Q], [−Q, P]] on (a, b).
+W X with W = P + iQ is the real block [[P, Q], [−Q, P]] on (a, b); it is applied as the
+complex product, harmonic by harmonic, to the residual and to each column of the
+Jacobian alike.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
-from .fourier import coefficient_count, complex_amplitudes, real_coefficients
+from .fourier import complex_amplitudes, real_coefficients
 from .model import HarmonicModel
 
 
@@ -60,19 +62,14 @@ class Condensed:
         """R = z − z^lin + W λ̂ of equation (1) ((2H+1) × m)."""
         return z - self.linear + self.apply(forces)
 
-    def real_blocks(self) -> np.ndarray:
-        """W as a real matrix (m(2H+1) × m(2H+1)) on the coefficients flattened
-        harmonic-major (index j·m + a, j the coefficient 0 … 2H)."""
-        m = self.compliance.shape[1]
-        size = coefficient_count(self.harmonics) * m
-        matrix = np.zeros((size, size))
-        matrix[:m, :m] = self.compliance[0].real
-        for k in range(1, self.harmonics + 1):
-            p, q = self.compliance[k].real, self.compliance[k].imag
-            a, b = slice((2 * k - 1) * m, 2 * k * m), slice(2 * k * m, (2 * k + 1) * m)
-            matrix[a, a], matrix[a, b] = p, q
-            matrix[b, a], matrix[b, b] = -q, p
-        return matrix
+    def apply_columns(self, matrix: np.ndarray) -> np.ndarray:
+        """W applied to each column of ``matrix`` (m(2H+1) × c, rows harmonic-major: index
+        j·m + a), harmonic by harmonic: the Jacobian W ∂λ̂/∂z without W as a dense
+        matrix (its blocks off the harmonics' diagonal are zero)."""
+        size, m = self.linear.shape
+        columns = matrix.reshape(size, m, -1)
+        product = np.einsum("kab,kbc->kac", self.compliance, complex_amplitudes(columns))
+        return real_coefficients(product).reshape(size * m, -1)
 
     def recover(self, forces: np.ndarray) -> np.ndarray:
         """Every coordinate's coefficients ((2H+1) × n): X_k = H_k Q_k − H_k Gᵀ Λ_k."""

@@ -17,8 +17,10 @@ parameter component changes sign; it is located on the branch by the secant meth
 that component. Hill's multipliers (``hill``) are watched as
 ``steady.continuation`` watches the exact ones: a real one through −1 (period
 doubling), a complex pair through the unit circle (torus), each located by the secant
-method on |μ| − 1 of the multiplier that crosses — as reliable as Hill's method is
-(``hill``: not where contacts stick and slip).
+method on |μ| − 1 of the multiplier that crosses — between orbits whose contact forces
+are smooth only (``HarmonicOrbit.smooth``), where Hill's method is to be trusted
+(``hill``): where contacts stick and slip, or open and close, the orbits keep Hill's
+multipliers but no bifurcation is read from them.
 
 The branch is a ``Branch`` whose orbits are ``HarmonicOrbit``s, read as a branch of
 exact orbits is (amplitudes, energies, multipliers, the frequency shift).
@@ -46,9 +48,8 @@ from ..continuation import (
     TURN,
     Bifurcation,
     Branch,
-    _counts,
-    _real,
     critical,
+    smooth_changes,
 )
 from ..orbits import ConvergenceError
 from ..parametric import checked_scene_at
@@ -224,22 +225,17 @@ class Follower:
                       ended=ended)
 
     def record(self, points, orbits, bifurcations, new: Point) -> None:
-        """Append ``new`` with the bifurcations between the last point and it."""
+        """Append ``new`` with the bifurcations between the last point and it: those
+        ``steady.continuation.smooth_changes`` finds, Hill's multipliers standing for the
+        monodromy's eigenvalues; the changes of Hill's multipliers only between orbits
+        whose contact forces are smooth (``HarmonicOrbit.smooth``), where they are to be
+        trusted, folds everywhere."""
         last, before = points[-1], orbits[-1]
         orbit = self.orbit(new)
         index = len(points) - 1
-        changes = []
-        if last.tangent[-1] * new.tangent[-1] < 0.0:
-            changes.append(("fold", lambda point: point.tangent[-1]))
-        if self.stability:
-            (doubling_a, torus_a, _), (doubling_b, torus_b, _) = (
-                _counts(before.multipliers), _counts(orbit.multipliers))
-            if doubling_a != doubling_b:
-                changes.append(("period-doubling", self.modulus_test(
-                    lambda mu: _real(mu) & (mu.real < 0.0), min(doubling_a, doubling_b))))
-            if torus_a != torus_b:
-                changes.append(("torus", self.modulus_test(
-                    lambda mu: ~_real(mu) & (mu.imag > 0.0), min(torus_a, torus_b) // 2)))
+        changes = smooth_changes(last, before, new, orbit, self.multiplier_matrix)
+        if not (self.stability and before.smooth and orbit.smooth):
+            changes = [(kind, test) for kind, test in changes if kind == "fold"]
         for kind, test in changes:
             found = self.locate(kind, test, last, new, index)
             if found is not None:
@@ -247,14 +243,10 @@ class Follower:
         points.append(new)
         orbits.append(orbit)
 
-    def modulus_test(self, kept, rank):
-        """|μ| − 1 of the multiplier of those ``kept`` keeps, ``rank`` from the largest
-        (as ``steady.continuation``), from Hill's multipliers at a point."""
-        def test(point):
-            multipliers = self.orbit(point).multipliers
-            moduli = np.sort(np.abs(multipliers[kept(multipliers)]))[::-1]
-            return float(moduli[rank]) - 1.0 if rank < len(moduli) else -1.0
-        return test
+    def multiplier_matrix(self, point: Point) -> np.ndarray:
+        """diag(Hill's multipliers) of ``point``'s orbit: the matrix whose eigenvalues
+        ``smooth_changes``' test functions read."""
+        return np.diag(self.orbit(point).multipliers)
 
     def locate(self, kind, test, a: Point, b: Point, index: int) -> Bifurcation | None:
         """The zero of ``test`` between a and b by the secant method on the arclength
@@ -310,7 +302,8 @@ def harmonic_continuation(scene_at: Callable[[float], object], start: float, sto
         The parameter's range.
     harmonics, periods, samples, tolerance, stability
         As ``harmonic_balance`` (``stability``: Hill's multipliers at every point, and
-        the period doublings and tori they show).
+        the period doublings and tori they show between smooth orbits; an eigenvalue
+        problem of 2n(2H+1) a point, most of a point's cost on a large structure).
     guess : HarmonicOrbit or array, optional
         As ``harmonic_balance``'s, at ``start``.
     step, max_step, max_points, parameter, progress

@@ -297,10 +297,10 @@ def refine_stop(n, rt, limit, drt, dlimit, kt, w, dw, dww, direction, d_directio
 
 @dataclass(frozen=True, eq=False)
 class Hysteresis:
-    """A slider's periodic forces: ``force`` f (N × 2) [N], ``jacobian`` df/dz
-    (N × 2 × P), where its period starts (``start`` w_0 [m]), the ``periods`` marched,
-    whether they repeated (``repeated``) and by how much the last one missed (``miss``,
-    [m])."""
+    """A slider's periodic forces: ``force`` f (N × 2) [N], ``jacobian`` d(τᵀf)/dz
+    (N × ρ × P, the force in the contact's coordinates), where its period starts
+    (``start`` w_0 [m]), the ``periods`` marched, whether they repeated (``repeated``)
+    and by how much the last one missed (``miss``, [m])."""
 
     force: np.ndarray
     jacobian: np.ndarray
@@ -310,34 +310,75 @@ class Hysteresis:
     miss: float
 
 
-def periodic_hysteresis(rt, limit, depth, drt, dlimit, ddepth, kt: float) -> Hysteresis:
-    """The ``Hysteresis`` of a slider of stiffness ``kt`` [N/m] driven by ``rt`` (N × 2)
-    under the limits ``limit`` (N) [N] at the penetrations ``depth`` (N) [m], with their
-    derivatives ``drt`` (N × 2 × P), ``dlimit`` and ``ddepth`` (N × P) (module
-    docstring)."""
+@numba.njit(cache=True)
+def inverse_2x2(matrix):
+    """The inverse of a 2 × 2 ``matrix``, by its adjugate."""
+    a, b, c, d = matrix[0, 0], matrix[0, 1], matrix[1, 0], matrix[1, 1]
+    inverse = np.empty((2, 2))
+    determinant = a * d - b * c
+    inverse[0, 0], inverse[0, 1] = d / determinant, -b / determinant
+    inverse[1, 0], inverse[1, 1] = -c / determinant, a / determinant
+    return inverse
+
+
+@numba.njit(cache=True)
+def periodic_march(rt, limit, depth, drt, dlimit, ddepth, kt, tangents, steps, newton_after,
+                   repeats):
+    """The march of ``periodic_hysteresis`` compiled whole: (forces, ∂(τᵀf)/∂z, the start,
+    the periods, whether they repeated, the last miss [m])."""
     count, unknowns = drt.shape[0], drt.shape[2]
-    scale = max(float(np.ptp(rt, axis=0).max()), float(limit.max()) / kt, 1e-300)
-    tolerance = REPEATS * scale
-    w = rt.mean(axis=0)
-    carried = drt.mean(axis=0)  # dw/dz of the stated start
+    span = 0.0
+    for c in range(2):
+        span = max(span, rt[:, c].max() - rt[:, c].min())
+    tolerance = repeats * max(span, limit.max() / kt, 1e-300)
+    w = np.empty(2)
+    carried = np.empty((2, unknowns))  # dw/dz of the stated start: the mean of r_t's
+    for c in range(2):
+        w[c] = rt[:, c].mean()
+        for p in range(unknowns):
+            carried[c, p] = drt[:, c, p].mean()
     force = np.empty((count, 2))
     partial = np.empty((count, 2, unknowns))
     by_start = np.empty((count, 2, 2))
-    miss, periods, repeated = math.inf, 0, False
-    for periods in range(1, HYSTERESIS_STEPS + 1):
+    identity = np.eye(2)
+    miss, periods, repeated = np.inf, 0, False
+    moved_by, turned, moved = np.zeros((2, unknowns)), np.eye(2), False
+    for periods in range(1, steps + 1):
         end, moved_by, turned, moved = slider_pass(rt, limit, depth, drt, dlimit, ddepth, kt,
                                                    w, force, partial, by_start)
-        miss = float(np.abs(end - w).max())
+        miss = max(abs(end[0] - w[0]), abs(end[1] - w[1]))
         if miss <= tolerance:
             repeated = True
             break
-        if moved and periods >= NEWTON_AFTER:
+        if moved and periods >= newton_after:
             # Newton on P(w₀) − w₀ = 0: (I − A) Δ = P(w₀) − w₀
-            w = w + np.linalg.solve(np.eye(2) - turned, end - w)
+            w = w + np.dot(inverse_2x2(identity - turned), end - w)
         else:
-            carried = moved_by + turned @ carried
+            carried = moved_by + np.dot(turned, carried)
             w = end
-    start_rate = np.linalg.solve(np.eye(2) - turned, moved_by) if moved else carried
-    jacobian = partial + np.einsum("ncq,qp->ncp", by_start, start_rate)
-    return Hysteresis(force=force, jacobian=jacobian, start=w, periods=periods,
-                      repeated=repeated, miss=miss)
+    start_rate = np.dot(inverse_2x2(identity - turned), moved_by) if moved else carried
+    rho = tangents.shape[1]
+    jacobian = np.zeros((count, rho, unknowns))
+    for n in range(count):
+        total = partial[n] + np.dot(by_start[n], start_rate)
+        for a in range(rho):
+            for p in range(unknowns):
+                jacobian[n, a, p] = (tangents[0, a] * total[0, p]
+                                     + tangents[1, a] * total[1, p])
+    return force, jacobian, w, periods, repeated, miss
+
+
+def periodic_hysteresis(rt, limit, depth, drt, dlimit, ddepth, kt: float,
+                        tangents: np.ndarray) -> Hysteresis:
+    """The ``Hysteresis`` of a slider of stiffness ``kt`` [N/m] driven by ``rt`` (N × 2)
+    under the limits ``limit`` (N) [N] at the penetrations ``depth`` (N) [m], with their
+    derivatives ``drt`` (N × 2 × P), ``dlimit`` and ``ddepth`` (N × P) (module
+    docstring), its Jacobian that of the force along the contact's coordinates, τᵀ f
+    (``tangents`` τ: 2 × ρ): marched from the slider at the mean of r_t until a period
+    repeats to ``REPEATS`` of the contact's scale, by Newton on the period's start past
+    ``NEWTON_AFTER`` periods, ``HYSTERESIS_STEPS`` at most."""
+    force, jacobian, start, periods, repeated, miss = periodic_march(
+        rt, limit, depth, drt, dlimit, ddepth, float(kt), tangents, HYSTERESIS_STEPS,
+        NEWTON_AFTER, REPEATS)
+    return Hysteresis(force=force, jacobian=jacobian, start=start, periods=int(periods),
+                      repeated=bool(repeated), miss=float(miss))

@@ -47,6 +47,10 @@ class HarmonicOrbit:
     ``exponents`` [1/s] and ``multipliers``: Hill's (``hill``; empty where stability was
     not asked for), by descending modulus of the multiplier. ``hysteresis_periods``: the
     periods the elastic contacts' sliders were marched for their hysteresis to repeat.
+    ``smooth``: whether the contacts' forces are smooth over the orbit — no contact
+    opens and closes, no elastic contact both sticks and slips —, the orbits on which
+    Hill's multipliers converge to the exact ones; where not, they are not to be
+    trusted (``hill``), nor ``stable``: ``certify`` gives the exact multipliers.
     """
 
     scene: Scene
@@ -72,6 +76,7 @@ class HarmonicOrbit:
     energy_per_cycle: EnergyPerCycle
     kinetic_peak: float
     hysteresis_periods: int
+    smooth: bool
 
     def __post_init__(self):
         check_record(self)
@@ -93,8 +98,8 @@ class HarmonicOrbit:
 
     @property
     def stable(self) -> bool:
-        """Whether every one of Hill's multipliers lies inside the unit circle (see
-        ``hill`` for where that is not to be trusted); a ValueError where they were not
+        """Whether every one of Hill's multipliers lies inside the unit circle: to be
+        trusted on ``smooth`` orbits only (``hill``); a ValueError where they were not
         computed."""
         if not len(self.multipliers):
             raise ValueError("HarmonicOrbit.stable: the multipliers were not computed "
