@@ -293,6 +293,17 @@ def test_the_energy_per_cycle_balances_and_the_outputs_read_the_series():
     assert orbit.kinetic_peak >= kinetic.max()
     assert orbit.equivalent_damping == pytest.approx(
         energy.dissipated / (4.0 * math.pi * orbit.kinetic_peak))
+    # the contact's force in time: pressed by its constant load, within its friction limit
+    forces = orbit.contact_forces()
+    assert forces.normal.shape == (orbit.samples, 1)
+    np.testing.assert_allclose(forces.normal, 2.0)
+    assert np.hypot(*forces.friction[:, 0].T).max() <= 0.3 * 2.0 * (1.0 + 1e-12)
+    # its work over the period, f·ṙ_t summed over the samples, is the friction's energy
+    rate = orbit.at(orbit.times, 1) @ orbit.scene.arrays.slip_rows(1)[0]
+    second = orbit.at(orbit.times, 1) @ orbit.scene.arrays.slip_rows(2)[0]
+    work = (forces.friction[:, 0, 0] @ rate + forces.friction[:, 0, 1] @ second) \
+        * orbit.period / orbit.samples
+    assert work == pytest.approx(energy.friction, rel=1e-9)
 
 
 def test_an_orbit_that_does_not_converge_says_so():

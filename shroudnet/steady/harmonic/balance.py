@@ -214,6 +214,13 @@ def smooth_forces(model: HarmonicModel, forces: ContactForces) -> bool:
     return True
 
 
+def forces_of(orbit: HarmonicOrbit) -> ContactForces:
+    """The contact forces of ``orbit`` at its samples, computed again from its contact
+    coordinates' coefficients (``HarmonicOrbit.contact_forces``)."""
+    balance = balance_of(orbit.scene, orbit.harmonic_count, orbit.periods, orbit.samples)
+    return contact_forces(balance.model, balance.basis, orbit.contact_coefficients, False)
+
+
 def stretches_by_interface(model: HarmonicModel, forces: ContactForces) -> np.ndarray:
     """The stretches at t = 0 in the order of the scene's elastic interfaces (2 each)."""
     elastic = model.scene.arrays.elastic_interfaces
@@ -268,9 +275,9 @@ def harmonic_balance(scene: Scene, harmonics: int, *, periods: int = 1, guess=No
     Examples
     --------
     >>> import shroudnet as sn
-    >>> orbit = sn.harmonic_balance(sn.scenes.blade_pair(tangential_stiffness=1e6), 7)
-    >>> orbit.converged, round(orbit.amplitude("a") * 1e6, 1)
-    (True, 201.1)
+    >>> orbit = sn.harmonic_balance(sn.scenes.jenkins_chain(), 7)
+    >>> orbit.converged, round(orbit.amplitude("a") * 1e3, 3)
+    (True, 5.116)
     """
     owner = "harmonic_balance"
     check_instance(owner, "scene", scene, Scene, expected="a shroudnet.Scene")

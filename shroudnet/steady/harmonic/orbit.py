@@ -119,6 +119,18 @@ class HarmonicOrbit:
         v = self.at(np.zeros(1), order=1)[0]
         return (x, v) + ((self.stretches.copy(),) if len(self.stretches) else ())
 
+    @property
+    def times(self) -> np.ndarray:
+        """t_n = n T / N [s]: the samples the contact forces are computed at."""
+        return np.arange(self.samples) * (self.period / self.samples)
+
+    def contact_forces(self):
+        """The contacts' forces over the period at ``times`` (``aft.ContactForces``):
+        ``normal`` N (samples × interfaces) [N], ``friction`` along each interface's
+        tangents t₁, t₂ (samples × interfaces × 2) [N], as the balance computed them."""
+        from .balance import forces_of  # the balance imports this module
+        return forces_of(self)
+
     def at(self, times, order: int = 0) -> np.ndarray:
         """Every coordinate's ``order``-th time derivative at ``times`` [s] (len(times) ×
         n)."""
