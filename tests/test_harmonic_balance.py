@@ -75,6 +75,18 @@ def test_a_linear_structure_is_its_closed_form_response_at_any_number_of_harmoni
     assert energy.friction == energy.contact == 0.0
 
 
+def test_an_orbit_of_two_periods_of_a_linear_structure_is_its_one_period_orbit():
+    """periods=2: the series of ω/2, whose odd harmonics a linear structure leaves at 0."""
+    scene = open_pair()
+    twice = sn.harmonic_balance(scene, 6, periods=2)
+    once = sn.harmonic_balance(scene, 3)
+    times = np.linspace(0.0, 2.0 * scene.excitation_period, 23)
+    assert twice.period == pytest.approx(2.0 * once.period)
+    assert np.abs(twice.at(times) - once.at(times)).max() <= 1e-13 * np.abs(once.at(times)).max()
+    assert np.abs(twice.coefficients[1::4]).max() <= 1e-15 * np.abs(once.coefficients).max()
+    assert twice.energy_per_cycle.damping == pytest.approx(once.energy_per_cycle.damping)
+
+
 def test_a_linear_structures_hill_multipliers_are_its_closed_form_floquet_multipliers():
     """Without contact the orbit's multipliers are e^{λT} of the free structure's
     eigenvalues λ (the state matrix [[0, I], [−M⁻¹K, −M⁻¹C]]), at any H."""
