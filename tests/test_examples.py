@@ -285,8 +285,9 @@ EXAMPLES = {
 }
 
 
-#: Examples that take over 10 s even at a test's size: the 24-sector disc's branch.
-SLOW_EXAMPLES = {"bladed_disc"}
+#: Examples that take over 10 s even at a test's size: the 24-sector disc's branch, and
+#: the exact orbits of the elastic packet that certify its harmonic balance (some 15 s).
+SLOW_EXAMPLES = {"bladed_disc", "harmonic_balance_packet"}
 
 
 @pytest.mark.parametrize("name", [pytest.param(name, marks=pytest.mark.slow)
