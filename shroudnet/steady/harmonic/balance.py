@@ -256,8 +256,8 @@ def harmonic_balance(scene: Scene, harmonics: int, *, periods: int = 1, guess=No
         both are tried where a guess fails.
     samples : int, optional
         N > 2H time samples per period for the contacts' forces; default
-        ``fourier.samples_for(H)`` (16 H, at least 32), so that aliasing does not cap
-        the accuracy as H grows.
+        ``fourier.samples_for(H)`` (8 H^{3/2}, at least 32), so that aliasing does not
+        cap the accuracy as H grows.
     tolerance : float
         The residual max |R| / scale to reach, in [1e-14, 1e-2] (``HarmonicOrbit``).
     iterations : int

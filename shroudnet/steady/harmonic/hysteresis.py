@@ -12,10 +12,11 @@ the slider is marched by the return mapping (backward Euler, radial return)::
     |f_trial| ≤ μ_s N_n:      f_n = f_trial,                w_n = w_{n−1} (stuck)
     else:                     f_n = μ_s N_n f_trial/|f_trial|, w_n = r_t,n − f_n/k_t
 
-which tends to the continuous law as the samples' spacing h → 0 (its error at a
-reversal between samples is O(h²) of the motion, like the sampling's own aliasing). A
-period's forces depend on where the slider starts; the periodic hysteresis is the
-start that the period returns to, w_N = P(w_0) = w_0. From the stated start — the
+which tends to the continuous law as the samples' spacing h → 0. Where a slip stops
+or the contact closes between two samples, the plain mapping is O(h²) and O(h) of the
+motion off; there the slider is put where the continuous law has it, interpolated to
+O(h⁴) (``slider_pass``). A period's forces depend on where the slider starts; the
+periodic hysteresis is the start that the period returns to, w_N = P(w_0) = w_0. From the stated start — the
 slider at the mean of r_t over the period, so that a contact that never slips carries
 no mean friction force — the period is marched until it repeats (``HYSTERESIS_STEPS``
 at most): once a 1-D slider slips it forgets its start, and a 2-D one forgets it
