@@ -16,11 +16,11 @@ which tends to the continuous law as the samples' spacing h → 0. Where a slip 
 or the contact closes between two samples, the plain mapping is O(h²) and O(h) of the
 motion off; there the slider is put where the continuous law has it, interpolated to
 O(h⁴) (``slider_pass``). A period's forces depend on where the slider starts; the
-periodic hysteresis is the start that the period returns to, w_N = P(w_0) = w_0. From the stated start — the
-slider at the mean of r_t over the period, so that a contact that never slips carries
-no mean friction force — the period is marched until it repeats (``HYSTERESIS_STEPS``
-at most): once a 1-D slider slips it forgets its start, and a 2-D one forgets it
-geometrically; past ``NEWTON_AFTER`` periods the fixed point is sought by Newton's
+periodic hysteresis is the start that the period returns to, w_N = P(w_0) = w_0. From
+the stated start — the slider at the mean of r_t over the period, so that a contact
+that never slips carries no mean friction force — the period is marched until it
+repeats (``HYSTERESIS_STEPS`` at most): once a 1-D slider slips it forgets its start,
+and a 2-D one forgets it geometrically; past ``NEWTON_AFTER`` periods the fixed point is sought by Newton's
 method on w_0 ↦ P(w_0) − w_0 with the 2 × 2 Jacobian the pass carries.
 
 Every pass carries the derivatives of f_n with respect to the unknowns z (through
