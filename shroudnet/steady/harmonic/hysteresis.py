@@ -20,8 +20,9 @@ periodic hysteresis is the start that the period returns to, w_N = P(w_0) = w_0.
 the stated start — the slider at the mean of r_t over the period, so that a contact
 that never slips carries no mean friction force — the period is marched until it
 repeats (``HYSTERESIS_STEPS`` at most): once a 1-D slider slips it forgets its start,
-and a 2-D one forgets it geometrically; past ``NEWTON_AFTER`` periods the fixed point is sought by Newton's
-method on w_0 ↦ P(w_0) − w_0 with the 2 × 2 Jacobian the pass carries.
+and a 2-D one forgets it geometrically; past ``NEWTON_AFTER`` periods the fixed point is
+sought by Newton's method on w_0 ↦ P(w_0) − w_0 with the 2 × 2 Jacobian the pass
+carries.
 
 Every pass carries the derivatives of f_n with respect to the unknowns z (through
 r_t,n and N_n) and to the start w_0, so that the forces' Jacobian is exact for what is
