@@ -102,7 +102,10 @@ def first_guess(balance: Balance, guess, owner: str) -> np.ndarray | None:
         return None
     if isinstance(guess, HarmonicOrbit):
         guess = guess.contact_coefficients
-    values = np.asarray(guess, dtype=float) if not isinstance(guess, str) else None
+    try:
+        values = None if isinstance(guess, str | bytes) else np.asarray(guess, dtype=float)
+    except (TypeError, ValueError):
+        values = None
     if values is None or values.ndim != 2 or values.shape[1] != m or values.shape[0] % 2 \
             != 1 or not np.all(np.isfinite(values)):
         raise ValueError(f"{owner}.guess must be a HarmonicOrbit of the scene or its "

@@ -336,7 +336,13 @@ def harmonic_continuation(scene_at: Callable[[float], object], start: float, sto
     step = FIRST_STEP * max_step if step is None else check_real(
         owner, "step", step, low=SMALLEST_STEP, high=max_step)
     span = abs(stop - start)
-    checked_scene_at(owner, scene_at, start, start + 1e-3 * (stop - start))
+    try:
+        checked_scene_at(owner, scene_at, start, start + 1e-3 * (stop - start))
+    except (ValueError, TypeError) as error:
+        if "scene_at" in str(error):
+            raise
+        raise type(error)(f"{owner}: scene_at refused the range start = {start:g} … "
+                          f"stop = {stop:g}: {error}") from error
     follower = Follower(scene_at=scene_at, harmonics=harmonics, periods=periods,
                         samples=samples, span=span, low=min(start, stop),
                         high=max(start, stop), tolerance=tolerance, stability=stability)
