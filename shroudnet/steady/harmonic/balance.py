@@ -217,13 +217,6 @@ def smooth_forces(model: HarmonicModel, forces: ContactForces) -> bool:
     return True
 
 
-def forces_of(orbit: HarmonicOrbit) -> ContactForces:
-    """The contact forces of ``orbit`` at its samples, computed again from its contact
-    coordinates' coefficients (``HarmonicOrbit.contact_forces``)."""
-    balance = balance_of(orbit.scene, orbit.harmonic_count, orbit.periods, orbit.samples)
-    return contact_forces(balance.model, balance.basis, orbit.contact_coefficients, False)
-
-
 def stretches_by_interface(model: HarmonicModel, forces: ContactForces) -> np.ndarray:
     """The stretches at t = 0 in the order of the scene's elastic interfaces (2 each)."""
     elastic = model.scene.arrays.elastic_interfaces

@@ -20,7 +20,9 @@ from ...checked_records import check_record
 from ...model.scene import Scene
 from ..cycle import EnergyPerCycle, Harmonics, equivalent_damping
 from ..orbits import UNIT_CIRCLE
+from .aft import contact_forces as forces_in_time
 from .fourier import FourierBasis, derivative_matrix, series_matrix
+from .model import harmonic_model
 
 
 @dataclass(frozen=True)
@@ -128,8 +130,9 @@ class HarmonicOrbit:
         """The contacts' forces over the period at ``times`` (``aft.ContactForces``):
         ``normal`` N (samples × interfaces) [N], ``friction`` along each interface's
         tangents t₁, t₂ (samples × interfaces × 2) [N], as the balance computed them."""
-        from .balance import forces_of  # the balance imports this module
-        return forces_of(self)
+        model = harmonic_model(self.scene, self.periods, "HarmonicOrbit.contact_forces")
+        basis = FourierBasis(self.harmonic_count, self.frequency, self.samples)
+        return forces_in_time(model, basis, self.contact_coefficients, False)
 
     def at(self, times, order: int = 0) -> np.ndarray:
         """Every coordinate's ``order``-th time derivative at ``times`` [s] (len(times) ×
