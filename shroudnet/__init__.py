@@ -99,6 +99,11 @@ from .run.simulation import SweepPoint as SweepPoint
 from .steady.continuation import Bifurcation as Bifurcation
 from .steady.continuation import Branch as Branch
 from .steady.continuation import continuation as continuation
+from .steady.harmonic.balance import harmonic_balance as harmonic_balance
+from .steady.harmonic.certificate import Certificate as Certificate
+from .steady.harmonic.certificate import certify as certify
+from .steady.harmonic.continuation import harmonic_continuation as harmonic_continuation
+from .steady.harmonic.orbit import HarmonicOrbit as HarmonicOrbit
 from .steady.orbits import ConvergenceError as ConvergenceError
 from .steady.orbits import PeriodicOrbit as PeriodicOrbit
 from .steady.orbits import periodic_orbit as periodic_orbit
@@ -128,6 +133,11 @@ __all__ = [
     "Bifurcation",
     "Branch",
     "continuation",
+    "Certificate",
+    "certify",
+    "harmonic_balance",
+    "harmonic_continuation",
+    "HarmonicOrbit",
     "Coupling",
     "stick_clusters",
     "Assembly",

@@ -36,6 +36,7 @@ from shroudnet.scenes import (
     paper_frequency_model,
     three_blade_paper,
 )
+from shroudnet.studies.harmonic_precision import HarmonicPrecision
 from shroudnet.studies.precision import Measurement, Setting, Study
 
 
@@ -67,6 +68,7 @@ def drawn():
                                             errors={"E_rho": 1e-6})
                                 for regime in ("p1", "chaos")],
                   floors={"p1": 0.0, "chaos": 1e-3})
+    wave = periodic_orbit(ring)
     mistuned = mistuning_study(ring, spread=0.03, samples=2, speeds_rpm=[5900.0, 6000.0],
                                transient=20, record=5, workers=1, progress=False)
     return {
@@ -82,7 +84,12 @@ def drawn():
         "forced_response": (({"up": branch}, "blade2"), {}, 2),
         "branch_content": (({"up": branch}, "blade2"), {}, 3),
         "zzenf_diagram": ((modes,), {"speed_rpm": 3000.0, "engine_orders": (5, 6)}, None),
-        "sector_amplitudes": (({"wave": periodic_orbit(ring)},), {}, None),
+        "sector_amplitudes": (({"wave": wave},), {}, None),
+        "harmonic_precision_diagram": ((HarmonicPrecision(
+            scene=ring, harmonics=np.array([1, 3, 5]), samples=np.array([32, 42, 90]),
+            seconds=np.array([1e-3, 2e-3, 4e-3]), amplitude_error=np.array([1e-2, 1e-3, 1e-4]),
+            energy_error=np.array([2e-2, 2e-3, 2e-4]), state_error=np.array([1e-2, 1e-3, 1e-4]),
+            exact=wave, exact_seconds=0.5),), {"against": "time"}, None),
         "mistuning_histogram": ((mistuned,), {}, None),
         "stick_slip_cycle": ((belt, 0, 10), {}, 3),
         "hysteresis_loops": (({"blade1–blade2": hysteresis_loop(sim, 0, 20)},), {}, None),
@@ -92,7 +99,7 @@ def drawn():
 FUNCTIONS = ["response_panel", "bifurcation_diagram", "curves", "campbell_diagram",
              "group_campbell_diagram", "work_precision_diagram", "forced_response",
              "branch_content", "zzenf_diagram", "sector_amplitudes", "mistuning_histogram",
-             "stick_slip_cycle", "hysteresis_loops"]
+             "stick_slip_cycle", "hysteresis_loops", "harmonic_precision_diagram"]
 
 
 def has_drawing(axes: Axes) -> bool:

@@ -108,6 +108,16 @@ def swept():
 
 
 @functools.cache
+def harmonic_orbit():
+    """The Jenkins chain's orbit by harmonic balance, three harmonics (no kernel)."""
+    return shroudnet.harmonic_balance(scenes.jenkins_chain(), 3)
+
+
+def chain_at(frequency: float) -> Scene:
+    return scenes.jenkins_chain(frequency=frequency)
+
+
+@functools.cache
 def fe_file(folder=None) -> str:
     import tempfile
     path = f"{tempfile.mkdtemp()}/blade.npz"
@@ -157,6 +167,15 @@ VALID = {
     "scenes.modal_blade": call(),
     "scenes.modal_packet": call(blades=2),
     "scenes.beam_pair": call(),
+    "scenes.jenkins_chain": call(),
+    "scenes.modal_pair": call(),
+    "scenes.mass_on_stop": call(),
+    "harmonic_balance": lazy(lambda: ((scenes.jenkins_chain(), 3), {})),
+    "harmonic_continuation": lazy(lambda: ((chain_at, 11.0, 11.2, 3),
+                                           dict(max_points=2, stability=False))),
+    "HarmonicOrbit": record(harmonic_orbit),
+    "certify": lazy(lambda: ((harmonic_orbit(),), {})),
+    "Certificate": record(lambda: shroudnet.certify(harmonic_orbit())),
     "Campbell": record(lambda: shroudnet.campbell(scenes.paper_frequency_model(),
                                                   [0.0, 6000.0])),
     "Spectrum": record(lambda: shroudnet.amplitude_spectrum(np.sin(np.arange(64.0)), 8)),
@@ -364,7 +383,8 @@ SLOW = {"simulate", "periodic_orbit", "continuation", "lyapunov", "monodromy",
         "mistuning_study", "sweep", "Branch", "MistuningStudy", "Sweep", "SweepPoint",
         "LyapunovExponents", "PeriodicOrbit", "Simulation", "classify", "spectrum",
         "hysteresis_loop", "friction_loss_per_cycle", "Bifurcation", "Scene",
-        "scenes.bladed_disc_24", "scenes.beam_pair", "scenes.modal_packet"}
+        "scenes.bladed_disc_24", "scenes.beam_pair", "scenes.modal_packet",
+        "harmonic_continuation", "certify", "Certificate", "scenes.modal_pair"}
 
 CASES = {"generated": 0}
 

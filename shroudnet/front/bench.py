@@ -32,6 +32,9 @@
    (``cyclic``), for the 24-blade ring and the 24-sector disc at an engine order coprime
    with 24 and at engine order 6; and a forced-response curve of 100 orbits of the ring
    both ways.
+9. Harmonic balance (``bench_harmonic``): a point of the packet with 3-D elastic faces
+   at H = 7, its certificate by exact shooting, its forced-response curve, and the error
+   against H and time.
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
 the kernel); nothing here is asserted, because timings depend on the machine.
@@ -67,6 +70,7 @@ from ..scenes import beam_pair, bladed_disc_24, modal_packet, three_blade_paper
 from ..steady.continuation import continuation
 from ..steady.orbits import periodic_orbit
 from ..studies.sweep import default_workers, sweep
+from . import bench_harmonic
 from .options import whole
 from .progress import progress_callback
 
@@ -607,6 +611,7 @@ def main(argv=None) -> None:
           f"{len(branch)} orbits in {full:.1f} s, symmetric {len(reduced)} in "
           f"{symmetric:.1f} s ({full / len(branch) / (symmetric / len(reduced)):.1f}x per "
           "orbit)")
+    bench_harmonic.section(args.quick)
     print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 

@@ -36,6 +36,7 @@ from ..linear.modes import GroupCampbell, LinearModes, excited_diameter
 from ..run.simulation import Simulation
 from ..steady.continuation import Branch
 from ..steady.orbits import PeriodicOrbit
+from ..studies.harmonic_precision import HarmonicPrecision
 from ..studies.mistuning import MistuningStudy
 from ..studies.precision import Study
 from ..studies.sweep import Sweep
@@ -529,6 +530,40 @@ def _energy(joules: float) -> str:
         if abs(joules) * factor >= 1.0:
             return f"{joules * factor:.3g} {unit}"
     return f"{joules * 1e6:.3g} µJ"
+
+
+#: What ``harmonic_precision_diagram`` draws against: the number of harmonics, or the CPU
+#: time of a solve.
+HARMONIC_AXES = ("harmonics", "time")
+
+
+def harmonic_precision_diagram(study: HarmonicPrecision, *, ax=None, against: str = "harmonics",
+                               label: str = ""):
+    """Harmonic balance against the exact orbit (``studies.harmonic_precision``): the
+    relative errors of the amplitude and of the energy dissipated per cycle against the
+    number of harmonics H, or against the CPU time of a solve [ms] with the exact
+    shooting's time marked, on ``ax``; returns ``ax``, or the new figure drawn when none
+    is given. ``label`` prefixes the curves' labels (several scenes on one axes)."""
+    if against not in HARMONIC_AXES:
+        raise ValueError(f"harmonic_precision_diagram: against must be one of "
+                         f"{HARMONIC_AXES}, got {against!r}")
+    figure, ax = _canvas(ax, "harmonic_precision_diagram", (6, 4.5))
+    x = study.harmonics if against == "harmonics" else study.seconds * 1e3
+    prefix = f"{label}: " if label else ""
+    for values, style, name in ((study.amplitude_error, "o-", "amplitude"),
+                                (study.energy_error, "s--", "energy per cycle")):
+        ax.loglog(x, np.maximum(values, 1e-16), style, ms=4, label=f"{prefix}{name}")
+    if against == "time":
+        ax.axvline(study.exact_seconds * 1e3, color="0.4", ls=":", lw=1.0,
+                   label=f"{prefix}exact orbit by shooting")
+        for h, t, e in zip(study.harmonics, x, study.amplitude_error):
+            ax.annotate(f"H={h}", (t, max(e, 1e-16)), textcoords="offset points",
+                        xytext=(3, 3), fontsize="x-small")
+    ax.set(xlabel="harmonics H" if against == "harmonics" else "CPU time of a solve [ms]",
+           ylabel="relative error against the exact orbit")
+    ax.grid(True, which="major", lw=0.3)
+    ax.legend(fontsize="small")
+    return _drawn(figure, ax)
 
 
 # ---- where a figure is drawn --------------------------------------------------------------
