@@ -61,6 +61,9 @@ def sweep_map(scene_at: Callable[[float, float], Scene], first: Sequence[float],
     run.batch.NoDevice
         ``executor="cuda"`` where no GPU can run it, saying what is missing.
     """
+    if not callable(scene_at):
+        raise TypeError(f"sweep_map.scene_at must be a callable (a, b) -> Scene, got "
+                        f"{scene_at!r}")
     first, second = _axis("first", first), _axis("second", second)
     if (not isinstance(parameters, tuple | list) or len(parameters) != 2
             or not all(isinstance(name, str) for name in parameters)):
