@@ -226,8 +226,9 @@ def batch_source(layout: Layout, key: str) -> str:
                                                  else _local(shape, dtype)))
     lines += [
         "    for part in range(2 - parts, 2):",
-        "        for j in range(x0.shape[1]):",
-        f"            if part == 0 or j >= {layout.n_blades}:  # prescribed motions restart",
+        "        for j in range(x0.shape[1]):  # the recorded run goes on from the blades'",
+        f"            if part == 2 - parts or j >= {layout.n_blades}:  # state, and restarts "
+        "the prescribed motions",
         "                state_x[j] = x0[i, j]",
         "                state_v[j] = v0[i, j]",
     ]

@@ -111,6 +111,8 @@ def points_on_gpu(scene_at: Callable[..., Scene], values: Sequence[tuple], label
     points = []
     for k, label in enumerate(labels):
         error = done.errors[back[k]]
+        if error is None and kinds[k] is None:
+            error = "the run's Poincaré points are not finite"
         if error is not None:
             points.append(SweepPoint.failure(label, error, tolerance=tolerance))
             continue
