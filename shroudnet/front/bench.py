@@ -39,9 +39,9 @@
    agreement of the first 50 periods of each of the 1,024 trajectories with the CPU's
    (to 1e-9 of the motion's size; the chaotic ones diverge after a while and are counted
    as such); and the 256 × 256 map of stiffness ratio × speed (300 + 100 periods a cell),
-   whose figure goes to docs/gallery. Without a GPU it says what is missing and, where
-   numba-cuda's toolkit is installed, the kernel's registers and occupancy from its
-   compile report for an H200 (sm_90).
+   whose figure goes to docs/gallery. Without a GPU it says what is missing and, with
+   ``--gpu`` where numba-cuda's toolkit is installed, the kernel's registers and
+   occupancy from its compile report for an H200 (sm_90).
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
 the kernel); nothing here is asserted, because timings depend on the machine.
@@ -541,8 +541,9 @@ def kernel_resources():
                          numbers)
 
 
-def gpu_section(cores: int) -> None:
-    """Section 9 of the benchmark (see the module's docstring)."""
+def gpu_section(cores: int, report: bool = True) -> None:
+    """Section 9 of the benchmark (see the module's docstring); without a GPU, the
+    kernel's compile report where ``report`` (it takes minutes)."""
     from ..engine.batch import cuda_missing
 
     print(f"\n9. GPU batches: the paper's group, fixed-step RK4 at "
@@ -551,6 +552,8 @@ def gpu_section(cores: int) -> None:
     missing = cuda_missing()
     if missing is not None:
         print(f"   no GPU here: {missing}")
+        if not report:
+            return
         try:
             report = kernel_resources()
         except Exception as error:  # noqa: BLE001 - no toolkit either: say so and stop
@@ -808,7 +811,7 @@ def main(argv=None) -> None:
           f"{len(branch)} orbits in {full:.1f} s, symmetric {len(reduced)} in "
           f"{symmetric:.1f} s ({full / len(branch) / (symmetric / len(reduced)):.1f}x per "
           "orbit)")
-    gpu_section(cores)
+    gpu_section(cores, report=False)
     print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 
