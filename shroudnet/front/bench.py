@@ -420,6 +420,7 @@ GPU_PERIODS = 20
 #: The agreement: periods compared against the CPU engine, and to what (of the motion).
 AGREEMENT_PERIODS = 50
 AGREEMENT = 1e-9
+AGREEMENT_RUNS = 1024
 #: The map: stiffness ratio γ1 × speed [rpm], cells per side, transient + recorded periods.
 MAP_GAMMA = (0.5, 10.0)
 MAP_SPEED = (5500.0, 7500.0)
@@ -483,23 +484,24 @@ def cpu_rates(cores: int) -> tuple[float, float]:
     one = len(gammas) * GPU_PERIODS / (time.perf_counter() - began)
     values = np.linspace(0.5, 10.0, 64 * cores)
     with ProcessPoolExecutor(cores) as pool:
+        # two samples a period: the classification's spectrum needs four samples at least
         sweep(gamma_scene, values[:2 * cores], transient=0, record=3, method=GPU_METHOD,
-              samples_per_period=1, executor=pool)  # each worker loads the kernel
+              samples_per_period=2, executor=pool)  # each worker loads the kernel
         began = time.perf_counter()
         sweep(gamma_scene, values, transient=GPU_PERIODS - 3, record=3, method=GPU_METHOD,
-              samples_per_period=1, executor=pool)
+              samples_per_period=2, executor=pool)
         every = len(values) * GPU_PERIODS / (time.perf_counter() - began)
     return one, every
 
 
 def gpu_agreement(cores: int) -> dict:
-    """The first ``AGREEMENT_PERIODS`` periods of each of 1,024 trajectories on the GPU
+    """The first ``AGREEMENT_PERIODS`` periods of ``AGREEMENT_RUNS`` trajectories on the GPU
     against the CPU engine's: the largest difference of the blade's Poincaré points
     relative to its motion's extent, per trajectory, and the CPU's classification of
     those beyond ``AGREEMENT``."""
     from ..run.batch import run_batch
 
-    gammas = np.linspace(0.5, 10.0, 1024)
+    gammas = np.linspace(0.5, 10.0, AGREEMENT_RUNS)
     done = run_batch(three_blade_paper(), paper_runs(gammas, record=AGREEMENT_PERIODS),
                      response=1, transient=0, record=AGREEMENT_PERIODS,
                      samples_per_period=1)
@@ -581,7 +583,8 @@ def gpu_section(cores: int, report: bool = True) -> None:
     gaps, labels = found["gaps"], found["labels"]
     beyond = gaps > AGREEMENT
     chaotic = sum(1 for k in np.flatnonzero(beyond) if labels[k] == "chaotic")
-    print(f"   agreement over the first {AGREEMENT_PERIODS} periods, 1,024 trajectories: "
+    print(f"   agreement over the first {AGREEMENT_PERIODS} periods, {AGREEMENT_RUNS:,} "
+          "trajectories: "
           f"{int((~beyond).sum())} within {AGREEMENT:g} of the motion (largest "
           f"{gaps[~beyond].max(initial=0.0):.1e}); {int(beyond.sum())} beyond, of them "
           f"{chaotic} chaotic by the CPU's classification"
