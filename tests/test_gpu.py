@@ -260,3 +260,16 @@ def test_a_map_on_the_cpu_is_its_cells_sweeps():
     with pytest.raises(TypeError, match="sweep_map.first"):
         shroudnet.sweep_map(scene_at, "abc", [40.0])
 
+
+
+@pytest.mark.parametrize("registers, occupancy", [(255, 0.125), (128, 0.25), (96, 0.3125),
+                                                  (64, 0.5), (32, 1.0)])
+def test_occupancy_follows_the_registers_as_the_cuda_calculator_has_it(registers, occupancy):
+    """Warps resident on a multiprocessor of compute capability 9.0 at 64 threads a block
+    (NVIDIA's occupancy calculator): 65,536 registers allotted 256 at a time per warp."""
+    from shroudnet.engine.batch import KernelReport
+
+    report = KernelReport(compute_capability=(9, 0), ptx_bytes=1, registers=registers,
+                          stack=0, spill_stores=0, spill_loads=0, ptx_seconds=0.0,
+                          assembly_seconds=0.0)
+    assert report.occupancy == occupancy
