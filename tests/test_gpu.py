@@ -273,3 +273,22 @@ def test_occupancy_follows_the_registers_as_the_cuda_calculator_has_it(registers
                           stack=0, spill_stores=0, spill_loads=0, ptx_seconds=0.0,
                           assembly_seconds=0.0)
     assert report.occupancy == occupancy
+
+
+def test_a_batch_refuses_scenes_of_other_laws_by_the_value(monkeypatch):
+    """One batch compiles one kernel: a value whose scene has other law classes is named
+    before anything runs (the device check is passed over here, as the simulator would)."""
+    import contact_laws as cl
+    from shroudnet import scenes
+    from shroudnet.studies import sweep as sweep_module
+
+    monkeypatch.setattr(sweep_module, "check_device", lambda owner: None)
+
+    def scene_at(gamma):
+        if gamma < 2.0:
+            return scenes.three_blade_paper(gamma1=gamma)
+        return scenes.three_blade_paper(normal=cl.Hertz(stiffness=1e9))
+
+    with pytest.raises(ValueError, match="the scene at 3 has other law classes"):
+        shroudnet.sweep(scene_at, [1.0, 3.0], method=METHOD, executor="cuda", workers=1,
+                        progress=False, transient=1, record=3, samples_per_period=8)

@@ -95,6 +95,12 @@ def points_on_gpu(scene_at: Callable[..., Scene], values: Sequence[tuple], label
         futures = [pool.submit(_prepare_remote, pickled, chunk, options)
                    for chunk in _chunks(values, CHUNK)]
         prepared = [run for future in futures for run in future.result()]
+    for value, run in zip(labels, prepared):
+        if run.kernel != prepared[0].kernel:
+            raise ValueError(
+                f"sweep: executor='cuda' runs scenes that differ in their numbers only, but "
+                f"the scene at {value:g} has other law classes or effects than the first "
+                f"one's ({run.kernel[:2]} against {prepared[0].kernel[:2]})")
     order = warp_order(coordinates)
     done = run_batch(first, [prepared[k] for k in order], response=response,
                      transient=transient, record=record,
