@@ -54,6 +54,7 @@ from .engine.codes import EventKind as EventKind
 from .engine.codes import Mode as Mode
 from .front.studies import mistuning_study as mistuning_study
 from .front.studies import sweep as sweep
+from .front.studies import sweep_map as sweep_map
 from .linear.modes import GroupCampbell as GroupCampbell
 from .linear.modes import LinearModes as LinearModes
 from .linear.modes import group_campbell as group_campbell
@@ -95,6 +96,7 @@ from .run.simulation import Simulation as Simulation
 from .run.simulation import SimulationError as SimulationError
 from .run.simulation import Sweep as Sweep
 from .run.simulation import SweepFailure as SweepFailure
+from .run.simulation import SweepMap as SweepMap
 from .run.simulation import SweepPoint as SweepPoint
 from .steady.continuation import Bifurcation as Bifurcation
 from .steady.continuation import Branch as Branch
@@ -186,6 +188,8 @@ __all__ = [
     "SimulationError",
     "Sweep",
     "SweepFailure",
+    "SweepMap",
     "SweepPoint",
     "sweep",
+    "sweep_map",
 ]

@@ -19,6 +19,8 @@ from shroudnet import (
     EngineOrderWave,
     Excitation,
     Scene,
+    Sweep,
+    SweepMap,
     campbell,
     continuation,
     group_campbell,
@@ -93,13 +95,19 @@ def drawn():
         "mistuning_histogram": ((mistuned,), {}, None),
         "stick_slip_cycle": ((belt, 0, 10), {}, 3),
         "hysteresis_loops": (({"blade1–blade2": hysteresis_loop(sim, 0, 20)},), {}, None),
+        "sweep_map_figure": ((SweepMap(parameters=("gamma1", "q1"), first=np.array([1.0, 8.8]),
+                                       second=np.array([50.0]),
+                                       rows=tuple(Sweep(parameter="q1", blade=swept.blade,
+                                                        points=(point,), settings={})
+                                                  for point in swept.points)),), {}, None),
     }
 
 
 FUNCTIONS = ["response_panel", "bifurcation_diagram", "curves", "campbell_diagram",
              "group_campbell_diagram", "work_precision_diagram", "forced_response",
              "branch_content", "zzenf_diagram", "sector_amplitudes", "mistuning_histogram",
-             "stick_slip_cycle", "hysteresis_loops", "harmonic_precision_diagram"]
+             "stick_slip_cycle", "hysteresis_loops", "harmonic_precision_diagram",
+             "sweep_map_figure"]
 
 
 def has_drawing(axes: Axes) -> bool:
@@ -107,8 +115,9 @@ def has_drawing(axes: Axes) -> bool:
     return bool(axes.lines or axes.patches or axes.collections)
 
 
-#: What the module offers beside its figures: the one way to write a figure to a file.
-NOT_DRAWING = {"save_figure"}
+#: What the module offers beside its figures: the one way to write a figure to a file, and
+#: the classes a map's legend lists, in order.
+NOT_DRAWING = {"save_figure", "map_classes"}
 
 
 def test_every_plotting_function_is_listed_here():

@@ -107,6 +107,16 @@ def swept():
                            progress=None)
 
 
+def map_at(speed: float, q1: float) -> Scene:
+    return scenes.three_blade_paper(gap=1.0, speed_rpm=speed, q1=q1)
+
+
+@functools.cache
+def mapped():
+    return shroudnet.sweep_map(map_at, [6000.0], [40.0], transient=1, record=3, workers=1,
+                               progress=None)
+
+
 @functools.cache
 def harmonic_orbit():
     """The Jenkins chain's orbit by harmonic balance, three harmonics (no kernel)."""
@@ -259,6 +269,9 @@ VALID = {
     "SweepPoint": record(lambda: swept().points[0]),
     "sweep": lazy(lambda: ((scene_at, [6000.0]), dict(transient=1, record=3, workers=1,
                                                      progress=None))),
+    "SweepMap": record(mapped),
+    "sweep_map": lazy(lambda: ((map_at, [6000.0], [40.0]), dict(transient=1, record=3,
+                                                               workers=1, progress=None))),
     "contact_laws.check_array": call("Owner", "value", [1.0], shape=(None,)),
     "contact_laws.check_callable": call("Owner", "value", print),
     "contact_laws.check_calls_with": call("Owner", "value", max, 2, expected="max(a, b)"),
@@ -381,6 +394,7 @@ WALKED = sorted(name for name in DOORS if name in VALID and name not in NOT_INPU
 #: Doors that run the dynamics are walked with fewer examples: each example is a short run.
 SLOW = {"simulate", "periodic_orbit", "continuation", "lyapunov", "monodromy",
         "mistuning_study", "sweep", "Branch", "MistuningStudy", "Sweep", "SweepPoint",
+        "sweep_map", "SweepMap",
         "LyapunovExponents", "PeriodicOrbit", "Simulation", "classify", "spectrum",
         "hysteresis_loop", "friction_loss_per_cycle", "Bifurcation", "Scene",
         "scenes.bladed_disc_24", "scenes.beam_pair", "scenes.modal_packet",
