@@ -140,6 +140,18 @@ def test_a_linear_substructure_packet_is_its_closed_form_response():
     displacement, velocity = orbit.initial
     assert np.abs(displacement - expected.imag).max() <= 1e-13 * scale
     assert np.abs(velocity - omega * expected.real).max() <= 1e-13 * omega * scale
+    # the contact coordinates z_e = B_e q, B_e orthonormal over q on the rows each face's
+    # laws read (n·r and t·r of its points' relative displacement r): |z_e| of every
+    # coefficient is that of q's projection on those rows
+    for e, ((left, right, face), (point_a, point_b)) in enumerate(
+            zip(scene.group.interfaces, scene.group.edge_points("interface"))):
+        relative = scene.point_rows(left, point_a) - scene.point_rows(right, point_b)
+        rows = np.vstack([face.normal_direction, face.tangent_directions]) @ relative
+        projector = rows.T @ np.linalg.solve(rows @ rows.T, rows)
+        z = orbit.contact_coefficients[:, 2 * e:2 * e + 2]
+        np.testing.assert_allclose(np.linalg.norm(z, axis=1),
+                                   np.linalg.norm(orbit.coefficients @ projector, axis=1),
+                                   rtol=0.0, atol=1e-13 * scale)
 
 
 # -- convergence to the exact orbit as H grows ---------------------------------------------

@@ -98,7 +98,8 @@ def resized(coefficients: np.ndarray, harmonics: int) -> np.ndarray:
 
 def first_guess(balance: Balance, guess, owner: str) -> np.ndarray | None:
     """Where Newton starts: ``guess`` (a ``HarmonicOrbit`` of the same scene's contacts, or
-    contact coefficients of any H), checked; None without one (``solve``)."""
+    the coefficients of any H of their contact coordinates z = B q, ``model``), checked;
+    None without one (``solve``)."""
     size, m = balance.shape
     if guess is None:
         return None
@@ -248,8 +249,11 @@ def harmonic_balance(scene: Scene, harmonics: int, *, periods: int = 1, guess=No
     periods : int
         k ≥ 1: the orbit's period is k T_e (a subharmonic orbit for k > 1).
     guess : HarmonicOrbit or array, optional
-        Where Newton starts: an orbit of the same scene (of any H: cut or padded), or the
-        contact coefficients ((2H'+1) × m). Default: the orbits of 1, 2, 4, … harmonics
+        Where Newton starts: an orbit of the same contacts (of any H: cut or padded; at
+        another speed, say), or the coefficients of the contact coordinates z = B q
+        ((2H'+1) × m, as ``HarmonicOrbit.contact_coefficients``: B an orthonormal basis,
+        over the nodes' own degrees of freedom q, of the rows each contact's laws read,
+        ``model``). Default: the orbits of 1, 2, 4, … harmonics
         in turn, each from the last (``ladder``), then the open contacts' linear response;
         both are tried where a guess fails.
     samples : int, optional

@@ -39,9 +39,10 @@ class HarmonicOrbit:
     every one of the nodes' own degrees of freedom q [their units: m for blades], stacked
     in ``Scene.blades`` order (a ``Blade``'s x, a substructure's q: the columns of
     ``Simulation.x``, which ``Scene.responses`` and ``Scene.dof_rows`` read);
-    ``contact_coefficients`` ((2H+1) × m): the contact coordinates' (``model``), the
-    unknowns solved for; ``force_coefficients``: the contacts' generalised forces λ̂ [N].
-    ``stretches``: the elastic contacts' stretches u = f/k_t at t = 0
+    ``contact_coefficients`` ((2H+1) × m): those of the contact coordinates z = B q
+    (``model``: B an orthonormal basis over q of the rows each contact's laws read), the
+    unknowns solved for; ``force_coefficients``: the contacts' generalised forces λ̂ [N]
+    conjugate to z. ``stretches``: the elastic contacts' stretches u = f/k_t at t = 0
     [m] (two each, as ``Simulation.stretches``).
 
     ``residual``: max |R| of the balance over ``scale`` (the contacts' motion [m]),
