@@ -6,8 +6,9 @@ The linear structure is condensed onto the contacts harmonic by harmonic
 coordinates and transformed back (``aft``), and Newton's method with a line search
 (``newton``) solves the balance R(z) = z − z^lin + W λ̂(z) = 0 for the contact
 coordinates' 2H + 1 coefficients each, its Jacobian I + W ∂λ̂/∂z exact. Every
-coordinate's series follows from the solution, and from it every output
-(``orbit``); Hill's method gives the stability (``hill``).
+coordinate's series follows from the solution, in the engine's coordinates η, and
+crosses to the nodes' own degrees of freedom q through ``model.lowering.to_dofs``; from
+it every output (``orbit``). Hill's method gives the stability (``hill``).
 
 The unknowns are m (2H + 1), m the contacts' coordinates (two or three a contact, one
 for a blade pair), whatever the structure's size: the cost of a Newton step is the
@@ -23,6 +24,7 @@ import numpy as np
 
 from contact_laws import check_instance, check_int, check_real
 
+from ...model.lowering import to_dofs
 from ...model.scene import Scene
 from ...run.simulate import MAX_PERIODS
 from .aft import ContactForces, contact_forces
@@ -96,7 +98,8 @@ def resized(coefficients: np.ndarray, harmonics: int) -> np.ndarray:
 
 def first_guess(balance: Balance, guess, owner: str) -> np.ndarray | None:
     """Where Newton starts: ``guess`` (a ``HarmonicOrbit`` of the same scene's contacts, or
-    contact coefficients of any H), checked; None without one (``solve``)."""
+    the coefficients of any H of their contact coordinates z = B q, ``model``), checked;
+    None without one (``solve``)."""
     size, m = balance.shape
     if guess is None:
         return None
@@ -168,9 +171,10 @@ def orbit_from(balance: Balance, found: NewtonOutcome, stability: bool) -> Harmo
     """The ``HarmonicOrbit`` where Newton stopped."""
     model, basis = balance.model, balance.basis
     forces: ContactForces = found.value
-    coefficients = balance.condensed.recover(forces.coefficients)
+    modal = balance.condensed.recover(forces.coefficients)  # over the engine's η
     scene = model.scene
-    responses = coefficients @ scene.response_matrix.T
+    coefficients = to_dofs(scene.arrays.layout, modal)  # over the nodes' own q
+    responses = scene.responses_of(coefficients)
     maximum, minimum = extremes(responses, basis.frequency)
     exponents = multipliers = np.zeros(0, dtype=complex)
     if stability:
@@ -190,9 +194,8 @@ def orbit_from(balance: Balance, found: NewtonOutcome, stability: bool) -> Harmo
         maximum=maximum, minimum=minimum, mean=responses[0].copy(),
         mean_square=mean_product(responses, responses),
         peak=np.maximum(np.abs(maximum), np.abs(minimum)),
-        energy_per_cycle=energy_per_cycle(model, basis, coefficients, found.z, forces),
-        kinetic_peak=kinetic_peak(coefficients, model.mass, basis.frequency,
-                                  basis.harmonics),
+        energy_per_cycle=energy_per_cycle(model, basis, modal, found.z, forces),
+        kinetic_peak=kinetic_peak(modal, model.mass, basis.frequency, basis.harmonics),
         hysteresis_periods=forces.hysteresis_periods, smooth=smooth_forces(model, forces))
 
 
@@ -246,8 +249,11 @@ def harmonic_balance(scene: Scene, harmonics: int, *, periods: int = 1, guess=No
     periods : int
         k ≥ 1: the orbit's period is k T_e (a subharmonic orbit for k > 1).
     guess : HarmonicOrbit or array, optional
-        Where Newton starts: an orbit of the same scene (of any H: cut or padded), or the
-        contact coefficients ((2H'+1) × m). Default: the orbits of 1, 2, 4, … harmonics
+        Where Newton starts: an orbit of the same contacts (of any H: cut or padded; at
+        another speed, say), or the coefficients of the contact coordinates z = B q
+        ((2H'+1) × m, as ``HarmonicOrbit.contact_coefficients``: B an orthonormal basis,
+        over the nodes' own degrees of freedom q, of the rows each contact's laws read,
+        ``model``). Default: the orbits of 1, 2, 4, … harmonics
         in turn, each from the last (``ladder``), then the open contacts' linear response;
         both are tried where a guess fails.
     samples : int, optional
@@ -265,7 +271,9 @@ def harmonic_balance(scene: Scene, harmonics: int, *, periods: int = 1, guess=No
     Returns
     -------
     HarmonicOrbit
-        Whether it converged or not (``HarmonicOrbit.converged``, ``message``): a
+        Its series by the nodes' own degrees of freedom q, stacked in ``Scene.blades``
+        order (the engine's modal coordinates stay inside the solve), whether it
+        converged or not (``HarmonicOrbit.converged``, ``message``): a
         residual above ``tolerance`` is never called converged.
 
     Examples

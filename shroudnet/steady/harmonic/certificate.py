@@ -1,13 +1,14 @@
 """The certificate of a harmonic-balance orbit: the exact orbit it stands for, and its
 error.
 
-Shooting (``periodic_orbit``) from the series' state at t = 0 — every coordinate and
-velocity, and the elastic contacts' stretches — converges to the exact periodic orbit
-near it, with every switch located and its Floquet multipliers from the monodromy
-matrix. Against it the harmonic-balance orbit is measured in what a user reads: its
-state at t = 0, the amplitude of every response, the energy per cycle and the
-multipliers. A series whose exact orbit is not there (Newton's shooting does not
-converge from it) has no certificate: ``ConvergenceError`` says so.
+Shooting (``periodic_orbit``) from the series' state at t = 0 — every one of the nodes'
+own degrees of freedom and its velocity, and the elastic contacts' stretches —
+converges to the exact periodic orbit near it, with every switch located and its
+Floquet multipliers from the monodromy matrix. Against it the harmonic-balance orbit
+is measured in what a user reads: its state at t = 0, the amplitude of every response,
+the energy per cycle and the multipliers. A series whose exact orbit is not there
+(Newton's shooting does not converge from it) has no certificate: ``ConvergenceError``
+says so.
 """
 
 from __future__ import annotations
@@ -39,8 +40,9 @@ class Certificate:
     """A harmonic-balance orbit (``harmonic``) against the exact orbit shooting finds
     from it (``exact``).
 
-    ``state_error``: max |y_HB − y| of the state at t = 0 over the exact orbit's state
-    scale (velocities over l Ω, as ``periodic_orbit`` weighs them), or the exact orbit's
+    ``state_error``: max |y_HB − y| of the state at t = 0 by the nodes' own degrees of
+    freedom (``HarmonicOrbit.state``, ``PeriodicOrbit.state``) over the exact orbit's
+    state scale (velocities over l Ω, as ``periodic_orbit`` weighs them), or the exact orbit's
     residual where that is larger (a series whose state meets the shooting's tolerance is
     its own start: its error is below that residual, not 0); ``amplitude_error``:
     max over the responses of |A_HB − A| over the largest exact amplitude A;
@@ -72,9 +74,10 @@ def certify(orbit: HarmonicOrbit, *, method: Adaptive | Accuracy = CERTIFYING_ME
             tolerance: float = CERTIFYING_TOLERANCE,
             event_tolerance: float = EVENT_TOLERANCE) -> Certificate:
     """The ``Certificate`` of a harmonic-balance ``orbit``: the exact orbit by shooting
-    from its state at t = 0, and the series' errors against it (module docstring). A
-    branch of orbits is certified at chosen points by certifying its orbits
-    (``Branch.orbits[i]``).
+    from its state at t = 0 (``HarmonicOrbit.initial``, by the nodes' own degrees of
+    freedom: ``periodic_orbit``'s ``guess``), and the series' errors against it (module
+    docstring). A branch of orbits is certified at chosen points by certifying its
+    orbits (``Branch.orbits[i]``).
 
     Parameters
     ----------

@@ -1,7 +1,9 @@
 """Branches of harmonic-balance orbits in one parameter: pseudo-arclength continuation.
 
-The unknowns are u = (z / s, p / span): the contact coordinates' coefficients over
-their scale s at the branch's first orbit, and the parameter over |stop − start|
+The unknowns are u = (z / s, p / span): the contact coordinates' coefficients (z = B q
+over the nodes' own degrees of freedom, ``model``: the same coordinates at every p,
+however the engine's modal basis turns with the speed) over their scale s at the
+branch's first orbit, and the parameter over |stop − start|
 (``steady.continuation`` does the same with the exact orbits' states). Each step
 predicts along the tangent τ, the kernel of [∂R/∂z, ∂R/∂p] (∂R/∂p by a forward
 difference: the scene at p + h condensed again), and corrects by Newton on
@@ -22,8 +24,9 @@ are smooth only (``HarmonicOrbit.smooth``), where Hill's method is to be trusted
 (``hill``): where contacts stick and slip, or open and close, the orbits keep Hill's
 multipliers but no bifurcation is read from them.
 
-The branch is a ``Branch`` whose orbits are ``HarmonicOrbit``s, read as a branch of
-exact orbits is (amplitudes, energies, multipliers, the frequency shift).
+The branch is a ``Branch`` whose orbits are ``HarmonicOrbit``s (their series by the
+nodes' own degrees of freedom), read as a branch of exact orbits is (amplitudes,
+energies, multipliers, the frequency shift).
 """
 
 from __future__ import annotations

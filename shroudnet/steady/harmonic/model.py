@@ -1,20 +1,27 @@
 """What harmonic balance needs of a scene: the linear structure, its excitation as a
 Fourier series, and each contact in coordinates of its own.
 
-The structure is M ẍ + C ẋ + K x = Q(t) − Gᵀ λ over the state's coordinates x (blades,
-or the modal coordinates of substructures, couplings included: ``SceneArrays``). Each
-interface e moves with the rows of x that its laws read: its normal n_e·x, its
-tangent t₁·x and, on a face's plane, t₂·x (for blades, sin α (x_i − x_j) and
-cos α (x_i − x_j)). Those rows span ρ_e ≤ 3 directions; an orthonormal basis B_e of
-them (ρ_e × n) gives the contact's relative displacement r_e = B_e x, its **contact
-coordinates**, and each row is then a vector of ℝ^ρ: n_e·x = ν·r_e, t·x = τ·r_e. All
-contacts' coordinates stacked give z = G x (G of m = Σρ_e rows), the unknowns of the
-condensed problem, and the contact pushes the structure by −Gᵀλ with
+The structure is M η̈ + C η̇ + K η = Q(t) − Gᵀ λ over the engine's coordinates η
+(blades' displacements, or the scaled modal coordinates of substructures, couplings
+included: ``SceneArrays``, ``model.lowering``), where it is solved. Each interface e
+moves with the rows its laws read: its normal n_e·r, its tangent t₁·r and, on a face's
+plane, t₂·r of the relative displacement r of its points (for blades, sin α (x_i − x_j)
+and cos α (x_i − x_j)). Over the nodes' own degrees of freedom q (``model.lowering``:
+q = Φ η node by node, Φ = 1 for blades) those rows span ρ_e ≤ 3 directions; an
+orthonormal basis B_e of them (ρ_e × n, over q) gives the contact's **contact
+coordinates** z_e = B_e q, and each row is then a vector of ℝ^ρ: n_e·r = ν·z_e,
+t·r = τ·z_e. All contacts' coordinates stacked give z = B q = G η, G = B Φ (m = Σρ_e
+rows), the unknowns of the condensed problem, and the contact pushes the structure by
+−Gᵀλ with
 
     λ_e = N ν + f₁ τ₁ + f₂ τ₂                                              [N]
 
 (the normal force along its normal, the friction force along its tangents:
-``model.interface``'s −(N n + f t)).
+``model.interface``'s −(N n + f t)). The basis is taken over q, not over η, so that z
+means the same at every speed (Φ changes with K(Ω); B does not) and whatever scaling the
+engine's coordinates have: an orbit's contact coefficients are a guess for another
+scene of the same contacts. The rows cross between η and q through ``to_dofs`` and
+``from_dofs`` alone (of the identity: Φ and Φ⁻¹).
 
 What harmonic balance refuses, by name, before any work: prescribed-motion nodes
 (their motion is an excitation of another kind), rigid stick (an exact friction law
@@ -34,6 +41,7 @@ import numpy as np
 
 from contact_laws import FrictionLaw, NormalLaw
 
+from ...model.lowering import from_dofs, to_dofs
 from ...model.scene import Scene
 
 #: Singular values of an interface's rows below this fraction of its largest are
@@ -86,7 +94,8 @@ class HarmonicModel:
     """A scene as harmonic balance sees it (module docstring), for orbits of ``periods``
     excitation periods, whose fundamental is ``frequency`` ω = l Ω / periods [rad/s].
 
-    ``mass``, ``damping``, ``stiffness``: M, C, K (n × n); ``rows``: G (m × n); the
+    ``mass``, ``damping``, ``stiffness``: M, C, K (n × n) over the engine's coordinates
+    η; ``rows``: G = B Φ (m × n), the contact coordinates z = G η = B q; the
     excitation as ``load_harmonics`` (the harmonic of ω each excitation harmonic is) with
     its complex amplitudes ``load`` (one row each, n columns: Q_k = a − i b, the
     constant for harmonic 0)."""
@@ -126,9 +135,9 @@ class HarmonicModel:
 
 
 def interface_rows(arrays) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(n_e, t₁, t₂ rows over the free coordinates, normal gap g_e) of every interface:
-    a scene with substructures holds them; for blades, sin α (e_i − e_j), cos α (e_i −
-    e_j), 0 and Δ sin α."""
+    """(n_e, t₁, t₂ rows over the engine's free coordinates η, normal gap g_e) of every
+    interface: a scene with substructures holds them; for blades, sin α (e_i − e_j),
+    cos α (e_i − e_j), 0 and Δ sin α."""
     n = arrays.n_blades
     if arrays.is_structure:
         return (arrays.normal_rows[:, :n], arrays.tangent_rows[:, :n],
@@ -184,15 +193,18 @@ def harmonic_model(scene: Scene, periods: int, owner: str = "harmonic_balance"
                          "it has no static compliance at the contacts to condense onto; "
                          "hold every node by a spring or a coupling")
     normal_rows, tangent_rows, second_rows, gaps = interface_rows(a)
+    # η = Φ⁻¹ q, so rows r_η over η read q as r_η Φ⁻¹ (from_dofs of the identity is Φ⁻¹,
+    # to_dofs's Φ)
+    to_coordinates = from_dofs(a.layout, np.eye(n), axis=0)
     contacts, blocks, start = [], [], 0
     for e in range(a.n_interfaces):
         kind = friction_kind(a, e, owner, scene)
-        rows = np.vstack([normal_rows[e], tangent_rows[e], second_rows[e]])
+        rows = np.vstack([normal_rows[e], tangent_rows[e], second_rows[e]]) @ to_coordinates
         left, values, right = np.linalg.svd(rows, full_matrices=False)
         rank = int(np.sum(values > RANK * values.max(initial=0.0)))
         if rank == 0:
             continue  # an interface between fixed nodes: nothing moves it
-        basis = right[:rank]
+        basis = right[:rank]  # B_e, over q
         coordinates = left[:, :rank] * values[:rank]  # rows = coordinates @ basis
         friction = a.friction_laws[e]
         contacts.append(Contact(
@@ -203,7 +215,8 @@ def harmonic_model(scene: Scene, periods: int, owner: str = "harmonic_balance"
             static_mu=float(a.static_mu[e]), regularisation=float(a.regularisation[e])))
         blocks.append(basis)
         start += rank
-    rows = np.vstack(blocks) if blocks else np.zeros((0, n))
+    rows = (np.vstack(blocks) if blocks else np.zeros((0, n))) @ to_dofs(
+        a.layout, np.eye(n), axis=0)
     harmonics = np.arange(a.harmonic_amplitudes.shape[0]) * periods
     amplitudes = a.harmonic_amplitudes[:, :n]
     phases = a.harmonic_phases[:, :n]

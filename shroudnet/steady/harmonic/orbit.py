@@ -1,7 +1,10 @@
 """A periodic orbit found by harmonic balance, read as an exact orbit is read.
 
-Every coordinate is the truncated series x(t) = c₀ + Σ_k (a_k cos kωt + b_k sin kωt)
-(``fourier``), so what ``PeriodicOrbit`` gives from a run, this gives from the series:
+Every degree of freedom is the truncated series q(t) = c₀ + Σ_k (a_k cos kωt + b_k sin
+kωt) (``fourier``), by the nodes' own degrees of freedom q (a ``Blade``'s x, a
+substructure's q of ``Substructure.matrices_at``) stacked in ``Scene.blades`` order, as
+every state a run or ``PeriodicOrbit`` gives; so what ``PeriodicOrbit`` gives from a
+run, this gives from the series:
 the extremes of each response (its maximum and minimum over the period, found on the
 series and refined by Newton's method: exact for the series), the amplitude as half
 the peak-to-peak, the mean and the mean square (Parseval), the harmonics and their
@@ -17,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...checked_records import check_record
+from ...model.lowering import from_dofs
 from ...model.scene import Scene
 from ..cycle import EnergyPerCycle, Harmonics, equivalent_damping
 from ..orbits import UNIT_CIRCLE
@@ -31,12 +35,15 @@ class HarmonicOrbit:
     ``harmonic_count`` H harmonics of ω = l Ω / periods, its contact forces evaluated at
     ``samples`` N times per period.
 
-    ``coefficients`` ((2H+1) × n): every coordinate's real Fourier coefficients
-    (c₀, a₁, b₁, …) [m], by coordinate of the state (blades, or modal coordinates:
-    ``Scene.responses`` reads them); ``contact_coefficients`` ((2H+1) × m): the
-    contact coordinates' (``model``), the unknowns solved for; ``force_coefficients``:
-    the contacts' generalised forces λ̂ [N]. ``stretches``: the elastic contacts'
-    stretches u = f/k_t at t = 0 [m] (two each, as ``Simulation.stretches``).
+    ``coefficients`` ((2H+1) × n): the real Fourier coefficients (c₀, a₁, b₁, …) of
+    every one of the nodes' own degrees of freedom q [their units: m for blades], stacked
+    in ``Scene.blades`` order (a ``Blade``'s x, a substructure's q: the columns of
+    ``Simulation.x``, which ``Scene.responses`` and ``Scene.dof_rows`` read);
+    ``contact_coefficients`` ((2H+1) × m): those of the contact coordinates z = B q
+    (``model``: B an orthonormal basis over q of the rows each contact's laws read), the
+    unknowns solved for; ``force_coefficients``: the contacts' generalised forces λ̂ [N]
+    conjugate to z. ``stretches``: the elastic contacts' stretches u = f/k_t at t = 0
+    [m] (two each, as ``Simulation.stretches``).
 
     ``residual``: max |R| of the balance over ``scale`` (the contacts' motion [m]),
     reached in ``iterations`` Newton steps; ``converged`` says whether it meets
@@ -110,13 +117,15 @@ class HarmonicOrbit:
 
     @property
     def state(self) -> np.ndarray:
-        """y = (x(0), ẋ(0)[, u(0)]): the state at t = 0 mod T, as ``PeriodicOrbit.state``."""
+        """y = (q(0), q̇(0)[, u(0)]): the state at t = 0 mod T by the nodes' own degrees of
+        freedom, as ``PeriodicOrbit.state``."""
         return np.concatenate(self.initial)
 
     @property
     def initial(self) -> tuple[np.ndarray, ...]:
-        """(x0 [m], ẋ0 [m/s][, u0 [m]]) at t = 0: a start for ``simulate`` or
-        ``periodic_orbit``."""
+        """(q0, q̇0[, u0 [m]]) at t = 0, by the nodes' own degrees of freedom as
+        ``simulate``'s ``initial`` and ``periodic_orbit``'s ``guess`` take them (for blades
+        x0 [m], ẋ0 [m/s])."""
         x = self.at(np.zeros(1))[0]
         v = self.at(np.zeros(1), order=1)[0]
         return (x, v) + ((self.stretches.copy(),) if len(self.stretches) else ())
@@ -135,8 +144,8 @@ class HarmonicOrbit:
         return forces_in_time(model, basis, self.contact_coefficients, False)
 
     def at(self, times, order: int = 0) -> np.ndarray:
-        """Every coordinate's ``order``-th time derivative at ``times`` [s] (len(times) ×
-        n)."""
+        """The ``order``-th time derivative of the nodes' own degrees of freedom q at
+        ``times`` [s] (len(times) × n, the columns of ``coefficients``)."""
         return series_matrix(self.harmonic_count, self.frequency, np.atleast_1d(times),
                              order) @ self.coefficients
 
@@ -182,14 +191,16 @@ class HarmonicOrbit:
     def slip_harmonics(self, interface: int, order: int = 5) -> Harmonics:
         """The harmonics of interface ``interface``'s tangential relative displacement
         along t₁ (as ``PeriodicOrbit.slip_harmonics``)."""
-        rows = self.scene.arrays.slip_rows(1)
+        arrays = self.scene.arrays
+        rows = arrays.slip_rows(1)  # over the engine's coordinates, which from_dofs gives
         count = len(rows)
         if isinstance(interface, bool) or not isinstance(interface, int | np.integer) \
                 or not 0 <= interface < count:
             raise ValueError(f"HarmonicOrbit.slip_harmonics: interface must be a position "
                              f"0 … {count - 1}, got {interface!r}")
-        row = rows[interface, :self.scene.arrays.n_blades]
-        return self.harmonics_of(self.coefficients @ row, _order(order))
+        row = rows[interface, :arrays.n_blades]
+        return self.harmonics_of(from_dofs(arrays.layout, self.coefficients) @ row,
+                                 _order(order))
 
 
 def _order(order) -> int:
@@ -200,8 +211,10 @@ def _order(order) -> int:
 
 def kinetic_peak(coefficients: np.ndarray, mass: np.ndarray, frequency: float,
                  harmonics: int) -> float:
-    """max_t ½ ẋᵀ M ẋ [J] of the series: the largest of 32 samples per period of the
-    highest harmonic, refined by Newton's method on d/dt(½ẋᵀMẋ) = ẋᵀMẍ = 0."""
+    """max_t ½ ẋᵀ M ẋ [J] of the series of ``coefficients`` by the coordinates whose mass
+    matrix is ``mass`` (the engine's, where it is diagonal): the largest of 32 samples
+    per period of the highest harmonic, refined by Newton's method on d/dt(½ẋᵀMẋ) =
+    ẋᵀMẍ = 0."""
     count = 32 * max(harmonics, 1)
     step = 2.0 * math.pi / frequency / count
     times = np.arange(count) * step
@@ -223,7 +236,8 @@ def kinetic_peak(coefficients: np.ndarray, mass: np.ndarray, frequency: float,
 
 def energy_per_cycle(model, basis: FourierBasis, coefficients: np.ndarray,
                      contact_coefficients: np.ndarray, forces) -> EnergyPerCycle:
-    """The ``EnergyPerCycle`` per excitation period of the series: the excitation's work
+    """The ``EnergyPerCycle`` per excitation period of the series of ``coefficients``, by
+    the engine's coordinates as ``model`` holds them: the excitation's work
     ∫Q·ẋ and the damping's ∫ẋᵀCẋ from the coefficients (Parseval: exact for the
     series), the friction's ∫f·ṙ_t and the contacts' ∫N δ̇ from the samples the
     forces were computed at (exact for their series of degree H, ṙ having no higher
