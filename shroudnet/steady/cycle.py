@@ -112,6 +112,34 @@ def equivalent_damping(energy: EnergyPerCycle, kinetic: float) -> float:
     return energy.dissipated / (4.0 * math.pi * kinetic) if kinetic > 0.0 else 0.0
 
 
+class OrbitReadings:
+    """What an orbit reads off its extremes and energies, alike whether it was shot
+    (``PeriodicOrbit``) or balanced (``HarmonicOrbit``): each reads its own ``scene``,
+    ``maximum``, ``minimum`` and ``mean_square`` (per response row), ``energy_per_cycle``
+    and ``kinetic_peak``."""
+
+    __slots__ = ()
+
+    def amplitude(self, blade) -> float:
+        """The vibration amplitude [m] of ``blade`` (a name or a position; with
+        substructures a point component, ``Scene.response_position``): half its
+        peak-to-peak, (max x − min x)/2, without the static deflection that ``peak``
+        includes."""
+        j = self.scene.response_position(blade)
+        return float(0.5 * (self.maximum[j] - self.minimum[j]))
+
+    def energy_density(self, blade) -> float:
+        """E_ρ [m²] of ``blade`` (as ``amplitude``) over the orbit: its mean square."""
+        return float(self.mean_square[self.scene.response_position(blade)])
+
+    @property
+    def equivalent_damping(self) -> float:
+        """ζ_eq = W_d / (4π T_max) [-]: the damping ratio a linear oscillator would need to
+        dissipate as much per cycle at this frequency and kinetic energy (module
+        docstring)."""
+        return equivalent_damping(self.energy_per_cycle, self.kinetic_peak)
+
+
 def harmonics(response: np.ndarray, duration: float, order: int) -> Harmonics:
     """The ``Harmonics`` up to ``order`` of one response sampled evenly over a whole orbit
     of ``duration`` [s] (first and last samples one orbit apart)."""

@@ -34,8 +34,8 @@ from ..run.simulation import EventLog, Simulation, SimulationError
 from .cycle import (
     EnergyPerCycle,
     Harmonics,
+    OrbitReadings,
     energy_per_cycle,
-    equivalent_damping,
     harmonics,
     kinetic_peak,
 )
@@ -68,7 +68,7 @@ UNIT_CIRCLE = 1.0 + 1e-7
 
 
 @dataclass(frozen=True)
-class PeriodicOrbit:
+class PeriodicOrbit(OrbitReadings):
     """A periodic orbit of a forced scene, of ``periods`` excitation periods.
 
     ``initial``: (x0 [m], ẋ0 [m/s]) at t = 0 mod T_e, by blade position (with
@@ -167,24 +167,6 @@ class PeriodicOrbit:
             if edge < t < end - edge:
                 counts[switch] = counts.get(switch, 0) + 1
         return counts
-
-    def amplitude(self, blade) -> float:
-        """The vibration amplitude [m] of ``blade`` (a name or a position; with
-        substructures a point component, ``Scene.response_position``): half its
-        peak-to-peak, (max x − min x)/2, without the static deflection that ``peak``
-        includes."""
-        j = self.scene.response_position(blade)
-        return float(0.5 * (self.maximum[j] - self.minimum[j]))
-
-    def energy_density(self, blade) -> float:
-        """E_ρ [m²] of ``blade`` (as ``amplitude``) over the orbit."""
-        return float(self.mean_square[self.scene.response_position(blade)])
-
-    @property
-    def equivalent_damping(self) -> float:
-        """ζ_eq = W_d / (4π T_max) [-]: the damping ratio a linear oscillator would need to
-        dissipate as much per cycle at this frequency and kinetic energy (``cycle``)."""
-        return equivalent_damping(self.energy_per_cycle, self.kinetic_peak)
 
     def simulation(self, samples_per_period: int = 100) -> Simulation:
         """One orbit's ``Simulation`` (the contact forces' histories with the motion): the

@@ -22,7 +22,7 @@ import numpy as np
 from ...checked_records import check_record
 from ...model.lowering import from_dofs
 from ...model.scene import Scene
-from ..cycle import EnergyPerCycle, Harmonics, equivalent_damping
+from ..cycle import EnergyPerCycle, Harmonics, OrbitReadings
 from ..orbits import UNIT_CIRCLE
 from .aft import contact_forces as forces_in_time
 from .fourier import FourierBasis, derivative_matrix, series_matrix
@@ -30,7 +30,7 @@ from .model import harmonic_model
 
 
 @dataclass(frozen=True)
-class HarmonicOrbit:
+class HarmonicOrbit(OrbitReadings):
     """A periodic orbit of ``periods`` excitation periods by harmonic balance with
     ``harmonic_count`` H harmonics of ω = l Ω / periods, its contact forces evaluated at
     ``samples`` N times per period.
@@ -152,21 +152,6 @@ class HarmonicOrbit:
     def response(self, blade, times) -> np.ndarray:
         """``blade``'s response (``Scene.response_position``) at ``times`` [s]."""
         return self.scene.response_of(self.at(times), blade)
-
-    def amplitude(self, blade) -> float:
-        """Half the peak-to-peak [m] of ``blade``'s response (as
-        ``PeriodicOrbit.amplitude``), on the series."""
-        j = self.scene.response_position(blade)
-        return float(0.5 * (self.maximum[j] - self.minimum[j]))
-
-    def energy_density(self, blade) -> float:
-        """E_ρ [m²] of ``blade`` over the orbit."""
-        return float(self.mean_square[self.scene.response_position(blade)])
-
-    @property
-    def equivalent_damping(self) -> float:
-        """ζ_eq = W_d / (4π T_max) [-] (``cycle``)."""
-        return equivalent_damping(self.energy_per_cycle, self.kinetic_peak)
 
     def harmonics_of(self, coefficients: np.ndarray, order: int) -> Harmonics:
         """The ``Harmonics`` up to ``order`` of a series given by its coefficients
