@@ -706,47 +706,25 @@ class Solver:
         orbits.append(orbit)
 
     def locate(self, kind, test, a, b, index) -> Bifurcation | None:
-        """The zero of ``test`` between points a and b: the Illinois (modified regula
-        falsi) method on the arclength from a, to ``LOCATED`` of the arclength from a to
-        b; None where ``test`` has the same sign at both, or, for a multiplier's test, where it
-        jumps through 0 rather than crossing it (multipliers that changed their count
-        without crossing the circle: two real ones that meet and leave the real axis
-        together, say)."""
-        width = float(a.tangent @ (b.u - a.u))
-        low, high = (0.0, test(a)), (width, test(b))
-        if low[1] * high[1] > 0.0:
+        """The zero of ``test`` between points a and b (``bracketed_zero`` on the
+        arclength from a); None where ``test`` has the same sign at both, or, for a
+        multiplier's test, where it jumps through 0 rather than crossing it (multipliers
+        that changed their count without crossing the circle: two real ones that meet and
+        leave the real axis together, say)."""
+        located = bracketed_zero(test, a, b, self.trial, (SimulationError,))
+        if located is None:
             return None
-        best, best_value, kept, bracketed = b, abs(high[1]), None, False
-        for _ in range(LOCATING_STEPS):
-            if high[1] == low[1]:
-                break
-            sigma = low[0] - low[1] * (high[0] - low[0]) / (high[1] - low[1])
-            try:
-                trial = self.advance(a, sigma)[0]
-                trial = trial.with_tangent(self.tangent(trial, a.tangent))
-            except SimulationError:
-                break
-            value = test(trial)
-            if abs(value) < best_value:
-                best, best_value = trial, abs(value)
-            bracketed = abs(high[0] - low[0]) <= LOCATED * abs(width)
-            if value == 0.0 or bracketed:
-                break
-            if math.copysign(1.0, value) == math.copysign(1.0, low[1]):
-                low = (sigma, value)
-                if kept == "low":
-                    high = (high[0], high[1] / 2.0)
-                kept = "low"
-            else:
-                high = (sigma, value)
-                if kept == "high":
-                    low = (low[0], low[1] / 2.0)
-                kept = "high"
+        best, best_value, bracketed = located
         if bracketed and kind != "fold" and best_value > JUMP:
             return None  # |μ| jumps there: two multipliers met, none crossed the circle
         orbit = self.orbit(best, 0)
         return Bifurcation(kind, best.parameter, orbit, critical(kind, orbit.multipliers),
                            index, (a.parameter, b.parameter))
+
+    def trial(self, a, sigma):
+        """The point at arclength ``sigma`` from ``a``, with its tangent."""
+        trial = self.advance(a, sigma)[0]
+        return trial.with_tangent(self.tangent(trial, a.tangent))
 
     # ---- from a period doubling --------------------------------------------------------------
 
@@ -779,6 +757,46 @@ class Solver:
         point, _ = self.correct(base + size * away, away, away @ base + size, periods,
                                 reach=1.0)
         return point, point.u - base
+
+
+def bracketed_zero(test, a, b, trial, failures):
+    """Where ``test`` crosses zero between two points of a branch, a and b (each with
+    ``u`` and a unit ``tangent``): the Illinois (modified regula falsi) method on the
+    arclength σ from a, ``trial(a, σ)`` giving the branch's point there, until the bracket
+    is ``LOCATED`` of the arclength from a to b, at most ``LOCATING_STEPS`` trials, or
+    until a trial raises one of ``failures``. Returns None where ``test`` has the same
+    sign at a and b, else (the point of least |test| among b and the trials, that
+    |test|, whether the bracket closed)."""
+    width = float(a.tangent @ (b.u - a.u))
+    low, high = (0.0, test(a)), (width, test(b))
+    if low[1] * high[1] > 0.0:
+        return None
+    best, best_value, kept, bracketed = b, abs(high[1]), None, False
+    for _ in range(LOCATING_STEPS):
+        if high[1] == low[1]:
+            break
+        sigma = low[0] - low[1] * (high[0] - low[0]) / (high[1] - low[1])
+        try:
+            point = trial(a, sigma)
+        except failures:
+            break
+        value = test(point)
+        if abs(value) < best_value:
+            best, best_value = point, abs(value)
+        bracketed = abs(high[0] - low[0]) <= LOCATED * abs(width)
+        if value == 0.0 or bracketed:
+            break
+        if math.copysign(1.0, value) == math.copysign(1.0, low[1]):
+            low = (sigma, value)
+            if kept == "low":
+                high = (high[0], high[1] / 2.0)
+            kept = "low"
+        else:
+            high = (sigma, value)
+            if kept == "high":
+                low = (low[0], low[1] / 2.0)
+            kept = "high"
+    return best, best_value, bracketed
 
 
 def _stick_phases(orbit):

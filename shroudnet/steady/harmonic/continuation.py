@@ -45,12 +45,11 @@ from ..continuation import (
     FIRST_STEP,
     KINK_STEP,
     LARGEST_STEP,
-    LOCATED,
-    LOCATING_STEPS,
     SMALLEST_STEP,
     TURN,
     Bifurcation,
     Branch,
+    bracketed_zero,
     critical,
     smooth_changes,
 )
@@ -252,37 +251,22 @@ class Follower:
         return np.diag(self.orbit(point).multipliers)
 
     def locate(self, kind, test, a: Point, b: Point, index: int) -> Bifurcation | None:
-        """The zero of ``test`` between a and b by the secant method on the arclength
-        from a (as ``steady.continuation``), to ``LOCATED`` of it; None where the signs
-        agree."""
-        width = float(a.tangent @ (b.u - a.u))
-        low, high = (0.0, test(a)), (width, test(b))
-        if low[1] * high[1] > 0.0:
+        """The zero of ``test`` between a and b (``bracketed_zero`` on the arclength from
+        a, as ``steady.continuation``); None where the signs agree."""
+        located = bracketed_zero(test, a, b, self.trial,
+                                 (ConvergenceError, np.linalg.LinAlgError))
+        if located is None:
             return None
-        best, best_value = b, abs(high[1])
-        for _ in range(LOCATING_STEPS):
-            if high[1] == low[1]:
-                break
-            sigma = low[0] - low[1] * (high[0] - low[0]) / (high[1] - low[1])
-            try:
-                trial = self.advance(a, sigma)[0]
-                trial = trial.with_tangent(self.tangent(trial, a.tangent))
-            except (ConvergenceError, np.linalg.LinAlgError):
-                break
-            value = test(trial)
-            if abs(value) < best_value:
-                best, best_value = trial, abs(value)
-            if value == 0.0 or abs(high[0] - low[0]) <= LOCATED * abs(width):
-                break
-            if math.copysign(1.0, value) == math.copysign(1.0, low[1]):
-                low = (sigma, value)
-            else:
-                high = (sigma, value)
-        orbit = self.orbit(best)
+        orbit = self.orbit(located[0])
         multiplier = critical(kind, orbit.multipliers) if len(orbit.multipliers) else \
             complex(math.nan)
-        return Bifurcation(kind, best.parameter, orbit, multiplier, index,
+        return Bifurcation(kind, located[0].parameter, orbit, multiplier, index,
                            (a.parameter, b.parameter))
+
+    def trial(self, a: Point, sigma: float) -> Point:
+        """The point at arclength ``sigma`` from ``a``, with its tangent."""
+        trial = self.advance(a, sigma)[0]
+        return trial.with_tangent(self.tangent(trial, a.tangent))
 
 
 def harmonic_continuation(scene_at: Callable[[float], object], start: float, stop: float,
