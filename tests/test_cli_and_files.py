@@ -404,7 +404,7 @@ def replace_or_die(source, target):
     replace(source, target)
 
 os.replace = replace_or_die
-from shroudnet.cli import main
+from shroudnet.front.cli import main
 sys.exit(main(sys.argv[1:]))
 """
 

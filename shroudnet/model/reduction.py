@@ -80,7 +80,7 @@ def craig_bampton(mass, stiffness, boundary, modes, *, damping_ratios=None, poin
 
     Examples
     --------
-    >>> from shroudnet.beam import cantilever_beam
+    >>> from shroudnet.model.beam import cantilever_beam
     >>> beam = cantilever_beam(length=0.2, width=0.02, thickness=0.005,
     ...                        youngs_modulus=2.1e11, density=7850.0, elements=20)
     >>> tip = list(range(beam.n_dofs - 4, beam.n_dofs))
