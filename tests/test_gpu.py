@@ -277,6 +277,7 @@ def test_a_map_with_more_periods_than_colours_never_draws_two_classes_alike():
         name = "p19 … p36" if label in ("p19", "p27", "p34", "p36") else label
         np.testing.assert_allclose(colour, legend[name])
 
+
 def test_a_map_on_the_cpu_is_its_cells_sweeps():
     """A map run on the CPU holds, in each row, the sweep of the second parameter at the
     row's value of the first (the paper's kernel, as the suite compiles it)."""
