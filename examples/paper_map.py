@@ -20,7 +20,10 @@ labels every point as rtol = 1e-8 does, its periodic points repeat to 1e-7 of th
 or better (the classification's tolerance is 1e-5), and it runs 1.6–1.9 times as fast;
 fixed RK4 steps need 250 a period for Poincaré points as close and then run no faster
 than rtol = 1e-8, while rtol = 1e-6 turns γ1 = 0.5's period-1 into quasi-periodic. The
-1,599 cells × 400 periods took 155 s on two cores that other work shared.
+1,599 cells × 400 periods took 155 s on two cores that other work shared. The few
+undetermined cells lie on the boundaries between regions: their λ_max is negative but
+their points do not yet repeat (at γ1 = 2.75, 6400 rpm, λ_max = −0.036 per period and a
+mismatch of 1.8e-4 after 300 periods), transients that settle slowly near a bifurcation.
 """
 
 import sys
