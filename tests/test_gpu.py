@@ -240,6 +240,44 @@ def test_the_map_figure_colours_each_cell_by_its_class():
     assert ax.get_xlabel() == "a" and ax.get_ylabel() == "b"
 
 
+def test_a_map_with_more_periods_than_colours_never_draws_two_classes_alike():
+    """Eleven periods (as the paper's group shows over γ1 × Ω): the seven shortest keep a
+    colour each, the four longest share the last period colour under one legend entry that
+    names them, and no two legend entries, nor a period and a motion that does not
+    repeat, share a colour."""
+    from matplotlib.figure import Figure
+
+    from shroudnet import Classification, Sweep, SweepMap, SweepPoint
+    from shroudnet.front.figures import sweep_map_figure
+
+    periods = [1, 2, 3, 5, 9, 10, 13, 19, 27, 34, 36]
+    labels = [f"p{period}" for period in periods] + ["quasi-periodic", "chaotic"]
+
+    def point(value, label):
+        kind = Classification(label=label, period=int(label[1:]) if label[0] == "p" and
+                              label[1].isdigit() else None, n_points=4, tolerance=1e-5,
+                              mismatch=0.0, zero_one=0.0, broadband=0.0)
+        return SweepPoint(value=value, poincare=np.zeros((4, 2)), energy_density=1.0,
+                          friction_loss_per_cycle=0.0, classification=kind,
+                          final_state=(np.zeros(1), np.zeros(1)))
+
+    rows = tuple(Sweep(parameter="b", blade=0, points=(point(0.0, label),), settings={})
+                 for label in labels)
+    result = SweepMap(parameters=("a", "b"), first=np.arange(float(len(labels))),
+                      second=np.array([0.0]), rows=rows)
+    ax = sweep_map_figure(result, ax=Figure().add_subplot())
+    legend = {text.get_text(): tuple(patch.get_facecolor()) for text, patch in
+              zip(ax.get_legend().get_texts(), ax.get_legend().get_patches())}
+    assert list(legend) == ["p1", "p2", "p3", "p5", "p9", "p10", "p13", "p19 … p36",
+                            "quasi-periodic", "chaotic"]
+    assert len(set(legend.values())) == len(legend)
+    mesh = ax.collections[0]
+    colours = mesh.cmap(mesh.norm(mesh.get_array())).reshape(len(labels), 4)
+    for label, colour in zip(labels, colours):
+        name = "p19 … p36" if label in ("p19", "p27", "p34", "p36") else label
+        np.testing.assert_allclose(colour, legend[name])
+
+
 def test_a_map_on_the_cpu_is_its_cells_sweeps():
     """A map run on the CPU holds, in each row, the sweep of the second parameter at the
     row's value of the first (the paper's kernel, as the suite compiles it)."""

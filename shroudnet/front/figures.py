@@ -156,22 +156,38 @@ def map_classes(labels) -> list[str]:
     return periods + [label for label in OTHER_COLOURS if label in found]
 
 
+def _legend_classes(classes: Sequence[str]) -> list[tuple[tuple[str, ...], str]]:
+    """The entries of a map's legend from its ``classes`` (``map_classes``' order), each
+    (the labels it colours, its name): one a class, but the longest periods share the
+    last period colour, named by their labels, once more periods are found than
+    ``PERIOD_COLOURS`` holds (no two classes ever drawn in one colour)."""
+    periods = [label for label in classes if label not in OTHER_COLOURS]
+    others = [((label,), label) for label in classes if label in OTHER_COLOURS]
+    if len(periods) <= len(PERIOD_COLOURS):
+        return [((label,), label) for label in periods] + others
+    own, shared = periods[:len(PERIOD_COLOURS) - 1], tuple(periods[len(PERIOD_COLOURS) - 1:])
+    name = ", ".join(shared) if len(shared) <= 3 else f"{shared[0]} … {shared[-1]}"
+    return [((label,), label) for label in own] + [(shared, name)] + others
+
+
 def sweep_map_figure(result: SweepMap, *, ax=None, title: str = "", xlabel: str = "",
                      ylabel: str = ""):
     """A two-parameter map (``sweep_map``) coloured by each cell's classification
-    (period-k, quasi-periodic, chaotic, undetermined, failed), the first parameter along
-    x, the second along y, as the paper's diagrams but in two parameters, on ``ax``;
+    (period-k, quasi-periodic, chaotic, undetermined, failed; beyond eight periods the
+    longest share one colour and one legend entry), the first parameter along x, the
+    second along y, as the paper's diagrams but in two parameters, on ``ax``;
     returns ``ax``, or the new figure drawn when none is given."""
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
     figure, ax = _canvas(ax, "sweep_map_figure", (7, 5.5))
     labels = result.labels
-    classes = map_classes(labels)
-    code = {label: index for index, label in enumerate(classes)}
+    shown = _legend_classes(map_classes(labels))
+    code = {label: index for index, (members, _) in enumerate(shown) for label in members}
     cells = np.vectorize(code.__getitem__, otypes=[float])(labels)
-    colours = [OTHER_COLOURS.get(label) or PERIOD_COLOURS[index % len(PERIOD_COLOURS)]
-               for index, label in enumerate(classes)]
+    classes = [name for _, name in shown]
+    colours = [OTHER_COLOURS.get(name) or PERIOD_COLOURS[index]
+               for index, name in enumerate(classes)]
     ax.pcolormesh(result.first, result.second, cells.T, shading="nearest",
                   cmap=ListedColormap(colours), vmin=-0.5, vmax=len(classes) - 0.5)
     ax.set(xlabel=xlabel or result.parameters[0], ylabel=ylabel or result.parameters[1],

@@ -32,8 +32,8 @@ def sweep_map(scene_at: Callable[[float, float], Scene], first: Sequence[float],
               second: Sequence[float], *, parameters: tuple[str, str] = ("first", "second"),
               blade: Hashable | int = 1, transient: int = TRANSIENT, record: int = 100,
               method=Adaptive(), samples_per_period: int = 50, initial=None,
-              tolerance: float = REPEAT_TOLERANCE, workers: int | None = None,
-              executor=None, progress=None) -> SweepMap:
+              tolerance: float = REPEAT_TOLERANCE, lyapunov: bool = False,
+              workers: int | None = None, executor=None, progress=None) -> SweepMap:
     """The steady response of ``scene_at(a, b)`` at every a of ``first`` and b of
     ``second``: the computation behind ``shroudnet.sweep_map`` (``front.studies``, where
     every argument is documented), with ``progress`` a callable ``progress(done, total)``
@@ -53,8 +53,8 @@ def sweep_map(scene_at: Callable[[float, float], Scene], first: Sequence[float],
         _Cell(scene_at, pairs), range(len(pairs)), parameter=f"{parameters[0]}, "
         f"{parameters[1]} (cell)", blade=blade, transient=transient, record=record,
         method=method, samples_per_period=samples_per_period, initial=initial,
-        tolerance=tolerance, workers=workers, executor=executor, progress=progress,
-        order_by=pairs)
+        tolerance=tolerance, lyapunov=lyapunov, workers=workers, executor=executor,
+        progress=progress, order_by=pairs)
     points = [_relabelled(point, value) for point, value in zip(done.points, pairs[:, 1])]
     width = len(second)
     sweeps = tuple(Sweep(parameter=parameters[1], blade=done.blade,
