@@ -447,9 +447,12 @@ def test_command_line_modes_prints_the_zzenf_table_of_the_disc(tmp_path, capsys)
     assert main(["modes", str(DISC), "-o", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert "24 sectors at 3000 rpm" in out
-    expected = linear_modes(bladed_disc_24(), "open").families()
+    assert "interfaces open | stuck | closed" in out
     row = next(line for line in out.splitlines() if line.startswith("ND   6"))
-    assert f"{expected[6, 0]:9.2f}" in row and f"{expected[6, 1]:9.2f}" in row
+    open_, stuck, closed = row.split("|")
+    for limit, cells in (("open", open_), ("stuck", stuck), ("closed", closed)):
+        expected = linear_modes(bladed_disc_24(), limit).families()
+        assert f"{expected[6, 0]:9.2f}" in cells and f"{expected[6, 1]:9.2f}" in cells
     assert (tmp_path / "bladed_disc_24-modes.png").stat().st_size > 10_000
 
 

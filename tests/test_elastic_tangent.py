@@ -12,6 +12,7 @@ import scipy.linalg
 
 import shroudnet as sn
 from contact_laws import Coulomb, KelvinVoigt
+from shroudnet.analysis import stability
 from shroudnet.engine.codes import OPEN, SLIP_POSITIVE, STICK
 from shroudnet.engine.generate import kernel_scene, load_kernel
 from shroudnet.io.results import load_branch, save_branch
@@ -41,7 +42,7 @@ def first_order_field(kernel, s, t, y, modes, n):
 
 def stroboscopic_state(scene, y):
     """(x, ẋ, u) one period after y = (x, ẋ, u), by ``simulate``."""
-    parts = sn.stability.state_parts(scene, y)
+    parts = stability.state_parts(scene, y)
     run = sn.simulate(scene, 1, method=EXACT, samples_per_period=1, initial=parts,
                       event_capacity=0, event_tolerance=1e-13)
     return np.concatenate([run.x[-1], run.v[-1], run.stretches[-1]])
@@ -112,7 +113,7 @@ def test_monodromy_through_stick_slip_and_separation_of_2d_elastic_faces():
     scene = pair_on_a_disc()
     y = np.concatenate([settled_through_every_switch(scene, 20), np.zeros(2)])
     scale = full_scale(scene, y)
-    matrix = sn.monodromy(scene, 1, initial=sn.stability.state_parts(scene, y), method=EXACT)
+    matrix = sn.monodromy(scene, 1, initial=stability.state_parts(scene, y), method=EXACT)
     reference = differenced_map(scene, y, scale)
     # Measured: 1.5e-8 (0.60 with the sliders' rows left out of the tangent).
     assert scaled_error(matrix, reference, scale) <= 1e-6
@@ -290,7 +291,7 @@ def test_classify_runs_its_lyapunov_exponent_from_the_whole_state_it_reads(monke
         runs.append(integrate(*args, **kwargs))
         return runs[-1]
 
-    monkeypatch.setattr(sn.stability, "integrate", recorded)
+    monkeypatch.setattr(stability, "integrate", recorded)
     kind = sn.classify(sim, scene.responses[0], skip)
     assert np.isfinite(kind.lyapunov) and len(runs) == 1
     first, start = runs[0].run.output, runs[0].stretches[0]  # by the engine's coordinates

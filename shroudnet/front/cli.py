@@ -64,7 +64,8 @@ BAD_INPUT, FAULT, INTERRUPTED = 2, 1, 130
 _INPUT_ERRORS = (ValueError, OSError, EOFError, zipfile.BadZipFile, SimulationError)
 
 #: The folders of the packages whose ``raise TypeError(...)`` is a check of an argument.
-_CHECKING_CODE = (Path(__file__).resolve().parent, Path(contact_laws.__file__).resolve().parent)
+_CHECKING_CODE = (Path(__file__).resolve().parents[1],  # shroudnet
+                  Path(contact_laws.__file__).resolve().parent)
 
 
 class UsageError(ValueError):
@@ -824,8 +825,22 @@ def _diameter(bifurcation) -> str:
 
 
 #: The limits of the interfaces ``shroudnet modes`` tabulates side by side
-#: (``linear_modes``).
-TABULATED = ("open", "stuck")
+#: (``linear_modes``): open and closed bound the group's frequencies; stuck is the group at
+#: rest with its friction locked (a gap design's open interfaces stay open).
+TABULATED = ("open", "stuck", "closed")
+
+
+def _limits(scene) -> dict:
+    """``linear_modes`` of ``scene`` in each of ``TABULATED``'s limits it has: a stuck or
+    closed limit is left out, with a line saying why, where nothing moves in it or an
+    interface's law has no linear closed limit."""
+    found = {"open": linear_modes(scene, "open")}
+    for contacts in TABULATED[1:]:
+        try:
+            found[contacts] = linear_modes(scene, contacts)
+        except ValueError as error:
+            print(f"{contacts} limit left out: {error}")
+    return found
 
 
 def _modes(args) -> int:
@@ -836,22 +851,22 @@ def _modes(args) -> int:
     path = args.output / f"{args.scene.stem}-modes.png"
     _check_file(path, "--output")
     _prove_writable(args.output, "--output")
-    both = {contacts: linear_modes(scene, contacts) for contacts in TABULATED}
+    both = _limits(scene)
     if both["open"].sectors is None:
         for contacts, found in both.items():
             listed = ", ".join(f"{f:.2f}" for f in found.frequencies)
-            print(f"{contacts:6s}{len(found.frequencies)} modes [Hz]: {listed}")
+            print(f"{contacts:7s}{len(found.frequencies)} modes [Hz]: {listed}")
         return 0
     families = args.families
     print(f"{both['open'].sectors} sectors at {scene.speed_rpm:g} rpm; the first {families} "
-          "families [Hz], interfaces open | stuck")
+          f"families [Hz], interfaces {' | '.join(both)}")
     tables = {contacts: found.families()[:, :families] for contacts, found in both.items()}
     for nd in range(tables["open"].shape[0]):
-        cells = ["  ".join(f"{f:9.2f}" for f in tables[c][nd] if np.isfinite(f))
-                 for c in TABULATED]
-        print(f"ND {nd:3d}  {cells[0]}  |  {cells[1]}")
+        cells = ["  ".join(f"{f:9.2f}" for f in table[nd] if np.isfinite(f))
+                 for table in tables.values()]
+        print(f"ND {nd:3d}  " + "  |  ".join(cells))
     sectors = both["open"].sectors
-    save_figure(zzenf_diagram({f"interfaces {c}": both[c] for c in TABULATED},
+    save_figure(zzenf_diagram({f"interfaces {c}": found for c, found in both.items()},
                               speed_rpm=scene.speed_rpm,
                               engine_orders=range(1, sectors // 2 + 1), families=families,
                               title=f"{args.scene.stem}: frequency against nodal diameter"),

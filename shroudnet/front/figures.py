@@ -36,8 +36,11 @@ from ..linear.modes import GroupCampbell, LinearModes, excited_diameter
 from ..run.simulation import Simulation
 from ..steady.continuation import Branch
 from ..steady.orbits import PeriodicOrbit
+from ..studies.harmonic_precision import HarmonicPrecision
 from ..studies.mistuning import MistuningStudy
 from ..studies.precision import Study
+from ..run.classification import CHAOTIC, FAILED, QUASI_PERIODIC, UNDETERMINED
+from ..run.simulation import SweepMap
 from ..studies.sweep import Sweep
 
 
@@ -135,6 +138,48 @@ def bifurcation_diagram(result: Sweep, *, xlabel: str = "", title: str = "",
         below.errorbar(where, largest, yerr=2.0 * error, fmt=".", ms=3, color="C3", lw=0.6)
     below.set(xlabel=label, ylabel="λ_max per period")
     return _drawn(figure, given)
+
+
+#: The colours of a map's classes: periods in order, then the motions that do not repeat.
+PERIOD_COLOURS = ("#4477aa", "#66ccee", "#228833", "#ccbb44", "#aa3377", "#88ccaa",
+                  "#332288", "#999933")
+OTHER_COLOURS = {QUASI_PERIODIC: "#ee7733", CHAOTIC: "#cc3311", UNDETERMINED: "#bbbbbb",
+                 FAILED: "#ffffff"}
+
+
+def map_classes(labels) -> list[str]:
+    """The classes that ``labels`` hold, in the order a map's legend lists them: periods
+    by their number, then quasi-periodic, chaotic, undetermined and failed."""
+    found = set(np.asarray(labels, dtype=object).ravel())
+    periods = sorted((label for label in found if label not in OTHER_COLOURS),
+                     key=lambda label: int(label[1:]))
+    return periods + [label for label in OTHER_COLOURS if label in found]
+
+
+def sweep_map_figure(result: SweepMap, *, ax=None, title: str = "", xlabel: str = "",
+                     ylabel: str = ""):
+    """A two-parameter map (``sweep_map``) coloured by each cell's classification
+    (period-k, quasi-periodic, chaotic, undetermined, failed), the first parameter along
+    x, the second along y, as the paper's diagrams but in two parameters, on ``ax``;
+    returns ``ax``, or the new figure drawn when none is given."""
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    figure, ax = _canvas(ax, "sweep_map_figure", (7, 5.5))
+    labels = result.labels
+    classes = map_classes(labels)
+    code = {label: index for index, label in enumerate(classes)}
+    cells = np.vectorize(code.__getitem__, otypes=[float])(labels)
+    colours = [OTHER_COLOURS.get(label) or PERIOD_COLOURS[index % len(PERIOD_COLOURS)]
+               for index, label in enumerate(classes)]
+    ax.pcolormesh(result.first, result.second, cells.T, shading="nearest",
+                  cmap=ListedColormap(colours), vmin=-0.5, vmax=len(classes) - 0.5)
+    ax.set(xlabel=xlabel or result.parameters[0], ylabel=ylabel or result.parameters[1],
+           title=title)
+    ax.legend(handles=[Patch(facecolor=colour, edgecolor="0.5", label=label)
+                       for label, colour in zip(classes, colours)],
+              loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small", frameon=False)
+    return _drawn(figure, ax)
 
 
 def curves(x: Sequence[float], series: Mapping[str, Sequence[float]], *, xlabel: str,
@@ -529,6 +574,40 @@ def _energy(joules: float) -> str:
         if abs(joules) * factor >= 1.0:
             return f"{joules * factor:.3g} {unit}"
     return f"{joules * 1e6:.3g} µJ"
+
+
+#: What ``harmonic_precision_diagram`` draws against: the number of harmonics, or the CPU
+#: time of a solve.
+HARMONIC_AXES = ("harmonics", "time")
+
+
+def harmonic_precision_diagram(study: HarmonicPrecision, *, ax=None, against: str = "harmonics",
+                               label: str = ""):
+    """Harmonic balance against the exact orbit (``studies.harmonic_precision``): the
+    relative errors of the amplitude and of the energy dissipated per cycle against the
+    number of harmonics H, or against the CPU time of a solve [ms] with the exact
+    shooting's time marked, on ``ax``; returns ``ax``, or the new figure drawn when none
+    is given. ``label`` prefixes the curves' labels (several scenes on one axes)."""
+    if against not in HARMONIC_AXES:
+        raise ValueError(f"harmonic_precision_diagram: against must be one of "
+                         f"{HARMONIC_AXES}, got {against!r}")
+    figure, ax = _canvas(ax, "harmonic_precision_diagram", (6, 4.5))
+    x = study.harmonics if against == "harmonics" else study.seconds * 1e3
+    prefix = f"{label}: " if label else ""
+    for values, style, name in ((study.amplitude_error, "o-", "amplitude"),
+                                (study.energy_error, "s--", "energy per cycle")):
+        ax.loglog(x, np.maximum(values, 1e-16), style, ms=4, label=f"{prefix}{name}")
+    if against == "time":
+        ax.axvline(study.exact_seconds * 1e3, color="0.4", ls=":", lw=1.0,
+                   label=f"{prefix}exact orbit by shooting")
+        for h, t, e in zip(study.harmonics, x, study.amplitude_error):
+            ax.annotate(f"H={h}", (t, max(e, 1e-16)), textcoords="offset points",
+                        xytext=(3, 3), fontsize="x-small")
+    ax.set(xlabel="harmonics H" if against == "harmonics" else "CPU time of a solve [ms]",
+           ylabel="relative error against the exact orbit")
+    ax.grid(True, which="major", lw=0.3)
+    ax.legend(fontsize="small")
+    return _drawn(figure, ax)
 
 
 # ---- where a figure is drawn --------------------------------------------------------------

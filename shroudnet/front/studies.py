@@ -14,7 +14,8 @@ from collections.abc import Callable, Hashable, Sequence
 from ..model.scene import Scene
 from ..run.classification import REPEAT_TOLERANCE
 from ..run.methods import TRANSIENT, Adaptive
-from ..run.simulation import Sweep
+from ..run.simulation import Sweep, SweepMap
+from ..studies import maps as maps_module
 from ..studies import mistuning as mistuning_module
 from ..studies import sweep as sweep_module
 from ..studies.mistuning import MistuningStudy
@@ -55,9 +56,16 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         Worker processes of the pool the sweep makes for itself; default every core of the
         machine. 1 runs the points one after the other in this process. The workers ignore
         Ctrl-C (this process stops them) and exit when this process dies.
-    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+    executor : concurrent.futures.Executor, dask.distributed.Client or "cuda", optional
         Run the points there instead (a thread pool gains nothing: the loop holds the GIL).
         A dask client runs them on its cluster (``pip install 'shroudnet[dask]'``).
+        "cuda" runs every point at once on the GPU, one thread each, by the fixed-step
+        method (``method`` a ``FixedStep``; ``pip install 'shroudnet[gpu]'``); the points
+        equal the CPU's to rounding (chaos amplifies it), their classification decided
+        by the repeat test and the 0–1 test (``lyapunov`` is refused), with a NaN
+        broadband fraction and no peaks, since the GPU keeps no time history. ``workers``
+        then make the points' scenes. Where no GPU can run it, a ``run.batch.NoDevice``
+        says in one line what is missing.
     continuation : bool
         Chain the points in order: each starts from the final state of the last point
         before it that did not fail (the first from ``initial``), so a forward and a
@@ -119,6 +127,53 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         continuation=continuation, initial=initial, tolerance=tolerance, lyapunov=lyapunov,
         workers=workers, executor=executor, progress=display("sweep", progress),
         store=store, retry_failed=retry_failed)
+
+
+def sweep_map(scene_at: Callable[[float, float], Scene], first: Sequence[float],
+              second: Sequence[float], *, parameters: tuple[str, str] = ("first", "second"),
+              blade: Hashable | int = 1, transient: int = TRANSIENT, record: int = 100,
+              method=Adaptive(), samples_per_period: int = 50, initial=None,
+              tolerance: float = REPEAT_TOLERANCE, workers: int | None = None,
+              executor=None, progress="auto") -> SweepMap:
+    """The steady response of ``scene_at(a, b)`` at every a of ``first`` and b of
+    ``second``: each cell a sweep point (Poincaré points of ``blade``, E_ρ, friction loss
+    per cycle, classification), every cell from ``initial``. ``executor="cuda"`` runs
+    every cell at once on the GPU; ``front.figures.sweep_map_figure`` draws the map
+    coloured by the classification.
+
+    Parameters
+    ----------
+    scene_at : callable
+        (a, b) ↦ Scene.
+    first, second : sequences of numbers
+        The grid's values of each parameter.
+    parameters : (str, str)
+        The parameters' names.
+    executor : None, concurrent.futures.Executor, dask client or "cuda"
+        Where the cells run, as for ``sweep``; "cuda" runs them all at once on the GPU, one
+        thread each, neighbouring cells in a warp (``method`` a ``FixedStep``;
+        ``pip install 'shroudnet[gpu]'``).
+    progress : "auto", bool, None or callable
+        As for ``sweep``.
+
+    The other arguments are ``sweep``'s, for every cell.
+
+    Returns
+    -------
+    SweepMap
+
+    Raises
+    ------
+    ValueError, TypeError
+        A bad argument, named, before any cell runs.
+    run.batch.NoDevice
+        ``executor="cuda"`` where no GPU can run it, saying what is missing.
+    """
+    return maps_module.sweep_map(
+        scene_at, first, second, parameters=parameters, blade=blade, transient=transient,
+        record=record, method=method, samples_per_period=samples_per_period,
+        initial=initial, tolerance=tolerance, workers=workers, executor=executor,
+        progress=display("sweep_map", progress))
 
 
 def mistuning_study(scene: Scene, *, spread: float, samples: int,

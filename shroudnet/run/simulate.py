@@ -212,6 +212,38 @@ def integrate(scene: Scene, periods: int, *,
                                      stretch_rows if len(stretch_rows) else None)
 
     kernel = load_kernel(scene, tangent=tangent is not None, method=_KERNEL_METHODS[type(method)])
+    controls, method, zeno_window = run_controls(
+        scene, periods, method, samples_per_period, event_tolerance, zeno, event_capacity,
+        orthonormalise=orthonormalise, until=until)
+    propagation = new_propagation(arrays, scene.arrays, controls.step) \
+        if isinstance(method, Exponential) else None
+    state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
+                                                      flow=tangent is not None,
+                                                      propagation=propagation)
+    arguments = (state, arrays, work, switching, events, controls, output)
+    driver, compile_seconds = compiled(kernel.run, arguments)
+    run = finish(driver(*arguments), output, events, state.tangent)
+    stretches = run.output.x[:, n:len(x0) - len(x_p)]
+    run = _blades_only(run, n, scene.arrays.n_stretches)
+    status = Status(run.status)
+    if status != Status.FINISHED:
+        raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
+                                            zeno.events, zeno_window,
+                                            isinstance(method, FixedStep)))
+    return Integration(run=run, method=method, event_tolerance=event_tolerance,
+                       zeno_window=zeno_window, compile_seconds=compile_seconds,
+                       stretches=stretches)
+
+
+def run_controls(scene: Scene, periods: int, method: FixedStep | Adaptive | Exponential,
+                 samples_per_period: int, event_tolerance: float, zeno: ZenoGuard,
+                 event_capacity: int, *, orthonormalise: bool = False,
+                 until: float | None = None) -> tuple[Controls, object, float]:
+    """The ``records.Controls`` of a run of ``scene`` over ``periods`` (arguments checked
+    as ``integrate`` checks them), the method as recorded (the default atol filled in) and
+    the Zeno window [periods]."""
+    period = scene.excitation_period
+    on_grid = isinstance(method, FixedStep | Exponential)
     zeno_window = zeno.window_at(event_tolerance)
     n_samples = periods * samples_per_period + 1
     sample_step = period / samples_per_period
@@ -238,24 +270,7 @@ def integrate(scene: Scene, periods: int, *,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
         orthonormalise=orthonormalise,
         exponentials=not orthonormalise and scene.arrays.linear_phases)
-    propagation = new_propagation(arrays, scene.arrays, step) \
-        if isinstance(method, Exponential) else None
-    state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
-                                                      flow=tangent is not None,
-                                                      propagation=propagation)
-    arguments = (state, arrays, work, switching, events, controls, output)
-    driver, compile_seconds = compiled(kernel.run, arguments)
-    run = finish(driver(*arguments), output, events, state.tangent)
-    stretches = run.output.x[:, n:len(x0) - len(x_p)]
-    run = _blades_only(run, n, scene.arrays.n_stretches)
-    status = Status(run.status)
-    if status != Status.FINISHED:
-        raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
-                                            zeno.events, zeno_window,
-                                            isinstance(method, FixedStep)))
-    return Integration(run=run, method=method, event_tolerance=event_tolerance,
-                       zeno_window=zeno_window, compile_seconds=compile_seconds,
-                       stretches=stretches)
+    return controls, method, zeno_window
 
 
 #: The kernel of each method (``engine.generate.METHODS``).

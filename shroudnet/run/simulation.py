@@ -369,3 +369,35 @@ class Sweep:
         values = np.concatenate([np.full(len(p.poincare), p.value) for p in self.points])
         section = np.concatenate([p.poincare[:, coordinate] for p in self.points])
         return values, section
+
+
+@dataclass(frozen=True)
+class SweepMap:
+    """A two-parameter map: at each value of the first parameter (``first``), a sweep of
+    the second (``second``), one ``Sweep`` of ``rows`` each, whose points' ``value`` is
+    the second parameter's. ``parameters`` names the two; a failed point keeps its place
+    as a gap."""
+
+    parameters: tuple[str, str]
+    first: np.ndarray
+    second: np.ndarray
+    rows: tuple[Sweep, ...]
+
+    def __post_init__(self):
+        check_record(self)
+
+    @property
+    def labels(self) -> np.ndarray:
+        """Each point's classification label (first × second; "failed" where it failed)."""
+        return np.array([row.labels for row in self.rows], dtype=object).reshape(
+            len(self.first), len(self.second))
+
+    def grid(self, reading: str) -> np.ndarray:
+        """A number of every point (first × second) by the name of its ``SweepPoint``
+        field: "energy_density" or "friction_loss_per_cycle" (NaN where a point failed)."""
+        if reading not in ("energy_density", "friction_loss_per_cycle"):
+            raise ValueError(f"SweepMap.grid.reading must be 'energy_density' or "
+                             f"'friction_loss_per_cycle', got {reading!r}")
+        return np.array([[getattr(point, reading) for point in row.points]
+                         for row in self.rows], dtype=float).reshape(
+            len(self.first), len(self.second))

@@ -46,6 +46,7 @@ from ..run.methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_toler
 from ..run.simulate import MAX_PERIODS, integrate
 from ..run.simulation import SimulationError
 from .cyclic import CyclicSymmetry, cyclic_symmetry, reduced_step, whole_period
+from .harmonic.orbit import HarmonicOrbit
 from .orbits import (
     ORBIT_TOLERANCE,
     SMALLEST_TOLERANCE,
@@ -171,11 +172,13 @@ class Bifurcation:
     real multiplier that leaves the unit circle through +1 without a fold of the
     symmetric branch is a "symmetry-breaking" bifurcation: its eigenvector is a wave of
     another diameter (``wave_number``), the motion a standing or localised one beyond.
+    On a branch of harmonic-balance orbits (``harmonic_continuation``) the orbit is a
+    ``HarmonicOrbit`` and the multiplier one of Hill's.
     """
 
     kind: str
     parameter: float
-    orbit: PeriodicOrbit
+    orbit: PeriodicOrbit | HarmonicOrbit
     multiplier: complex
     index: int
     bracket: tuple[float, float]
