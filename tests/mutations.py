@@ -126,6 +126,9 @@ ELASTIC_MONODROMY = ("tests/test_elastic_tangent.py::"
                      "test_monodromy_through_stick_slip_and_separation_of_2d_elastic_faces")
 ELASTIC_ORBIT = ("tests/test_elastic_tangent.py::"
                  "test_the_elastic_packets_orbit_carries_its_stretches_and_its_monodromy_agrees")
+#: One tangent column through faces that open while they slip, against differences.
+ONE_COLUMN = ("tests/test_elastic_tangent.py::"
+              "test_one_tangent_column_passes_faces_that_open_while_they_slip")
 #: Harmonic balance against closed forms, exact orbits and differences of its own forces.
 HARMONIC = "tests/test_harmonic_balance.py"
 
@@ -338,6 +341,18 @@ MUTATIONS = (
              "a face that starts slipping has its stretch put on the friction limit μN/k_t, "
              "but its tangent forgets that the limit moves with the normal load",
              (ELASTIC_ORBIT,)),
+    Mutation("unresolved-stretch-in-the-error", "tangent",
+             "        if turning_length(stretch, w.slider_speed[e], g.resolution) > stretch:",
+             "        if turning_length(stretch, w.slider_speed[e], g.resolution) < 0.0:",
+             "the tangent's error keeps the rows of a slipping stretch too short for the run "
+             "to resolve its direction: a face that opens while it slips stops the run",
+             (ONE_COLUMN,)),
+    Mutation("unresolved-stretch-turns-by-its-length", "tangent",
+             "    length = turning_length(size / stiffness, speed, g.resolution)",
+             "    length = size / stiffness",
+             "a slipping stretch shorter than the run resolves turns by its own length: its "
+             "direction's variation relaxes at λ/|u| → ∞ as its face opens",
+             (ONE_COLUMN,)),
     # ---- orbits: Newton's step (M − I) Δy = −(φ(y) − y) ----------------------------------
     Mutation("orbit-end-relaxes-the-sliders", "orbits",
              "                                                done.stretches[-1]]),",

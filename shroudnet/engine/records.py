@@ -117,12 +117,14 @@ NoPropagation = namedtuple("NoPropagation", [])
 #: switch, or several guards at once), the first at ``singular_time[0]`` on interface
 #: ``singular_interface[0]``. ``work`` and ``acceleration``: the forces at a stage.
 #: ``phase_work``: storage for the exponential of a phase's Jacobian
-#: (``exponential``; its first slot the Jacobian).
+#: (``exponential``; its first slot the Jacobian). ``resolution`` [s]: the time the run
+#: resolves, its event tolerance (0 for the exact Jacobian): a slipping elastic contact's
+#: stretch direction that relaxes faster is followed at that pace (``slider_tangent``).
 Tangent = namedtuple("Tangent", [
     "matrix", "log_growth", "history", "normal_u", "normal_du", "force_u", "force_du",
     "stages", "candidate", "direction", "resultant_change", "acceleration_change", "rows",
     "imbalance", "q_rate", "guard_normal", "f_minus", "f_plus", "singular", "singular_time",
-    "singular_interface", "work", "acceleration", "phase_work",
+    "singular_interface", "work", "acceleration", "phase_work", "resolution",
 ])
 
 #: The tangent of a run that integrates none, in a kernel compiled without the tangent
@@ -263,9 +265,10 @@ def new_output(n_samples, n_blades, n_interfaces):
 
 
 @njit_internal
-def new_tangent(tangent0, n_interfaces, n_samples, work):
+def new_tangent(tangent0, n_interfaces, n_samples, work, resolution=0.0):
     """A ``Tangent`` starting from the columns of ``tangent0`` (2 n_nodes × k, k ≥ 0), with
-    ``work`` (``new_work``) for the forces at its stages."""
+    ``work`` (``new_work``) for the forces at its stages, resolving time to ``resolution``
+    [s] (0: the exact Jacobian)."""
     b, m = tangent0.shape[0] // 2, n_interfaces
     k = tangent0.shape[1]
     return Tangent(tangent0.copy(), np.zeros(k), np.zeros((n_samples, k)), np.zeros(m),
@@ -275,7 +278,7 @@ def new_tangent(tangent0, n_interfaces, n_samples, work):
                    np.zeros(2 * b),
                    np.zeros(1, dtype=np.int64), np.full(1, np.nan),
                    np.full(1, -1, dtype=np.int64), work, np.zeros(b),
-                   np.zeros((SLOTS, 2 * b, 2 * b)))
+                   np.zeros((SLOTS, 2 * b, 2 * b)), float(resolution))
 
 
 def new_state(x0, v0, tangent, n_interfaces, propagation):
@@ -338,7 +341,8 @@ def allocate(s, x0, v0, tangent0, controls, flow, propagation=None):
     n_nodes, n_interfaces, n_prescribed = len(s.mass), len(s.gap), len(s.motion_amplitude)
     tangent = plain(new_tangent)(
         tangent0, n_interfaces, controls.n_samples,
-        plain(new_work)(n_nodes, n_interfaces, n_prescribed)) if flow \
+        plain(new_work)(n_nodes, n_interfaces, n_prescribed),
+        controls.event_tolerance) if flow \
         else NoTangent(tangent0.copy())
     if propagation is None:
         propagation = NoPropagation()

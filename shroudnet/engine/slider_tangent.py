@@ -16,6 +16,26 @@ elastic contact whose law's are not, whose δṄ would need its curvature).
 The stretch is a first-order coordinate: its δu̇ is the x-row of J d, left in the
 direction's velocity slot (which no force reads, as the state's own velocity slot of a
 stretch), and its δẍ is 0, so that every caller reads J d from (d[n:], δẍ) alike.
+
+A slipping stretch's direction relaxes at the rate λ/|u| (J's eigenvalue −λ/|u| along
+P δu). Where a face unloads to its separation while it slips, |u| = μN/k_t falls to 0
+with N, linearly in the time d left, and the rate grows as κ/d (κ = λ k_t/(μ|Ṅ|): 13 on
+the three-blade packet at 2800 rpm). Explicit steps follow such a mode only while
+h λ/|u| stays below a few, so the tangent's error held the steps at a fixed fraction of
+d (0.11 d with one column, 0.007 d with 22) and they never reached the separation.
+Worse, the integrated |u| drifts from μN/k_t by the integration error (the flow keeps
+|u| − μN/k_t, it does not restore it): drifted inwards, by 1.9e-16 m there, the stretch
+collapses 1.2e-13 s before the face opens, and its direction, the state's u/|u| at
+lengths of 1e-18 m, is not resolved at all (it turned by 1.8e-3 rad). Drifted outwards,
+the face opened first, at a finite rate: which of the two happened decided whether a
+tangent run passed, not its columns or its rtol. The run resolves time to its event
+tolerance ε (``records.Tangent.resolution``), so the tangent resolves a stretch's
+direction down to the length |λ| ε its slider moves in that time, no further: it turns
+a shorter stretch by that length (``turning_length``: a rate of at most 1/ε), and its
+error leaves out the rows of such a stretch (``leave_out_unresolved``), whose force
+k_t δu acts for a time of order ε before the separation resets it (u ← 0), or after a
+slip starts from a stretch that closing relaxed. The exact Jacobian (``linearise_at``)
+has ε = 0.
 """
 
 import math
@@ -65,7 +85,8 @@ def slider_rate_change(direction, s, modes, g):
 @njit_inlined
 def _slipping_rate_change(direction, s, e, k, first, second, g):
     """(δu̇₁, δu̇₂) of slipping elastic contact e (stretch at k), from δṙ_t = (``first``,
-    ``second``): P δṙ_t − λ δû − û (δû·u̇) + û μ δṄ / k_t."""
+    ``second``): P δṙ_t − λ δû − û (δû·u̇) + û μ δṄ / k_t, with δû = P δu / ℓ and ℓ
+    the ``turning_length`` (|u| where the run resolves the stretch's direction)."""
     w = g.work
     n = len(s.mass)
     stiffness = s.tangential_stiffness[e]
@@ -73,19 +94,47 @@ def _slipping_rate_change(direction, s, e, k, first, second, g):
     if size == 0.0:
         return first, second
     d1, d2 = w.friction[e] / size, w.friction_second[e] / size
-    stretch = size / stiffness
+    speed = w.slider_speed[e]
+    length = turning_length(size / stiffness, speed, g.resolution)
     along = d1 * first + d2 * second
     first, second = first - d1 * along, second - d2 * along
     along_u = d1 * direction[k] + d2 * direction[k + 1]
-    turn1 = (direction[k] - d1 * along_u) / stretch
-    turn2 = (direction[k + 1] - d2 * along_u) / stretch
+    turn1 = (direction[k] - d1 * along_u) / length
+    turn2 = (direction[k + 1] - d2 * along_u) / length
     turn_rate = turn1 * g.acceleration[k] + turn2 * g.acceleration[k + 1]
     normal_change = g.normal_u[e] * row_dot(s, s.normal_rows, e, direction, n) \
         + g.normal_du[e] * row_dot(s, s.normal_rows, e, g.acceleration_change, 0)
     loading = s.static_mu[e] * normal_change / stiffness - turn_rate
-    speed = w.slider_speed[e]
     return (first - speed * turn1 + d1 * loading,
             second - speed * turn2 + d2 * loading)
+
+
+@njit_inlined
+def turning_length(stretch, speed, resolution):
+    """The length [m] a slipping stretch turns by in the tangent, δû = P δu / ℓ: its own,
+    |u| = ``stretch``, but no less than the length |λ| ε its slider moves in the time
+    ε = ``resolution`` [s] the run resolves, λ = ``speed`` [m/s] (module docstring)."""
+    return max(stretch, abs(speed) * resolution)
+
+
+@njit_inlined
+def leave_out_unresolved(modes, s, g):
+    """Zero the stages' rows (g.stages) of every slipping stretch shorter than the length
+    its slider moves in the run's resolution, |u| < |λ| ε at the step's end (the forces
+    in g.work), so that they take no part in the tangent's error: the run does not
+    resolve that stretch's direction (module docstring). Once the candidate is formed,
+    only the error reads the stages."""
+    w = g.work
+    for e in range(len(modes)):
+        k = s.slider_index[e]
+        if k < 0 or modes[e] == OPEN or modes[e] == STICK:
+            continue
+        stretch = math.hypot(w.friction[e], w.friction_second[e]) / s.tangential_stiffness[e]
+        if turning_length(stretch, w.slider_speed[e], g.resolution) > stretch:
+            for j in range(g.stages.shape[0]):
+                for column in range(g.stages.shape[2]):
+                    g.stages[j, k, column] = 0.0
+                    g.stages[j, k + 1, column] = 0.0
 
 
 @njit_inlined

@@ -17,7 +17,8 @@ and Φ ← Φ + h Σ_j b_j K_j, with J_j at the stage's state. Φ is then the ex
 of the computed trajectory, to rounding. The tangent's own local error, from the embedded
 pair as the state's, takes part in accepting a step: where the state stands still (a
 blade at rest, a stick phase) its error alone would let the steps grow past what the
-tangent's accuracy allows.
+tangent's accuracy allows. The rows of a slipping elastic contact's stretch too short for
+the run to resolve its direction take no part (``slider_tangent``).
 
 Where the vector field is linear in the state between switches (substructures whose laws
 all have ``constant_slopes``: ``SceneArrays.linear_phases``), J is the same all through a

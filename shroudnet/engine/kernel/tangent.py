@@ -21,7 +21,8 @@ from shroudnet.engine.records import new_switching, new_tangent, new_work, plain
 from shroudnet.engine.regroup import regroup
 from shroudnet.engine.saltation import (breakaway_normal, contact_normal, reduce_to_clusters,
                                         same_surface, slip_normal)
-from shroudnet.engine.slider_tangent import first_order_field, slider_breakaway_normal
+from shroudnet.engine.slider_tangent import (first_order_field, leave_out_unresolved,
+                                             slider_breakaway_normal)
 from shroudnet.engine.tableau import DP_A, DP_C, DP_STAGES, stage_sum
 from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
                                       linearised_acceleration, stage_tangent, tangent_error,
@@ -205,6 +206,8 @@ def tangent_step(t, h, state, topology, s, w, controls):
     candidate_tangent(h, g)
     linearise(t + h, w.x_new, w.v_new, state.modes, topology, s, g)
     last_stage_tangent(s, state.modes, topology, g)
+    if HAS_SLIDERS:
+        leave_out_unresolved(state.modes, s, g)
     return tangent_error(h, controls.rtol, s, g)
 
 
