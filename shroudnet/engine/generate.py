@@ -154,9 +154,9 @@ def law_sources(law_class, kind: str) -> str:
 def load_kernel(scene: Scene, tangent: bool = False, method: str = "adaptive") -> ModuleType:
     """The kernel module for the law classes of ``scene`` and a method ("adaptive",
     "fixed_step" or "exponential"); with ``tangent``, the one that integrates the tangent
-    flow too (adaptive steps only)."""
-    if tangent and method != "adaptive":
-        raise ValueError("the tangent flow is integrated by the adaptive method only")
+    flow too (not "fixed_step")."""
+    if tangent and method == "fixed_step":
+        raise ValueError("the tangent flow is integrated by adaptive or exponential steps")
     arrays = scene.arrays
     if tangent:
         _check_slider_laws(scene)

@@ -117,12 +117,13 @@ NoPropagation = namedtuple("NoPropagation", [])
 #: switch, or several guards at once), the first at ``singular_time[0]`` on interface
 #: ``singular_interface[0]``. ``work`` and ``acceleration``: the forces at a stage.
 #: ``phase_work``: storage for the exponential of a phase's Jacobian
-#: (``exponential``; its first slot the Jacobian).
+#: (``exponential``; its first slot the Jacobian); ``since[0]``: the time [s] up to which a
+#: run that carries its tangent by phase has carried it (``kernel.tangent.carry_tangent``).
 Tangent = namedtuple("Tangent", [
     "matrix", "log_growth", "history", "normal_u", "normal_du", "force_u", "force_du",
     "stages", "candidate", "direction", "resultant_change", "acceleration_change", "rows",
     "imbalance", "q_rate", "guard_normal", "f_minus", "f_plus", "singular", "singular_time",
-    "singular_interface", "work", "acceleration", "phase_work",
+    "singular_interface", "work", "acceleration", "phase_work", "since",
 ])
 
 #: The tangent of a run that integrates none, in a kernel compiled without the tangent
@@ -257,7 +258,7 @@ def new_tangent(tangent0, n_interfaces, n_samples, work):
                    np.zeros(2 * b),
                    np.zeros(1, dtype=np.int64), np.full(1, np.nan),
                    np.full(1, -1, dtype=np.int64), work, np.zeros(b),
-                   np.zeros((SLOTS, 2 * b, 2 * b)))
+                   np.zeros((SLOTS, 2 * b, 2 * b)), np.zeros(1))
 
 
 def new_state(x0, v0, tangent, n_interfaces, propagation):
