@@ -169,20 +169,24 @@ def test_the_exponential_methods_orbit_and_multipliers_are_the_adaptive_ones():
     for scene in (modal_pair(), sn.scenes.beam_pair()):
         exponential = sn.periodic_orbit(scene, method=Exponential(), transient=60,
                                         event_tolerance=LOCATED, tolerance=TIGHT)
-        # each from the transient: neither starts on the other's orbit
-        adaptive = sn.periodic_orbit(scene, method=EXACT, transient=60,
+        # the others from 1e-3 off it: none starts on the orbit it is checked against
+        off = tuple(1.001 * part for part in exponential.initial)
+        adaptive = sn.periodic_orbit(scene, guess=off, method=EXACT,
                                      event_tolerance=LOCATED, tolerance=TIGHT)
+        assert adaptive.iterations > 0
         state, multipliers = agreement(adaptive, exponential)
         assert state <= 1e-10 and multipliers <= 1e-8, (state, multipliers)
-        krylov = sn.periodic_orbit(scene, method=Exponential(), transient=60,
+        krylov = sn.periodic_orbit(scene, guess=off, method=Exponential(),
                                    event_tolerance=LOCATED, tolerance=TIGHT,
                                    jacobian="krylov")
         state, multipliers = agreement(exponential, krylov)
         assert state <= 1e-10 and multipliers <= 1e-8, (state, multipliers)
     settled = (exponential.initial[0], exponential.initial[1])
-    by_phase = sn.lyapunov(scene, 20, transient=0, initial=settled, exponents=3,
+    # the fewest periods lyapunov takes: adaptive steps through the beams' stiff modes take
+    # 1.6 s a period
+    by_phase = sn.lyapunov(scene, 10, transient=0, initial=settled, exponents=3,
                            method=Exponential())
-    by_step = sn.lyapunov(scene, 20, transient=0, initial=settled, exponents=3,
+    by_step = sn.lyapunov(scene, 10, transient=0, initial=settled, exponents=3,
                           method=sn.Adaptive(rtol=1e-11))
     np.testing.assert_allclose(by_phase.per_period, by_step.per_period, rtol=1e-7)
 
