@@ -264,6 +264,7 @@ def test_a_contact_stuck_all_through_is_neutral_its_offset_pinned_at_the_starts(
     assert np.abs(second.state - first.state).max() > 1e-6  # two members of the family
 
 
+@pytest.mark.slow  # some 60 orbits: 8–11 s
 def test_the_chain_continued_from_the_fully_stuck_range_reaches_the_far_end_without_a_fold():
     """From 300 rpm (stuck all through, its offset pinned) over both resonances of the
     stuck chain and the onset of slip (a kink, measured at 1280.3 ± 3.1 rpm) to 1500 rpm:
