@@ -364,3 +364,22 @@ def test_a_stroboscopic_map_counts_its_runs_by_kind():
     assert work.jacobian == "dense" and work.columns["dense"] == 6 * work.runs["dense"]
     assert work.runs["outputs"] >= 1 and work.total_seconds > 0.0
     assert stroboscopic_module.KINDS == tuple(work.runs)
+
+
+def test_the_default_jacobian_is_krylov_only_where_columns_cost_as_runs():
+    """By default: Krylov for the six eight-mode blades with elastic faces (106 state
+    variables, phases not linear), dense for the same blades with rigid stick (every
+    phase linear: a column costs next to nothing) and for the smaller elastic packet (46);
+    a jacobian asked for is kept, and one not known is refused by name."""
+    from shroudnet.front.bench import ELASTIC_PACKET, fe_packet
+
+    def default(scene):
+        return orbits_module.jacobian_kind("periodic_orbit", None, StroboscopicMap(scene=scene))
+
+    assert default(fe_packet()) == "krylov"
+    assert default(fe_packet(elastic=False)) == "dense"
+    assert default(sn.scenes.modal_packet(**ELASTIC_PACKET)) == "dense"
+    assert orbits_module.jacobian_kind("periodic_orbit", "dense",
+                                       StroboscopicMap(scene=fe_packet())) == "dense"
+    with pytest.raises(ValueError, match="periodic_orbit.jacobian"):
+        sn.periodic_orbit(sn.scenes.three_blade_paper(), jacobian="gmres")
