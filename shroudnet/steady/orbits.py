@@ -82,13 +82,13 @@ LEADING = 10
 #: condition number, 1–10 on the orbits measured.
 ARNOLDI_TOLERANCE = 1e-11
 #: The jacobian= choices, and the state size from which "krylov" is the default on a
-#: scene whose phases are not all linear (``front.bench``, section 11, one core, an orbit
-#: with its stability from a settled guess). On the six eight-mode blades with 3-D
-#: elastic faces (106 state variables) a run of all 106 columns took 50 times one
-#: column's, GMRES 17 products and Arnoldi 45: 24 s by Krylov against 36 s dense. On the
-#: six three-mode blades with those faces (46), all columns took 17 times one: 7.4 s
-#: by Krylov against 4.6 s dense; on a pair of eight-mode blades (34), 5.4 s against
-#: 3.4 s. Where every phase is linear the tangent rides each phase's exponential and a
+#: scene of substructures whose phases are not all linear (``front.bench``, section 11,
+#: one core, an orbit with its stability from a settled guess). On the six eight-mode
+#: blades with 3-D elastic faces (106 state variables) a run of all 106 columns took 50
+#: times one column's, GMRES 17 products and Arnoldi 45: 24 s by Krylov against 36 s
+#: dense. On the six three-mode blades with those faces (46), all columns took 17 times
+#: one: 7.4 s by Krylov against 4.6 s dense; on a pair of eight-mode blades (34), 5.4 s
+#: against 3.4 s. Where every phase is linear the tangent rides each phase's exponential and a
 #: column costs next to nothing (96 columns 0.19 s against one 0.14 s): dense is 4.5
 #: times faster there (2.8 s against 12.5 s), and the default.
 JACOBIANS = ("dense", "krylov")
@@ -401,8 +401,8 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
         How Newton's linear systems are solved: "dense" forms M (a run of every tangent
         column); "krylov" solves them by GMRES on Jacobian–vector products (a run of one
         tangent column each) and finds the ``LEADING`` multipliers by Arnoldi on the same
-        products. None (default): "krylov" from ``KRYLOV_SIZE`` state variables on where
-        the scene's phases are not all linear, else "dense" (``KRYLOV_SIZE``'s
+        products. None (default): "krylov" from ``KRYLOV_SIZE`` state variables on for
+        substructures whose phases are not all linear, else "dense" (``KRYLOV_SIZE``'s
         measurements).
     stability : bool
         Compute the multipliers (True, default), or skip them (the orbit's
@@ -462,11 +462,14 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
 
 def jacobian_kind(owner: str, jacobian: str | None, stroboscopic: StroboscopicMap) -> str:
     """``jacobian`` checked, or the default for ``stroboscopic``: "krylov" from
-    ``KRYLOV_SIZE`` state variables on where its scene's phases are not all linear, else
-    "dense"."""
+    ``KRYLOV_SIZE`` state variables on for a scene of substructures whose phases are not
+    all linear (as measured there), else "dense" (scenes of ``Blade``s keep it: their
+    tangent is not measured to pay for products)."""
     if jacobian is None:
-        linear = stroboscopic.scene.arrays.linear_phases
-        return "krylov" if stroboscopic.size >= KRYLOV_SIZE and not linear else "dense"
+        arrays = stroboscopic.scene.arrays
+        krylov = stroboscopic.size >= KRYLOV_SIZE and arrays.is_structure \
+            and not arrays.linear_phases
+        return "krylov" if krylov else "dense"
     check_choice(owner, "jacobian", jacobian, JACOBIANS)
     return jacobian
 
