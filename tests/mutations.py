@@ -133,6 +133,26 @@ ONE_COLUMN = ("tests/test_elastic_tangent.py::"
 HARMONIC = "tests/test_harmonic_balance.py"
 
 
+#: Matrix-free shooting: GMRES and Arnoldi on matrices of known spectrum, Krylov against
+#: dense shooting, the exponential method's shooting and Lyapunov exponents, and the
+#: neutral directions of a contact stuck through the whole orbit.
+SHOOTING = "tests/test_shooting.py"
+KRYLOV = tuple(f"{SHOOTING}::{name}" for name in (
+    "test_arnoldi_finds_the_leading_eigenvalues_of_a_matrix_of_known_spectrum",
+    "test_the_arnoldi_step_keeps_the_basis_orthonormal_and_the_relation_exact",
+    "test_gmres_solves_to_its_tolerance_and_a_right_preconditioner_is_undone"))
+SHOOTING_KRYLOV = (f"{SHOOTING}::test_krylov_and_dense_shooting_find_one_orbit_and_its_leading_"
+                   "multipliers")
+SHOOTING_EXPONENTIAL = (f"{SHOOTING}::test_the_exponential_methods_orbit_and_multipliers_are_the_"
+                        "adaptive_ones",
+                        f"{SHOOTING}::test_the_exponential_methods_monodromy_and_branch_are_the_"
+                        "adaptive_ones")
+NEUTRAL = (f"{SHOOTING}::test_a_contact_stuck_all_through_is_neutral_its_offset_pinned_at_the_"
+           "starts")
+NEUTRAL_CHAIN = (f"{SHOOTING}::test_the_chain_continued_from_the_fully_stuck_range_reaches_the_"
+                 "far_end_without_a_fold")
+
+
 @dataclass(frozen=True)
 class Mutation:
     """Replace ``old`` by ``new`` in the one source file that holds ``old`` (once).
@@ -353,20 +373,45 @@ MUTATIONS = (
              "a slipping stretch shorter than the run resolves turns by its own length: its "
              "direction's variation relaxes at λ/|u| → ∞ as its face opens",
              (ONE_COLUMN,)),
+    Mutation("exponential-tangent-carried-from-the-start", "tangent",
+             "    g.since[0] = t\n", "    g.since[0] = g.since[0]\n",
+             "a tangent carried by phases forgets where it was last carried: every phase's "
+             "e^{JΔt} spans the run from its start, not the phase",
+             (EXPONENTIAL, *SHOOTING_EXPONENTIAL)),
+    # ---- orbits: matrix-free shooting (GMRES and Arnoldi on products) ----------------------
+    Mutation("gmres-right-side-unscaled", "orbits",
+             "    right[0] = beta\n", "    right[0] = 1.0\n",
+             "GMRES's small least-squares problem forgets ‖b‖: its x is off by that factor, "
+             "and the residual it reports is not the system's", KRYLOV),
+    Mutation("arnoldi-step-adds-the-projection", "orbits",
+             "            w = w - overlap * basis[:, j]",
+             "            w = w + overlap * basis[:, j]",
+             "the Arnoldi step adds the new product's projections on the basis instead of "
+             "taking them out: the basis is not orthogonal, the Ritz values not eigenvalues",
+             KRYLOV + (SHOOTING_KRYLOV,)),
+    Mutation("neutral-offsets-left-free", "continuation",
+             "            if _independent(rows, row):",
+             "            if False and _independent(rows, row):",
+             "a contact stuck through the whole orbit is not pinned: its offset's family "
+             "makes Φ − I singular, and a branch from the stuck range turns at spurious folds",
+             (NEUTRAL, NEUTRAL_CHAIN)),
     # ---- orbits: Newton's step (M − I) Δy = −(φ(y) − y) ----------------------------------
     Mutation("orbit-end-relaxes-the-sliders", "orbits",
-             "                                                done.stretches[-1]]),",
-             "                                                0.0 * done.stretches[-1]]),",
+             "end = np.concatenate([run.output.x[-1], run.output.v[-1], done.stretches[-1]])",
+             "end = np.concatenate([run.output.x[-1], run.output.v[-1], "
+             "0.0 * done.stretches[-1]])",
              "the map's end drops the elastic contacts' stretches: Newton seeks an orbit "
              "whose springs relax every period", (ELASTIC_ORBIT,)),
     Mutation("newton-without-monodromy", "orbits",
-             "change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)",
-             "change = least_squares(-np.eye(len(y)), y - step.end)",
+             "matrix = weights[:, None] * (linear.columns - np.eye(size)) / weights[None, :]",
+             "matrix = weights[:, None] * (0.0 * linear.columns - np.eye(size)) "
+             "/ weights[None, :]",
              "Newton's step is y ← φ(y), the plain iteration of the map, which finds only "
              "stable orbits, and those slowly", (LINEAR_NEWTON, UNSTABLE_ORBIT)),
     Mutation("newton-monodromy-transposed", "orbits",
-             "change = least_squares(step.jacobian - np.eye(len(y)), y - step.end)",
-             "change = least_squares(step.jacobian.T - np.eye(len(y)), y - step.end)",
+             "matrix = weights[:, None] * (linear.columns - np.eye(size)) / weights[None, :]",
+             "matrix = weights[:, None] * (linear.columns.T - np.eye(size)) "
+             "/ weights[None, :]",
              "Newton's step solves with Mᵀ − I: the multipliers are right, the step is not",
              (LINEAR_NEWTON, UNSTABLE_ORBIT)),
     # ---- orbits: the extremes where the velocity crosses zero ----------------------------
@@ -450,9 +495,9 @@ MUTATIONS = (
              "a corrector whose residual stalls at the map's integration noise, a few times "
              "the tolerance, never converges: the branch stops there", (KINKS,)),
     Mutation("kink-tangent-by-the-secant", "continuation",
-             "            return new.with_tangent(tangent if tangent[-1] * direction >= 0.0 "
+             "        return new.with_tangent(tangent if tangent[-1] * direction >= 0.0 "
              "else -tangent)",
-             "            return new.with_tangent(tangent)",
+             "        return new.with_tangent(tangent)",
              "past a kink the branch's tangent follows the secant, which the orbit's jump "
              "may point back along the branch", (KINKS,)),
     Mutation("fold-test-on-a-state-component", "continuation",
@@ -461,8 +506,8 @@ MUTATIONS = (
              "a fold is looked for where a displacement, not the parameter, turns back",
              (FOLDS,)),
     Mutation("period-doubling-test-on-positive-multipliers", "continuation",
-             "monodromy, lambda mu: _real(mu) & (mu.real < 0.0), min(doubling_a, doubling_b))",
-             "monodromy, lambda mu: _real(mu) & (mu.real > 0.0), min(doubling_a, doubling_b))",
+             "multipliers, lambda mu: _real(mu) & (mu.real < 0.0), min(doubling_a, doubling_b))",
+             "multipliers, lambda mu: _real(mu) & (mu.real > 0.0), min(doubling_a, doubling_b))",
              "a period doubling is located on the real positive multipliers, among which "
              "none crosses −1", (DOUBLING,)),
     Mutation("torus-test-plus-one", "continuation",
@@ -476,8 +521,8 @@ MUTATIONS = (
              "a torus bifurcation is located on the pair inside the circle at both ends, "
              "not on the one that crossed", (TORUS,)),
     Mutation("symmetry-breaking-test-at-minus-one", "continuation",
-             "monodromy, lambda mu: _real(mu) & (mu.real > 0.0), min(rising_a, rising_b))",
-             "monodromy, lambda mu: _real(mu) & (mu.real < 0.0), min(rising_a, rising_b))",
+             "multipliers, lambda mu: _real(mu) & (mu.real > 0.0), min(rising_a, rising_b))",
+             "multipliers, lambda mu: _real(mu) & (mu.real < 0.0), min(rising_a, rising_b))",
              "a symmetry-breaking bifurcation is sought among the real negative multipliers, "
              "the period doubling's, not the positive ones",
              ("tests/test_cyclic.py",)),

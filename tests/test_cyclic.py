@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from shroudnet.linear.modes import nodal_diameters
 
 import shroudnet as sn
-import shroudnet.steady.orbits as orbits_module
+import shroudnet.steady.stroboscopic as stroboscopic_module
 from contact_laws import LinearSpring
 from shroudnet.run.simulate import integrate
 from shroudnet.scenes import bladed_disc_24, three_blade_paper
@@ -192,8 +192,8 @@ def test_the_wave_numbers_are_a_linear_rings_modes():
 def test_a_tuned_ring_forced_in_engine_order_is_solved_symmetrically_by_default(
         monkeypatch):
     calls = []
-    reduced = orbits_module.reduced_step
-    monkeypatch.setattr(orbits_module, "reduced_step",
+    reduced = stroboscopic_module.reduced_step
+    monkeypatch.setattr(stroboscopic_module, "reduced_step",
                         lambda *args, **kwargs: calls.append(1) or reduced(*args, **kwargs))
     sn.periodic_orbit(ring(6, 1), transient=20)
     assert calls

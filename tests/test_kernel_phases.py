@@ -68,7 +68,7 @@ def test_each_method_has_its_kernel_and_shares_the_method_free_phases():
     assert adaptive.switch is fixed.switch and adaptive.advance is not fixed.advance
     method_free = sys.modules[fixed.switch.py_func.__module__]
     assert not {"ADAPTIVE", "advance", "locate", "motion_inside"} & set(vars(method_free))
-    with pytest.raises(ValueError, match="adaptive method only"):
+    with pytest.raises(ValueError, match="adaptive or exponential steps"):
         generate.load_kernel(scene, tangent=True, method="fixed_step")
 
 

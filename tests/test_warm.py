@@ -13,7 +13,7 @@ from shroudnet.front.cli import main
 def test_every_flavour_has_its_measured_estimate_and_every_estimate_a_flavour():
     keys = {(f.method, f.structures, f.sliders, f.tangent) for f in warm.FLAVOURS}
     assert keys == set(compiled.COMPILE_SECONDS)
-    assert len(keys) == len(warm.FLAVOURS) == 10
+    assert len(keys) == len(warm.FLAVOURS) == 11
     assert len({f.name for f in warm.FLAVOURS}) == len(warm.FLAVOURS)
 
 

@@ -15,7 +15,7 @@ from contact_laws import check_instance, check_int
 from ..checked_records import check_record
 from ..model.lowering import from_dofs, to_dofs
 from ..model.scene import Scene
-from ..run.methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive
+from ..run.methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive, Exponential
 from ..run.simulate import MAX_PERIODS, integrate, start_coordinates
 from ..run.simulation import SimulationError
 
@@ -28,7 +28,7 @@ LYAPUNOV_BLOCKS = 10
 
 
 def monodromy(scene: Scene, periods: int = 1, initial=None, *,
-              method: Adaptive | Accuracy = TANGENT_METHOD,
+              method: Adaptive | Accuracy | Exponential = TANGENT_METHOD,
               event_tolerance: float = EVENT_TOLERANCE) -> np.ndarray:
     """The Jacobian of the ``periods``-period stroboscopic map at the start ``initial``.
 
@@ -51,8 +51,10 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
         (x0, v0, u0) gives their springs' stretches too (``Simulation.stretches``; relaxed
         by default); a contact that starts at its friction limit, or beyond, slips, its
         stretch on the limit.
-    method : Adaptive or Accuracy
+    method : Adaptive, Accuracy or Exponential
         The accuracy of the trajectory; M is the exact derivative of the computed map.
+        ``Exponential()`` (scenes whose phases are linear) carries it exactly: each
+        phase's e^{JΔt}, and the saltations at its switches.
     event_tolerance : float
         As ``simulate``.
 
@@ -136,7 +138,7 @@ class StroboscopicStep:
 
 
 def stroboscopic_step(scene: Scene, periods: int, initial=None, *,
-                      method: Adaptive | Accuracy = TANGENT_METHOD,
+                      method: Adaptive | Accuracy | Exponential = TANGENT_METHOD,
                       event_tolerance: float = EVENT_TOLERANCE) -> StroboscopicStep:
     """φ and its Jacobian from ``initial`` = (x0, v0) or, with elastic contacts,
     (x0, v0, u0) (default at rest), in one run of the state with its square tangent flow,
@@ -190,7 +192,7 @@ class LyapunovExponents:
 
 
 def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponents: int = 1,
-             initial=None, method: Adaptive | Accuracy = Adaptive(),
+             initial=None, method: Adaptive | Accuracy | Exponential = Adaptive(),
              event_tolerance: float = EVENT_TOLERANCE, seed: int = 0) -> LyapunovExponents:
     """The ``exponents`` largest Lyapunov exponents, by the QR (Benettin) method.
 
@@ -213,7 +215,9 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
     initial : (x0, v0) or (x0, v0, u0), optional
         The start of the transient, as ``monodromy`` takes it (with substructures, the
         nodes' own degrees of freedom).
-    method : Adaptive or Accuracy
+    method : Adaptive, Accuracy or Exponential
+        With ``Exponential()``, the vectors are carried through each phase by its
+        e^{JΔt} and re-orthonormalised at every switch and sample.
     event_tolerance : float
         As ``simulate``.
     seed : int

@@ -218,6 +218,7 @@ COMPILE_SECONDS = {
     ("adaptive", True, False, True): 92,
     ("fixed_step", True, False, False): 54,
     ("exponential", True, False, False): 70,
+    ("exponential", True, False, True): 81,
     ("adaptive", True, True, False): 45,
     ("adaptive", True, True, True): 94,
     ("fixed_step", True, True, False): 63,

@@ -148,12 +148,12 @@ def load_kernel(scene: Scene, tangent: bool = False, method: str = "adaptive",
                 shared: bool = True) -> ModuleType:
     """The kernel module for the law classes of ``scene`` and a method ("adaptive",
     "fixed_step" or "exponential"); with ``tangent``, the one that integrates the tangent
-    flow too (adaptive steps only). Without ``shared``, a scene of built-in laws gets a
+    flow too (not "fixed_step"). Without ``shared``, a scene of built-in laws gets a
     kernel of its own law classes and effects too, as one with a law of the user's own
     does (the CUDA flavour, ``batch``, compiles each kernel anew for the device, where
     code never run costs compile time and registers)."""
-    if tangent and method != "adaptive":
-        raise ValueError("the tangent flow is integrated by the adaptive method only")
+    if tangent and method == "fixed_step":
+        raise ValueError("the tangent flow is integrated by adaptive or exponential steps")
     arrays = scene.arrays
     if tangent:
         _check_slider_laws(scene)

@@ -22,8 +22,10 @@ the run to resolve its direction take no part (``slider_tangent``).
 
 Where the vector field is linear in the state between switches (substructures whose laws
 all have ``constant_slopes``: ``SceneArrays.linear_phases``), J is the same all through a
-phase, and a run that keeps no orthonormal basis carries the tangent through the whole
-phase at its end instead, Φ ← e^{J Δt} Φ (``kernel.tangent.carry_phase``, ``exponential``):
+phase, and a run that keeps no orthonormal basis, or that propagates its phases exactly
+(``methods.Exponential``, which then orthonormalises at switches and samples), carries the
+tangent through the whole phase at its end instead, Φ ← e^{J Δt} Φ
+(``kernel.tangent.carry_phase``, ``exponential``):
 exact where the steps' tangent is good to the tolerance, its cost one exponential a phase
 and not 2n columns a step, and the steps sized by the state alone. On the six-blade
 three-mode packet a period with its 36-column tangent took 121 ms by steps and 9 ms by

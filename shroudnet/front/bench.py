@@ -45,6 +45,17 @@
     whose figure goes to docs/gallery. Without a GPU it says what is missing and, with
     ``--gpu`` where numba-cuda's toolkit is installed, the kernel's registers and
     occupancy from its compile report for an H200 (sm_90).
+11. Steady states at the scale of FE models: where a packet orbit's time goes. For a pair
+    and a packet of eight-mode blades with 3-D elastic faces (``fe_packet``: 34 and 106
+    state variables) and the three-mode packet of ``examples/fe_packet_elastic.py``: a
+    period's steps (the state alone, with one tangent column, with all; the stiffest
+    mode's bound), its switches and the share of it in linear phases; then one orbit from
+    a settled guess by dense and by Krylov shooting, with and without its stability, each
+    broken down by kind of run (``ShootingWork``: state, products, dense, outputs), with
+    the GMRES and Arnoldi products; and the six eight-mode blades with rigid stick (96
+    state variables, every phase linear) by those and by the exponential method, dense
+    and Krylov. The 24-blade ring's full orbit at default settings;
+    with ``--fe-curve``, the six blades' forced response over 2400–3800 rpm.
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
 the kernel); nothing here is asserted, because timings depend on the machine.
@@ -66,19 +77,24 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis.stability import lyapunov
+from ..analysis.stability import TANGENT_METHOD, lyapunov, state_size
+from ..engine.codes import Mode
 from ..io import scenefile
+from ..model.blade import Southwell
 from ..model.excitation import EngineOrderWave, Excitation
 from ..model.group import BladeGroup
+from ..model.lowering import from_dofs
 from ..model.scene import Scene
+from ..model.substructure import Substructure
 from ..references import structures as baseline_structures
 from ..references.blades import solve_ivp_baseline
 from ..run.methods import EVENT_TOLERANCE, TRANSIENT, Adaptive, Exponential, FixedStep
-from ..run.simulate import simulate
+from ..run.simulate import integrate, simulate, start_coordinates
 from ..run.simulation import SimulationError
 from ..scenes import beam_pair, bladed_disc_24, modal_packet, three_blade_paper
 from ..steady.continuation import continuation
-from ..steady.orbits import periodic_orbit
+from ..steady.orbits import periodic_orbit, state_weights
+from ..steady.stroboscopic import StroboscopicMap
 from ..studies.sweep import default_workers, sweep
 from . import bench_harmonic
 from .options import whole
@@ -610,6 +626,179 @@ def gpu_section(cores: int, report: bool = True) -> None:
     print(f"   figure: {MAP_FIGURE}")
 
 
+# ---- 11. steady states at the scale of FE models ------------------------------------------------
+
+#: The modes of the bench's FE blade: ``scenes.modal_blade``'s three (first flap, edgewise,
+#: second flap, stiffening with speed) and five higher ones up to 4.9 kHz, as a finer FE
+#: model keeps them: 25 times the excitation frequency at the first flap resonance. Modal
+#: masses [kg], and the shapes at the shroud (flapwise, edgewise, radial rows) and at the
+#: load point, per mode.
+FE_FREQUENCIES = (Southwell(f0=180.0, coefficient=3.0), Southwell(f0=450.0, coefficient=1.5),
+                  Southwell(f0=1050.0, coefficient=2.0), 1900.0, 2600.0, 3300.0, 4100.0,
+                  4900.0)
+FE_MASSES = (0.06, 0.05, 0.04, 0.035, 0.03, 0.03, 0.025, 0.025)
+FE_SHROUD = ((1.0, 0.25, -0.5, 0.3, -0.2, 0.15, -0.1, 0.08),
+             (0.15, 1.0, 0.35, -0.25, 0.3, -0.15, 0.12, -0.1),
+             (0.08, -0.12, 0.3, 0.2, 0.15, -0.2, 0.1, 0.05))
+FE_LOAD = ((0.7, 0.4, 0.2, 0.1, -0.1, 0.05, 0.05, -0.03),)
+
+
+def fe_packet(speed_rpm: float = 3000.0, blades: int = 6, elastic: bool = True) -> Scene:
+    """The packet of ``examples/fe_packet_elastic.py`` (``scenes.modal_packet`` with 3-D
+    elastic faces, k_t = 3e5 N/m) whose blades keep eight modes (``FE_FREQUENCIES``):
+    six blades have 106 state variables (48 modal coordinates, their velocities, and two
+    stretches for each of the five faces); two, 34. Without ``elastic``, the faces of
+    ``scenes.modal_packet`` (sliding along one direction, their stick rigid: every phase
+    linear, so that ``Exponential`` runs it): 96 and 32."""
+    shroud_rows = FE_SHROUD if elastic else FE_SHROUD[:2]
+    blade = Substructure.modal(frequencies=list(FE_FREQUENCIES), damping_ratios=0.02,
+                               masses=list(FE_MASSES),
+                               shapes={"shroud": [list(row) for row in shroud_rows],
+                                       "load": [list(row) for row in FE_LOAD]}, load="load")
+    packet = modal_packet(blades=blades, speed_rpm=speed_rpm,
+                          **(ELASTIC_PACKET if elastic else {}))
+    group = BladeGroup()
+    names = [f"blade{k}" for k in range(1, blades + 1)]
+    for name in names:
+        group.add_blade(name, blade)
+    shroud = packet.group.interfaces[0][2]
+    for left, right in zip(names, names[1:]):
+        group.connect((left, "shroud"), (right, "shroud"), shroud)
+    return Scene(group=group, speed_rpm=speed_rpm, excitation=packet.excitation)
+
+
+def settled_guess(scene, periods: int) -> tuple:
+    """(x, ẋ, u) after ``periods`` periods from rest: a guess near the orbit."""
+    run = simulate(scene, periods, samples_per_period=1, event_capacity=0)
+    return (run.x[-1], run.v[-1], run.stretches[-1]) if run.stretches.size \
+        else (run.x[-1], run.v[-1])
+
+
+def period_steps(scene, guess) -> dict:
+    """Where a period's steps come from, from ``guess``: the adaptive steps of the state
+    alone at rtol 1e-10 and at the map's (``StroboscopicMap.state_method``), with one
+    tangent column and with all; the steps the stiffest mode alone would need (the
+    Dormand–Prince stability bound, |λh| ≤ 3.3); the switches by kind; the share of the
+    period in phases linear in the state (no elastic face slipping in 2-D)."""
+    size = state_size(scene)
+    start = start_coordinates(scene, guess)  # integrate's, by the engine's coordinates
+    integrate(scene, 1, method=TANGENT_METHOD, samples_per_period=1, initial=start,
+              event_capacity=0, tangent=np.eye(size)[:, :1])  # its kernel loaded
+    found = {}
+    for label, method, columns in (("state", TANGENT_METHOD, 0),
+                                   ("map", StroboscopicMap(scene=scene).state_method, 0),
+                                   ("one column", TANGENT_METHOD, 1),
+                                   ("all columns", TANGENT_METHOD, size)):
+        clock = time.perf_counter()
+        done = integrate(scene, 1, method=method, samples_per_period=1, initial=start,
+                         event_capacity=0, tangent=np.eye(size)[:, :columns] if columns
+                         else None)
+        found[label] = (done.run.steps, time.perf_counter() - clock)
+    run = simulate(scene, 1, method=TANGENT_METHOD, samples_per_period=2000, initial=guess)
+    slipping = np.isin(run.modes[:-1][:, scene.arrays.elastic_interfaces],
+                       (Mode.SLIP_POSITIVE, Mode.SLIP_NEGATIVE)).any(axis=1)
+    stiffest = max(float(np.max(scene.group.blade(name).frequencies_at(scene.speed_rpm)))
+                   for name in scene.group.blades)
+    return {"steps": found, "stiffest_hz": stiffest,
+            "stability_steps": 2.0 * np.pi * stiffest * scene.excitation_period / 3.3,
+            "events": {k: v for k, v in run.events.counts.items() if v},
+            "linear_share": float(1.0 - slipping.mean()) if scene.arrays.n_stretches
+            else float(scene.arrays.linear_phases)}
+
+
+#: The solvers an orbit's breakdown compares: (label, periodic_orbit's options); those
+#: of ``EXPONENTIAL_SOLVERS`` too on a scene whose phases are linear.
+SOLVERS = (("dense", {"jacobian": "dense"}),
+           ("krylov", {"jacobian": "krylov"}),
+           ("dense, no stability", {"jacobian": "dense", "stability": False}),
+           ("krylov, no stability", {"jacobian": "krylov", "stability": False}))
+EXPONENTIAL_SOLVERS = (
+    ("exponential, dense", {"jacobian": "dense", "method": Exponential()}),
+    ("exponential, krylov", {"jacobian": "krylov", "method": Exponential()}))
+#: Runs of each solver an orbit's time is the median of (after one that loads the
+#: kernels).
+ORBIT_RUNS = 3
+
+
+def orbit_breakdown(scene, guess, runs: int = ORBIT_RUNS) -> dict:
+    """(median seconds of ``runs``, orbit) of ``periodic_orbit`` from ``guess`` by each of
+    ``SOLVERS`` (the orbit's ``work`` breaks its time down by kind of run), and the
+    largest gap between their orbits' states over the scale and between their leading
+    multipliers."""
+    found = {}
+    solvers = SOLVERS + (EXPONENTIAL_SOLVERS if scene.arrays.linear_phases else ())
+    for label, options in solvers:
+        periodic_orbit(scene, guess=guess, **options)  # its kernels loaded
+        found[label] = median_time(lambda: periodic_orbit(scene, guess=guess, **options),
+                                   runs)
+    layout = scene.arrays.layout  # the scale Newton weighs by, of the engine's coordinates
+    dense = from_dofs(layout, found["dense"][1].state)
+    weights = state_weights(scene, dense)
+    state_gap = max(np.abs(weights * (from_dofs(layout, orbit.state) - dense)).max()
+                    for _, orbit in found.values())
+    reference = found["dense"][1].multipliers
+    multiplier_gap = max(np.abs(reference - value).min() for _, orbit in found.values()
+                         for value in orbit.multipliers)
+    return {"solvers": found, "state_gap": state_gap, "multiplier_gap": multiplier_gap}
+
+
+def describe_work(seconds: float, orbit) -> str:
+    """An orbit's solve in words: its time, Newton steps, products, and runs by kind."""
+    work = orbit.work
+    kinds = ", ".join(f"{kind} {work.runs[kind]} run(s) ({work.columns[kind]} columns) "
+                      f"{work.seconds[kind]:.2f} s" for kind in work.runs if work.runs[kind])
+    return (f"{seconds:.2f} s, {work.newton_steps} Newton step(s), "
+            f"{work.krylov_iterations} GMRES and {work.arnoldi_products} Arnoldi "
+            f"products; {kinds}")
+
+
+def fe_curve(start: float, stop: float, max_points: int, scene_at=fe_packet
+             ) -> tuple[float, object]:
+    """(seconds, branch) of the forced response of ``scene_at`` over ``start``–``stop``
+    rpm, with its stability, from a settled guess at ``start``."""
+    guess = settled_guess(scene_at(start), 150)
+    clock = time.perf_counter()
+    branch = continuation(scene_at, start, stop, guess=guess, max_points=max_points,
+                          max_step=0.05, parameter="speed_rpm")
+    return time.perf_counter() - clock, branch
+
+
+def full_ring_orbit() -> tuple[float, object]:
+    """(seconds, orbit) of the 24-blade ring's full orbit (``symmetry="none"``, as a
+    mistuned ring must be solved) at default settings, from a settled guess."""
+    scene = scenefile.load(RING).scene
+    guess = settled_guess(scene, 100)
+    clock = time.perf_counter()
+    orbit = periodic_orbit(scene, guess=guess, symmetry="none")
+    return time.perf_counter() - clock, orbit
+
+
+def print_breakdown(label: str, scene, transient: int, runs: int = ORBIT_RUNS) -> dict:
+    """Section 11's lines for one scene: a period's steps, then each solver's orbit (the
+    median time of ``runs``)."""
+    guess = settled_guess(scene, transient)
+    steps = period_steps(scene, guess)
+    counts = steps["steps"]
+    print(f"   {label} ({state_size(scene)} state variables), {scene.speed_rpm:g} rpm, from "
+          f"the state after {transient} periods:")
+    print(f"     a period: {counts['state'][0]} steps for the state alone at rtol 1e-10 "
+          f"({counts['state'][1]:.3f} s), {counts['map'][0]} at the map's rtol 1e-12 "
+          f"({counts['map'][1]:.3f} s), {counts['one column'][0]} with one tangent column "
+          f"({counts['one column'][1]:.3f} s), {counts['all columns'][0]} with all "
+          f"{state_size(scene)} ({counts['all columns'][1]:.2f} s); the stiffest mode "
+          f"({steps['stiffest_hz']:.0f} Hz) alone would allow "
+          f"{steps['stability_steps']:.0f}; switches "
+          + ", ".join(f"{k} {v}" for k, v in steps["events"].items())
+          + f"; {100 * steps['linear_share']:.0f} % of the period in linear phases")
+    found = orbit_breakdown(scene, guess, runs)
+    for name, (seconds, orbit) in found["solvers"].items():
+        print(f"     orbit, {name}: {describe_work(seconds, orbit)}")
+    print(f"     the solvers' orbits agree to {found['state_gap']:.1e} of the scale, "
+          f"their multipliers (Arnoldi's {len(found['solvers']['krylov'][1].multipliers)} "
+          f"leading ones) the dense ones to {found['multiplier_gap']:.1e}")
+    return found
+
+
 def options_parser(prog: str = "python -m shroudnet.front.bench",
                    parser_class: type[argparse.ArgumentParser] = argparse.ArgumentParser
                    ) -> argparse.ArgumentParser:
@@ -630,6 +819,9 @@ def options_parser(prog: str = "python -m shroudnet.front.bench",
                         help="small sizes everywhere, to check that the benchmark runs")
     parser.add_argument("--gpu", action="store_true",
                         help="run section 10 alone: batches of trajectories on a GPU")
+    parser.add_argument("--fe-curve", action="store_true",
+                        help="add the forced response of the six eight-mode blades "
+                             "across their first flap resonance (2400–3800 rpm): long")
     parser.add_argument("--diagram-only", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--workers", type=whole(1), default=None, help=argparse.SUPPRESS)
     return parser
@@ -821,6 +1013,28 @@ def main(argv=None) -> None:
           "orbit)")
     bench_harmonic.section(args.quick)
     gpu_section(cores, report=False)
+    print("\n11. Steady states at the scale of FE models, one core: where an orbit's time "
+          "goes")
+    cases = [("pair of eight-mode blades, one 3-D elastic face", fe_packet(blades=2))]
+    if not args.quick:
+        cases += [("packet of examples/fe_packet_elastic.py, three-mode blades",
+                   modal_packet(speed_rpm=3000.0, **ELASTIC_PACKET)),
+                  ("packet of six eight-mode blades, 3-D elastic faces", fe_packet()),
+                  ("packet of six eight-mode blades, rigid stick (linear phases)",
+                   fe_packet(elastic=False))]
+    for label, scene in cases:
+        print_breakdown(label, scene, 20 if args.quick else 150, 1 if args.quick else 3)
+    if not args.quick:
+        seconds, orbit = full_ring_orbit()
+        print(f"   the 24-blade ring's full orbit (symmetry='none') at default settings: "
+              f"residual {orbit.residual:.1e} in {seconds:.1f} s ({orbit.iterations} Newton "
+              f"steps){'; ' + '; '.join(orbit.notes) if orbit.notes else ''}")
+    if args.fe_curve:
+        seconds, branch = fe_curve(2400.0, 3800.0, 400)
+        print(f"   forced response of the six eight-mode blades, 2400–3800 rpm: "
+              f"{len(branch)} orbits with their stability in {seconds:.0f} s "
+              f"({branch.ended}); bifurcations: "
+              + ", ".join(f"{b.kind} at {b.parameter:.2f} rpm" for b in branch.bifurcations))
     print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 

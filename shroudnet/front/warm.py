@@ -4,7 +4,7 @@ A kernel is compiled once per combination of law classes, effects and method, on
 and kept in the cache (``engine.cache``). The scenes of built-in laws share one kernel per
 *flavour*: its method (adaptive, fixed-step, exponential), whether its nodes are
 substructures, whether its contacts are elastic (sliders in the state), and whether it
-carries the tangent flow (orbits, monodromy, Lyapunov exponents; adaptive only). Warming
+carries the tangent flow (orbits, monodromy, Lyapunov exponents; adaptive or exponential). Warming
 compiles each flavour in a process of its own, as many at once as there are cores, by
 running the smallest scene that calls for it for one period; a flavour already in the cache
 only loads.
@@ -18,7 +18,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 
 from .. import scenes
-from ..analysis.stability import monodromy
+from ..analysis.stability import TANGENT_METHOD, monodromy
 from ..run.methods import Adaptive, Exponential, FixedStep
 from ..run.simulate import simulate
 
@@ -43,12 +43,13 @@ class Flavour:
 
 
 #: Every flavour a scene of built-in laws can call for. The exponential method runs
-#: substructures whose phases are linear: no elastic contacts, no tangent flow.
+#: substructures whose phases are linear (no elastic contacts), with or without the
+#: tangent flow.
 FLAVOURS = tuple(
     Flavour(method, structures, sliders, tangent)
     for structures, sliders in ((False, False), (True, False), (True, True))
     for method, tangent in (("adaptive", False), ("adaptive", True), ("fixed_step", False),
-                            ("exponential", False))
+                            ("exponential", False), ("exponential", True))
     if method != "exponential" or (structures and not sliders))
 
 
@@ -67,7 +68,8 @@ def compile_flavour(flavour: Flavour) -> float:
     scene = _scene(flavour)
     began = time.process_time()
     if flavour.tangent:
-        monodromy(scene)
+        monodromy(scene, method=Exponential(steps_per_period=64)
+                  if flavour.method == "exponential" else TANGENT_METHOD)
     else:
         method = {"adaptive": Adaptive(), "fixed_step": FixedStep(steps_per_period=64),
                   "exponential": Exponential(steps_per_period=64)}[flavour.method]

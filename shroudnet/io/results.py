@@ -955,7 +955,9 @@ _BRANCH_ARRAYS = (
 
 def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
     """Write ``branch`` to ``path`` (.npz): every orbit (its branch points, then the
-    orbits of its bifurcations) with its multipliers, monodromy matrix and switches.
+    orbits of its bifurcations) with its multipliers, monodromy matrix and switches (both
+    formed now for an orbit that holds only its leading multipliers, or none:
+    ``PeriodicOrbit.completed``).
 
     Each orbit's scene is kept as the scene document of ``scene_at`` (a
     ``scenefile.SceneAt``) with the parameter's path, or else as one document per orbit.
@@ -964,7 +966,7 @@ def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
                    expected="a shroudnet.Branch (what continuation returns)")
     check_instance("results.save_branch", "scene_at", scene_at, scenefile.SceneAt,
                    optional=True, expected="a scenefile.SceneAt or None")
-    orbits = [*branch.orbits, *(b.orbit for b in branch.bifurcations)]
+    orbits = [o.completed() for o in (*branch.orbits, *(b.orbit for b in branch.bifurcations))]
     values = [*branch.parameter, *(b.parameter for b in branch.bifurcations)]
     if isinstance(scene_at, scenefile.SceneAt):
         scenes, parameter_path = scene_at.document, scene_at.path

@@ -164,10 +164,13 @@ def integrate(scene: Scene, periods: int, *,
     With ``tangent`` (2 n_blades × k; with elastic contacts, its rows δx and δẋ may be
     followed by the stretches' δu, 0 where they are not), the run integrates those k
     tangent vectors of the start with the state (``engine.tangent``), in a kernel compiled
-    for it, by the adaptive method only; the run's tangent has rows δx, δẋ and, with
-    elastic contacts, δu. ``orthonormalise`` re-orthonormalises them after every step. With
+    for it, by the adaptive method, or by the exponential one, which carries them through
+    each phase by the phase's own e^{JΔt} (``kernel.tangent.carry_phase``); the run's
+    tangent has rows δx, δẋ and, with elastic contacts, δu. ``orthonormalise``
+    re-orthonormalises them after every step (by phases: at every switch and sample). With
     ``until`` [s] in (0, periods T_e], the run stops there instead, with two samples: the
-    start and the state at ``until`` (the steps before it are those of the whole run).
+    start and the state at ``until`` (the steps before it are those of the whole run; a
+    fixed-grid method's last step ends at ``until``).
     Arguments as ``simulate``; raises what it raises.
     """
     check_instance("simulate", "scene", scene, Scene, expected="a shroudnet.Scene")
@@ -198,9 +201,10 @@ def integrate(scene: Scene, periods: int, *,
     _check_motions(scene, periods * period)
 
     n_columns = 0 if tangent is None else tangent.shape[1]
-    if tangent is not None and on_grid:
-        raise ValueError("the tangent flow is integrated by the adaptive method only: use "
-                         f"method=Adaptive(...) or Accuracy(...), not {type(method).__name__}")
+    if tangent is not None and isinstance(method, FixedStep):
+        raise ValueError("the tangent flow is integrated by the adaptive and the exponential "
+                         "methods: use method=Adaptive(...), Accuracy(...) or Exponential(), "
+                         "not FixedStep")
     tangent0 = np.zeros((2 * n, n_columns)) if tangent is None else np.array(
         tangent, dtype=float)
     tangent0, stretch_rows = tangent0[:2 * n], tangent0[2 * n:]  # rows δx, δẋ[, δu]
@@ -248,15 +252,14 @@ def run_controls(scene: Scene, periods: int, method: FixedStep | Adaptive | Expo
     n_samples = periods * samples_per_period + 1
     sample_step = period / samples_per_period
     if until is not None:
-        if on_grid:
-            raise ValueError("simulate: a run to a given time (until=) takes the adaptive "
-                             "method")
         sample_step = check_real("simulate", "until", until, low=0.0, low_open=True,
                                  high=periods * period, unit="s")
         n_samples = 2
     if on_grid:
         step, rtol, atol = period / method.steps_per_period, 0.0, 0.0
-        steps_per_sample = method.steps_per_period // samples_per_period
+        # a run to a given time samples its end only, after a shorter last step
+        steps_per_sample = method.steps_per_period // samples_per_period if until is None \
+            else periods * method.steps_per_period + 1
     else:
         method = replace(method, atol=method.absolute_tolerance(scene))  # as recorded
         step, rtol, atol = first_step(period), method.rtol, method.atol
@@ -269,7 +272,8 @@ def run_controls(scene: Scene, periods: int, method: FixedStep | Adaptive | Expo
         event_tolerance=event_tolerance * period, zeno_events=zeno.events,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
         orthonormalise=orthonormalise,
-        exponentials=not orthonormalise and scene.arrays.linear_phases)
+        exponentials=scene.arrays.linear_phases and (
+            not orthonormalise or isinstance(method, Exponential)))
     return controls, method, zeno_window
 
 

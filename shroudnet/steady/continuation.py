@@ -10,70 +10,100 @@ tangent τ (the kernel of [M − I, ∂φ/∂p], DESIGN §6) and corrects by New
 
 in scaled coordinates (displacements over the first orbit's state scale, velocities over
 that times l Ω, p over |stop − start|), so that a step of the arclength weighs the
-orbit's change and the parameter's alike. Along the branch the Floquet multipliers are
-watched: a real one through +1 (where the parameter turns back) is a fold, one through −1
-a period doubling, a complex pair through the unit circle a torus (Neimark–Sacker)
-bifurcation; each is located on the branch by the secant method on its test function,
-|μ| − 1 of the multiplier that crosses. A
-change of the orbit's switch sequence is a nonsmooth bifurcation ("grazing" for contact
-closing or opening, "stick-slip" for stick phases), reported at the first orbit beyond it.
+orbit's change and the parameter's alike. The corrector keeps the last point's monodromy
+while its steps converge fast (a chord: runs of the state alone), and forms the
+monodromy once at the new point, for its tangent and its multipliers; with
+``jacobian="krylov"`` it solves by GMRES on the products instead (``orbits``). A contact
+stuck through the whole orbit leaves its offset free (``neutral``): it is pinned at the
+last point's value, which keeps the tangent a single direction where the orbits form a
+family, and its multiplier 1 is left out of the tests.
 
-At such a change the branch has a kink: ∂φ/∂y jumps, and the corrector's linear model,
-taken on one side, may not reach the branch on the other however short the step. Where
-the steps have shrunk to ``KINK_STEP`` the branch is crossed at a fixed parameter
-instead, by Newton on the orbit alone from the last point's orbit, a step of
-``KINK_JUMPS`` of |stop − start| on; the arclength steps go on from there, in the
-parameter's direction: the orbit's jump across the kink may point back along the branch.
+Along the branch the Floquet multipliers are watched: a real one through +1 (where the
+parameter turns back) is a fold, one through −1 a period doubling, a complex pair through
+the unit circle a torus (Neimark–Sacker) bifurcation; each is located on the branch by
+the secant method on its test function, |μ| − 1 of the multiplier that crosses.
+
+A change of the orbit's switch sequence is a kink of the branch, a nonsmooth bifurcation
+("grazing" for contact closing or opening, "stick-slip" for stick phases): located by
+bisection on the parameter to ``KINK_WIDTH`` of the range (``Solver.locate_kink``) and
+reported there. At a kink ∂φ/∂y jumps, and the corrector's linear model, taken on one
+side, may not reach the branch on the other however short the step. Where the steps
+have shrunk to ``KINK_STEP`` (they shrink no further while a crossing may succeed) the
+branch is crossed at a fixed parameter instead, a step of ``KINK_JUMPS`` of
+|stop − start| on, by Newton from the secant through the last two points extrapolated
+there; failing that, from a transient there (said in ``Branch.notes``). The arclength
+steps go on from there, in the parameter's direction: the orbit's jump across the kink
+may point back along the branch. Bifurcations found at one parameter (to ``SAME`` of
+the range) are one.
 """
 
 from __future__ import annotations
 
 import cmath
+import dataclasses
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from contact_laws import check_callable, check_calls_with, check_instance, check_int, check_real
+from contact_laws import (check_callable, check_calls_with, check_choice, check_instance,
+                          check_int, check_real)
 
-from ..analysis.stability import TANGENT_METHOD, state_parts, stroboscopic_step
+from ..analysis.stability import TANGENT_METHOD, state_parts
 from ..checked_records import check_record
+from ..engine.codes import EventKind
 from ..linear.response import frequency_response
 from ..model.lowering import from_dofs
 from ..model.scene import Scene
-from ..run.methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
+from ..run.methods import EVENT_TOLERANCE, Accuracy, Adaptive, Exponential, check_event_tolerance
 from ..run.simulate import MAX_PERIODS, integrate
 from ..run.simulation import SimulationError
-from .cyclic import CyclicSymmetry, cyclic_symmetry, reduced_step, whole_period
+from .cyclic import CyclicSymmetry, cyclic_symmetry
 from .harmonic.orbit import HarmonicOrbit
+from .krylov import gmres
+from .neutral import tested
 from .orbits import (
+    EDGE,
+    JACOBIANS,
     ORBIT_TOLERANCE,
     SMALLEST_TOLERANCE,
     UNIT_CIRCLE,
     ConvergenceError,
     PeriodicOrbit,
+    forcing,
+    jacobian_kind,
     least_squares,
     orbit_at,
     periodic_orbit,
+    pins,
+    stability_of,
     state_weights,
     symmetry_of,
 )
 from .parametric import checked_scene_at, same_scene
+from .stroboscopic import EVENT_LOG, MapValue, MapWork, StroboscopicMap
 from .vertex import parabola_vertex
 
-#: Bifurcation kinds.
+#: Bifurcation kinds; the last two are kinks of the branch (``Bifurcation.kink``).
 KINDS = ("fold", "period-doubling", "torus", "symmetry-breaking", "grazing", "stick-slip")
 
 #: Arclength steps (scaled units, see the module's docstring): the largest by default,
 #: the first as a fraction of the largest, and the smallest before the branch is given up.
 LARGEST_STEP = 1.0
 FIRST_STEP = 0.1
-SMALLEST_STEP = 1e-7
+SMALLEST_STEP = 1e-5
 #: The arclength step below which a failing step is taken for a kink of the branch, and
-#: the parameter steps (fractions of |stop − start|, shortest first) tried across it.
+#: the parameter steps (fractions of |stop − start|, longest first: the kink itself is
+#: then located by ``locate_kink``) tried across it.
 KINK_STEP = 1e-3
-KINK_JUMPS = (1e-5, 1e-4, 1e-3)
+KINK_JUMPS = (1e-3, 1e-4)
+#: A kink is located by bisection on the parameter to this fraction of the range, in at
+#: most ``KINK_HALVINGS`` halvings of the step it lies in.
+KINK_WIDTH = 1e-6
+KINK_HALVINGS = 8
+#: Bifurcations this close (a fraction of the range) are one.
+SAME = 1e-6
 #: A corrector whose residual stops falling (by less than half an iteration) within
 #: this many times the tolerance has met the map's own integration noise: it has converged.
 NOISE_FLOOR = 10.0
@@ -82,12 +112,18 @@ NOISE_FLOOR = 10.0
 DOUBLED_OFFSET = 1e-3
 #: Corrector iterations before a step is halved; a step that converged in at most
 #: ``EASY_ITERATIONS`` grows by ``GROWTH``.
-CORRECTOR_ITERATIONS = 7
-EASY_ITERATIONS = 3
+CORRECTOR_ITERATIONS = 10
+EASY_ITERATIONS = 5
 GROWTH = 1.5
+#: A corrector keeps its chord matrix while each step lowers the residual this many
+#: times; a slower one forms the matrix at the iterate.
+CHORD_DROP = 8.0
+#: The relative residual GMRES solves the branch's tangent to (``jacobian="krylov"``).
+KRYLOV_TANGENT = 1e-10
 #: How much larger than the state scale an orbit grows before the scale follows it.
 RESCALE = 2.0
-#: The least cosine between consecutive tangents; a sharper turn halves the step.
+#: The least cosine between consecutive tangents; a sharper turn halves the step, unless
+#: the orbits' switches changed between the two points (a kink).
 TURN = 0.95
 #: Relative step of the forward difference ∂φ/∂p (of max(|p|, |stop − start|)).
 PARAMETER_DIFFERENCE = 1e-6
@@ -164,8 +200,9 @@ class Bifurcation:
     """A point of a branch where the orbit changes its kind or its stability.
 
     ``kind``: one of ``KINDS``. ``parameter``: where it is (located to the accuracy of
-    the orbits for "fold", "period-doubling" and "torus"; the first orbit past the
-    change for "grazing" and "stick-slip", with the change inside ``bracket``).
+    the orbits for "fold", "period-doubling" and "torus"; for the kinks "grazing" and
+    "stick-slip", the middle of ``bracket``, the parameters on either side of the change
+    after its bisection, the ``orbit`` the one on the far side).
     ``orbit``: the orbit there; ``multiplier``: the critical Floquet multiplier (nan for
     a nonsmooth one); ``index``: the change lies between branch points ``index`` and
     ``index + 1``. On a branch of travelling waves (``continuation``'s ``symmetry``), a
@@ -200,6 +237,12 @@ class Bifurcation:
         k = int(np.argmin(np.abs(self.orbit.multipliers - self.multiplier)))
         return int(self.orbit.wave_numbers[k])
 
+    @property
+    def kink(self) -> bool:
+        """Whether it is a kink of the branch (a change of the orbits' switches, where the
+        branch is not smooth): "grazing" or "stick-slip"."""
+        return self.kind in ("grazing", "stick-slip")
+
 
 @dataclass(frozen=True)
 class Branch:
@@ -207,7 +250,9 @@ class Branch:
 
     ``parameter[i]`` and ``orbits[i]`` are its points, in the order continued (the
     parameter turns back at a fold); ``bifurcations`` the changes met between them;
-    ``name`` the parameter's name; ``ended`` why the continuation stopped.
+    ``name`` the parameter's name; ``ended`` why the continuation stopped; ``notes`` what
+    it did beyond its steps (an orbit found from a transient where Newton from a
+    neighbour failed).
     """
 
     parameter: np.ndarray
@@ -216,6 +261,7 @@ class Branch:
     periods: int
     name: str
     ended: str
+    notes: tuple[str, ...] = ()
 
     def __post_init__(self):
         check_record(self)
@@ -295,25 +341,33 @@ class Branch:
         return self.peak.max(axis=1) / reference
 
     def multipliers(self) -> np.ndarray:
-        """Per point, the Floquet multipliers by descending modulus (complex)."""
-        return np.array([orbit.multipliers for orbit in self.orbits])
+        """Per point, the Floquet multipliers by descending modulus (complex); where the
+        orbits hold only their leading ones (``jacobian="krylov"``), as many columns as
+        the most any holds, NaN beyond an orbit's own."""
+        width = max(len(orbit.multipliers) for orbit in self.orbits)
+        table = np.full((len(self.orbits), width), complex(math.nan))
+        for row, orbit in zip(table, self.orbits):
+            row[:len(orbit.multipliers)] = orbit.multipliers
+        return table
 
 
 def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, *,
                  periods: int = 1, guess=None, step: float | None = None,
                  max_step: float = LARGEST_STEP, max_points: int = 1000,
-                 method: Adaptive | Accuracy = TANGENT_METHOD,
+                 method: Adaptive | Accuracy | Exponential = TANGENT_METHOD,
                  tolerance: float = ORBIT_TOLERANCE,
                  event_tolerance: float = EVENT_TOLERANCE,
                  transient: int = 100, from_bifurcation: Bifurcation | None = None,
                  parameter: str = "value", progress: Callable | None = None,
-                 symmetry: str | None = None) -> Branch:
+                 symmetry: str | None = None, jacobian: str | None = None,
+                 stability: bool = True) -> Branch:
     """The branch of periodic orbits of ``scene_at(p)`` from p = ``start`` towards ``stop``.
 
     Pseudo-arclength continuation (see the module's docstring): it follows the branch
-    through folds, where the parameter turns back, and ends where the parameter leaves
-    [start, stop] (the last point on ``stop`` exactly when it gets there), after
-    ``max_points`` points, or where no step as small as ``SMALLEST_STEP`` converges.
+    through folds, where the parameter turns back, and across kinks, where the orbits'
+    switches change, and ends where the parameter leaves [start, stop] (the last point
+    on ``stop`` exactly when it gets there), after ``max_points`` points, or where no
+    step as small as ``SMALLEST_STEP`` converges and no jump across succeeds.
 
     Parameters
     ----------
@@ -332,7 +386,7 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         ``LARGEST_STEP``, and ``FIRST_STEP`` times it for the first.
     max_points : int
         The most points of the branch.
-    method, tolerance, event_tolerance, transient
+    method, tolerance, event_tolerance, transient, jacobian
         As ``periodic_orbit``.
     from_bifurcation : Bifurcation, optional
         A "period-doubling" point of another branch: continue the doubled branch (period
@@ -350,6 +404,10 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         "symmetry-breaking" bifurcations; None (default) does so where the scene at
         ``start`` has the symmetry, ``periods`` is 1 and there is no
         ``from_bifurcation``.
+    stability : bool
+        Compute each orbit's multipliers and look for the smooth bifurcations (True,
+        default); with False, the orbits have none (``PeriodicOrbit.stable`` a
+        ValueError), and only folds (the parameter turning back) and kinks are found.
 
     Raises
     ------
@@ -367,11 +425,12 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
     check_callable("continuation", "scene_at", scene_at, expected="a callable value -> Scene")
     periods = check_int("continuation", "periods", periods, low=1, most=MAX_PERIODS)
     transient = check_int("continuation", "transient", transient, low=0, most=MAX_PERIODS)
-    check_instance("continuation", "method", method, (Adaptive, Accuracy),
-                   expected="Adaptive(...) or Accuracy(...)")
+    check_instance("continuation", "method", method, (Adaptive, Accuracy, Exponential),
+                   expected="Adaptive(...), Accuracy(...) or Exponential(...)")
     check_real("continuation", "tolerance", tolerance, low=SMALLEST_TOLERANCE, high=1e-3)
     check_event_tolerance("continuation", event_tolerance)
     check_instance("continuation", "parameter", parameter, str, expected="a name (str)")
+    check_instance("continuation", "stability", stability, bool, expected="True or False")
     if progress is not None:
         check_calls_with("continuation", "progress", progress, 2,
                          expected="None or a callable progress(points, p)")
@@ -386,6 +445,8 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         raise ValueError(f"continuation.from_bifurcation must be a 'period-doubling' or a "
                          f"'symmetry-breaking' Bifurcation of a branch, got "
                          f"{from_bifurcation!r}")
+    if jacobian is not None:
+        check_choice("continuation", "jacobian", jacobian, JACOBIANS)
     span = abs(stop - start)
     try:
         checked_scene_at("continuation", scene_at, start, start + 1e-3 * span)
@@ -404,14 +465,19 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
     if cyclic is not None and symmetry is None and symmetry_of(
             scene_at(start + 1e-3 * (stop - start)), periods, None) is None:
         cyclic = None  # the parameter itself breaks the symmetry (a mistuning, say)
+    first_map = StroboscopicMap(scene=scene_at(start), cyclic=cyclic)
     solver = Solver(scene_at=scene_at, span=span,
                     low=min(start, stop), high=max(start, stop), method=method,
-                    tolerance=tolerance, event_tolerance=event_tolerance, cyclic=cyclic)
+                    tolerance=tolerance, event_tolerance=event_tolerance, cyclic=cyclic,
+                    jacobian=jacobian_kind("continuation", jacobian, first_map),
+                    stability=stability)
     if from_bifurcation is None:
         first = periodic_orbit(solver.scene_at(start), periods, guess, method=method,
                                transient=transient, tolerance=tolerance,
                                event_tolerance=event_tolerance,
-                               symmetry="none" if cyclic is None else "cyclic")
+                               symmetry="none" if cyclic is None else "cyclic",
+                               jacobian=solver.jacobian, stability=False)
+        solver.notes.extend(first.notes)
         y = from_dofs(first.scene.arrays.layout, first.state)
         solver.weights = state_weights(first.scene, y)
         point = solver.point(y, start, periods)
@@ -444,24 +510,37 @@ def _check_born_here(bifurcation: Bifurcation, scene_at, start: float, stop: flo
 
 @dataclass(frozen=True)
 class Point:
-    """A converged point of the branch: u = (W y, p / span), its map and ∂φ/∂p, and its
-    unit tangent (scaled)."""
+    """A converged point of the branch: u = (W y, p / span), the map's value there (with
+    its Jacobian where it was formed there: ``stroboscopic.MapValue``) and ∂φ/∂p, its
+    unit tangent (scaled), and the map it was evaluated on."""
 
     u: np.ndarray
     parameter: float
     periods: int
-    step: object          # the StroboscopicStep at the point
+    value: MapValue
     rate: np.ndarray      # ∂φ/∂p
+    map: StroboscopicMap
     tangent: np.ndarray | None = None
 
     def with_tangent(self, tangent):
-        return Point(self.u, self.parameter, self.periods, self.step, self.rate, tangent)
+        return dataclasses.replace(self, tangent=tangent)
+
+    def with_value(self, value):
+        return dataclasses.replace(self, value=value)
+
+    @property
+    def dense(self) -> bool:
+        """Whether its value holds the map's whole Jacobian."""
+        return self.value.columns is not None and self.value.columns.shape[1] == len(
+            self.u) - 1
 
 
 @dataclass
 class Solver:
     """The continuation's maps and steps; ``weights`` W scale the state (set at the
-    branch's first orbit)."""
+    branch's first orbit), ``jacobian`` says how its linear systems are solved
+    (``orbits.JACOBIANS``), ``stability`` whether the orbits' multipliers are found,
+    ``notes`` what the branch did beyond its steps (``Branch.notes``)."""
 
     scene_at: Callable
     span: float
@@ -471,37 +550,35 @@ class Solver:
     tolerance: float
     event_tolerance: float
     cyclic: CyclicSymmetry | None = None
+    jacobian: str = "dense"
+    stability: bool = True
     weights: np.ndarray | None = None
+    work: MapWork = field(default_factory=MapWork)
+    notes: list = field(default_factory=list)
 
     # ---- the map and its derivatives -------------------------------------------------------
 
     def state(self, u):
         return u[:-1] / self.weights
 
-    def evaluate(self, y, p, periods, rate=None):
-        """The map with its Jacobian at (y, p), and ∂φ/∂p (by a forward difference unless
-        ``rate`` is given)."""
+    def map_at(self, p, periods) -> StroboscopicMap:
+        """The stroboscopic map of the scene at p (the branch's symmetry checked to hold
+        there), its work counted with the branch's."""
         scene = self.scene_at(p)
-        if self.cyclic is None:
-            step = stroboscopic_step(scene, periods, state_parts(scene, y),
-                                     method=self.method, event_tolerance=self.event_tolerance)
-        else:
-            step = reduced_step(scene, self.symmetric(scene, p), np.split(y, 2),
-                                method=self.method, event_tolerance=self.event_tolerance)
+        cyclic = None if self.cyclic is None else self.symmetric(scene, p)
+        return StroboscopicMap(scene=scene, periods=periods, method=self.method,
+                               event_tolerance=self.event_tolerance, cyclic=cyclic,
+                               work=self.work)
+
+    def evaluate(self, y, p, periods, rate=None):
+        """The map's value at (y, p) (the state's run), its map, and ∂φ/∂p (by a
+        forward difference unless ``rate`` is given)."""
+        found = self.map_at(p, periods)
+        value = found.value(y)
         if rate is None:
             h = PARAMETER_DIFFERENCE * max(abs(p), self.span)
-            shifted = self.scene_at(p + h)
-            until = None if self.cyclic is None else \
-                self.cyclic.fraction * shifted.excitation_period
-            done = integrate(shifted, periods, method=self.method,
-                             samples_per_period=1, event_tolerance=self.event_tolerance,
-                             initial=state_parts(shifted, y), event_capacity=0, until=until)
-            end = np.concatenate([done.run.output.x[-1], done.run.output.v[-1],
-                                  done.stretches[-1]])
-            if self.cyclic is not None:
-                end = self.cyclic.shifted(end, -self.cyclic.steps)
-            rate = (end - step.end) / h
-        return step, rate
+            rate = (self.map_at(p + h, periods)(y) - value.end) / h
+        return value, found, rate
 
     def symmetric(self, scene, p) -> CyclicSymmetry:
         """The branch's symmetry, checked to hold at p."""
@@ -517,82 +594,141 @@ class Solver:
                              f"{self.cyclic.sectors} in {self.cyclic.engine_order}")
         return found
 
-    def monodromy(self, point) -> np.ndarray:
-        """The monodromy of ``point``'s orbit over its whole period."""
-        if self.cyclic is None:
-            return point.step.jacobian
-        return self.cyclic.monodromy(point.step.jacobian)
+    def pins(self, point_map, value) -> np.ndarray:
+        """The rows of the offsets ``value``'s run kept stuck all through (``neutral``),
+        scaled: c W⁻¹ (none on a symmetric ring's reduced map)."""
+        return pins(point_map, value) / self.weights[None, :]
 
-    def jacobian(self, step, rate):
-        """∂(W(φ − y))/∂u in the scaled coordinates: 2N × (2N + 1)."""
+    def product(self, point_map, y):
+        """z ↦ W (M − I) W⁻¹ z at y, by one run of a tangent column."""
         w = self.weights
-        square = w[:, None] * (step.jacobian - np.eye(len(w))) / w[None, :]
-        return np.column_stack([square, w * rate * self.span])
+
+        def apply(z):
+            return w * point_map.products(y, z / w).columns[:, 0] - z
+        return apply
+
+    def linear_system(self, point, rows):
+        """The scaled Jacobian of the branch's equations at ``point``: (A, b) with
+        A = W (M − I) W⁻¹ (a matrix where the point holds M, else its product) and
+        b = W ∂φ/∂p span, and the pins' ``rows``."""
+        w = self.weights
+        rate = w * point.rate * self.span
+        if point.dense:
+            return w[:, None] * (point.value.columns - np.eye(len(w))) / w[None, :], rate
+        return self.product(point.map, point.value.start), rate
+
+    def solve(self, system, rate, rows, border, right, tolerance=None):
+        """Δu of [A, b] Δu = right[:N], ``border`` · Δu = right[N], rows (on the state
+        part) · Δu = right[N + 1:] — least squares where A is a matrix, else GMRES on
+        the system bordered by the rows' transposes (``orbits.newton_step``)."""
+        size = len(rate)
+        m = len(rows)
+        if isinstance(system, np.ndarray):
+            matrix = np.vstack([np.column_stack([system, rate]), border,
+                                np.column_stack([rows, np.zeros(m)])])
+            return least_squares(matrix, right), 0
+
+        def product(v):
+            du, pin = v[:size + 1], v[size + 1:]
+            top = system(du[:size]) + rate * du[size] + rows.T @ pin
+            return np.concatenate([top, [border @ du], rows @ du[:size]])
+
+        solved = gmres(product, right,
+                       tolerance=KRYLOV_TANGENT if tolerance is None else tolerance,
+                       most=size + 1 + m)
+        return solved.x[:size + 1], solved.iterations
 
     def point(self, y, p, periods):
-        step, rate = self.evaluate(y, p, periods)
-        return Point(np.append(self.weights * y, p / self.span), p, periods, step, rate)
+        value, found, rate = self.evaluate(y, p, periods)
+        if self.jacobian == "dense":
+            value = value.with_tangent_of(found.dense(y))
+        return Point(np.append(self.weights * y, p / self.span), p, periods, value, rate,
+                     found)
 
     def tangent(self, point, reference):
-        """The unit kernel vector of the scaled Jacobian, oriented along ``reference``."""
-        bordered = np.vstack([self.jacobian(point.step, point.rate), reference])
-        right = np.zeros(len(reference))
-        right[-1] = 1.0
-        tangent = least_squares(bordered, right)
+        """The unit kernel vector of the scaled Jacobian (the pinned offsets held),
+        oriented along ``reference``."""
+        rows = self.pins(point.map, point.value)
+        system, rate = self.linear_system(point, rows)
+        right = np.zeros(len(point.u) + len(rows))
+        right[len(point.u) - 1] = 1.0
+        tangent, _ = self.solve(system, rate, rows, reference, right)
         tangent /= np.linalg.norm(tangent)
         return tangent if tangent @ reference >= 0.0 else -tangent
 
     # ---- corrector -------------------------------------------------------------------------
 
-    def correct(self, predicted, normal, offset, periods, reach, fixed=None):
-        """Newton on W(φ(y, p) − y) = 0, normal · u = offset, from u = ``predicted``.
+    def correct(self, predicted, normal, offset, periods, reach, fixed=None, linear=None,
+                pinned=None, formed=True):
+        """Newton on W(φ(y, p) − y) = 0, normal · u = offset, from u = ``predicted``, the
+        offsets of the contacts stuck all through pinned at their values in ``pinned``
+        (a state; default the prediction's).
 
-        Returns the converged ``Point`` and the iterations it took, or raises
-        ``ConvergenceError``, also when an update is longer than ``reach`` (the
-        corrector is leaving for another branch).
+        A dense Jacobian is taken from ``linear`` (a ``Point`` near the prediction: a
+        chord) while each step lowers the residual ``CHORD_DROP`` times, and formed anew
+        at the iterate where not; with ``jacobian="krylov"`` each step solves by GMRES on
+        the iterate's products. Returns the converged ``Point`` (its Jacobian formed at
+        it where dense and ``formed``) and the iterations it took, or raises
+        ``ConvergenceError``, also when an update is longer than ``reach`` (the corrector
+        is leaving for another branch).
         """
         u = predicted.copy()
         rate = None  # ∂φ/∂p at the prediction serves every iteration (a chord method)
         last = math.inf
+        target = self.state(predicted) if pinned is None else pinned
+        dense = self.jacobian == "dense"
         for iteration in range(CORRECTOR_ITERATIONS):
             p = u[-1] * self.span if fixed is None else fixed
             y = self.state(u)
             try:
-                step, rate = self.evaluate(y, p, periods, rate)
+                value, found, rate = self.evaluate(y, p, periods, rate)
             except ValueError as error:  # scene_at refuses p: the corrector went astray
                 raise ConvergenceError(f"the corrector reached p = {p:.9g}, where "
                                        f"scene_at says: {error}") from error
-            residual = self.weights * (step.end - y)
+            residual = self.weights * (value.end - y)
             constraint = normal @ u - offset
             size = np.abs(residual).max()
             stalled = NOISE_FLOOR * self.tolerance >= size > last / 2.0
             if (size <= self.tolerance or stalled) and abs(constraint) <= 1e-12:
-                return Point(u, p, periods, step, rate), iteration
+                point = Point(u, p, periods, value, rate, found)
+                if dense and formed:
+                    point = point.with_value(value.with_tangent_of(found.dense(y)))
+                return point, iteration
+            if linear is None or not dense or size * CHORD_DROP > last:
+                linear = Point(u, p, periods, found.dense(y) if dense else value, rate,
+                               found)
             last = size
-            system = np.vstack([self.jacobian(step, rate), normal])
-            change = least_squares(system, np.append(residual, constraint))
+            rows = self.pins(found, value)
+            system, slope = self.linear_system(linear, rows)
+            right = np.concatenate([residual, [constraint], rows @ (u[:-1] - self.weights
+                                                                  * target)])
+            change, _ = self.solve(system, slope, rows, normal, right,
+                                   tolerance=forcing(size, self.tolerance))
             if np.linalg.norm(change) > reach:
                 raise ConvergenceError(f"a corrector step of {np.linalg.norm(change):.3g} "
                                        f"leaves the prediction's reach {reach:.3g}")
             u = u - change
         raise ConvergenceError(f"no convergence in {CORRECTOR_ITERATIONS} corrector steps "
-                               f"(residual {np.abs(residual).max():.3g})")
+                               f"(residual {last:.3g})")
 
     def advance(self, point, sigma):
         """The point at arclength ``sigma`` along ``point``'s tangent."""
         predicted = point.u + sigma * point.tangent
         return self.correct(predicted, point.tangent, point.tangent @ predicted,
-                            point.periods, reach=abs(sigma))
+                            point.periods, reach=abs(sigma), linear=point,
+                            pinned=self.state(point.u))
 
-    def at_parameter(self, point, target, sigma, reach=None):
-        """The point of the branch at p = ``target``, from a prediction ``sigma`` along,
-        its corrector's updates no longer than ``reach`` (default |sigma|)."""
-        predicted = point.u + sigma * point.tangent
+    def at_parameter(self, point, target, predicted, reach, linear=None, formed=True):
+        """The point of the branch at p = ``target`` from the prediction ``predicted`` (a
+        scaled u), its corrector's updates no longer than ``reach``, the offsets stuck
+        all through pinned at ``point``'s (``correct``)."""
+        predicted = predicted.copy()
         predicted[-1] = target / self.span
         normal = np.zeros(len(predicted))
         normal[-1] = 1.0
         return self.correct(predicted, normal, target / self.span, point.periods,
-                            reach=abs(sigma) if reach is None else reach, fixed=target)[0]
+                            reach=reach, fixed=target, linear=linear,
+                            pinned=self.state(point.u), formed=formed)[0]
 
     # ---- the branch --------------------------------------------------------------------------
 
@@ -607,14 +743,14 @@ class Solver:
             try:
                 new, iterations = self.advance(point, sigma)
                 new = new.with_tangent(self.tangent(new, point.tangent))
-                if new.tangent @ point.tangent < TURN:
+                if new.tangent @ point.tangent < TURN and not self.kinked(point, new):
                     raise ConvergenceError("the branch turns too sharply")
             except SimulationError as error:
                 sigma /= 2.0
                 new = None
                 if sigma < KINK_STEP and crossing:
                     crossing = False
-                    new = self.across(point)
+                    new = self.across(points)
                 if new is None:
                     if sigma < SMALLEST_STEP:
                         ended = (f"no step converged at p = {point.parameter:.9g} (the "
@@ -628,7 +764,10 @@ class Solver:
                 if target != point.parameter:
                     fraction = (target - point.parameter) / (new.parameter - point.parameter)
                     try:
-                        end = self.at_parameter(point, target, fraction * sigma)
+                        end = self.at_parameter(
+                            point, target, point.u + fraction * (new.u - point.u),
+                            reach=abs(fraction) * float(np.linalg.norm(new.u - point.u))
+                            + abs(sigma), linear=point)
                     except SimulationError:
                         sigma /= 2.0  # land on the end from nearer
                         continue
@@ -645,65 +784,157 @@ class Solver:
                 sigma = min(sigma * GROWTH, max_step)
         return Branch(parameter=np.array([p.parameter for p in points]), orbits=tuple(orbits),
                       bifurcations=tuple(bifurcations), periods=points[0].periods, name=name,
-                      ended=ended)
+                      ended=ended, notes=tuple(self.notes))
 
-    def across(self, point) -> Point | None:
-        """The branch a fixed parameter step beyond ``point``, by Newton on the orbit
-        alone from ``point``'s orbit, for each step of ``KINK_JUMPS`` in turn (the
-        parameter moving as ``point``'s tangent does, and on beyond it); None where none
-        converges."""
+    def kinked(self, a, b) -> bool:
+        """Whether the orbits' switches differ between points a and b: the branch has a
+        kink between them, where its tangent may turn as sharply as it likes."""
+        return switch_counts(a) != switch_counts(b)
+
+    def across(self, points) -> Point | None:
+        """The branch a fixed parameter step beyond its last point, for each step of
+        ``KINK_JUMPS`` of the range in turn (the parameter moving as the last point's
+        tangent does): Newton on the orbit alone at that parameter, from the secant
+        through the last two points extrapolated there (from the last point's orbit
+        where it has no predecessor); failing that, from a transient at that parameter
+        (said in ``Branch.notes``). None where none converges."""
+        point = points[-1]
         direction = math.copysign(1.0, point.tangent[-1])
+        before = points[-2] if len(points) > 1 else None
         for jump in KINK_JUMPS:
             p = point.parameter + direction * jump * self.span
             if not self.low <= p <= self.high:
                 return None
+            predicted = point.u.copy()
+            if before is not None and before.parameter != point.parameter:
+                slope = (point.u - before.u) / (point.parameter - before.parameter)
+                predicted = point.u + slope * (p - point.parameter)
             try:
-                new = self.at_parameter(point, p, 0.0, reach=math.inf)
+                new = self.at_parameter(point, p, predicted, reach=math.inf, linear=point)
             except SimulationError:
                 continue
-            # on in the parameter's direction: the secant, mostly the orbit's change
-            # across the kink, need not point along the branch beyond it
-            tangent = self.tangent(new, new.u - point.u)
-            return new.with_tangent(tangent if tangent[-1] * direction >= 0.0 else -tangent)
-        return None
+            return self.oriented(new, point, direction)
+        return self.restarted(point, direction)
+
+    def oriented(self, new, point, direction):
+        """``new`` with its tangent, oriented in the parameter's ``direction``: the
+        secant across a kink, mostly the orbit's change, need not point along the
+        branch beyond it."""
+        tangent = self.tangent(new, new.u - point.u)
+        return new.with_tangent(tangent if tangent[-1] * direction >= 0.0 else -tangent)
+
+    def restarted(self, point, direction) -> Point | None:
+        """The orbit a ``KINK_JUMPS[-1]`` step of the range beyond ``point``, from a
+        transient there (``periodic_orbit``); None where it too fails."""
+        p = point.parameter + direction * KINK_JUMPS[-1] * self.span
+        if not self.low <= p <= self.high:
+            return None
+        try:
+            orbit = periodic_orbit(self.scene_at(p), point.periods, method=self.method,
+                                   tolerance=self.tolerance,
+                                   event_tolerance=self.event_tolerance,
+                                   symmetry="none" if self.cyclic is None else "cyclic",
+                                   jacobian=self.jacobian, stability=False)
+        except SimulationError:
+            return None
+        self.notes.append(f"no step from p = {point.parameter:.9g} converged; the branch "
+                          f"was taken up again at p = {p:.9g} from a transient")
+        y = from_dofs(orbit.scene.arrays.layout, orbit.state)
+        return self.oriented(self.point(y, p, point.periods), point, direction)
 
     def rescaled(self, point):
         """``point`` in coordinates whose state scale has grown to its orbit's, once the
         orbit is ``RESCALE`` times larger than the scale: steps stay a fraction of the
         orbit, however far from the first one the branch has grown."""
-        weights = state_weights(point.step.scene, self.state(point.u))
+        weights = state_weights(point.map.scene, self.state(point.u))
         if weights[0] * RESCALE > self.weights[0]:
             return point
         change = np.append(weights / self.weights, 1.0)
         self.weights = weights
         tangent = change * point.tangent
-        return Point(change * point.u, point.parameter, point.periods, point.step,
-                     point.rate, tangent / np.linalg.norm(tangent))
+        return dataclasses.replace(point, u=change * point.u,
+                                   tangent=tangent / np.linalg.norm(tangent))
 
     def orbit(self, point, iterations):
         y = self.state(point.u)
-        residual = np.abs(self.weights * (point.step.end - y)).max()
-        step = point.step if self.cyclic is None else whole_period(self.cyclic, point.step)
-        return orbit_at(point.step.scene, point.periods, y, step, residual,
-                        1.0 / self.weights[0], iterations, self.method,
-                        self.event_tolerance, 100, False, self.cyclic)
+        residual = np.abs(self.weights * (point.value.end - y)).max()
+        value = point.value
+        return orbit_at(point.map.scene, point.periods, y, value, residual,
+                        1.0 / self.weights[0], iterations, point.map, 100, False,
+                        stability=self.stability, jacobian=self.jacobian,
+                        weights=self.weights)
 
     def record(self, points, orbits, bifurcations, new):
-        """Append ``new`` and what changed since the last point."""
+        """Append ``new`` and what changed since the last point: the smooth bifurcations
+        located between them, and a kink where the orbits' switches changed
+        (``locate_kink``); a change at the parameter of one already found is that one."""
         last, before = points[-1], orbits[-1]
         orbit = self.orbit(new, 0)
         index = len(points) - 1
-        for kind, test in smooth_changes(last, before, new, orbit, self.monodromy,
-                                         symmetric=self.cyclic is not None):
-            found = self.locate(kind, test, last, new, index)
-            if found is not None:
-                bifurcations.append(found)
+        found = []
+        if self.stability:
+            for kind, test in smooth_changes(last, before, new, orbit, self.multipliers,
+                                             symmetric=self.cyclic is not None):
+                located = self.locate(kind, test, last, new, index)
+                if located is not None:
+                    found.append(located)
+        elif last.tangent[-1] * new.tangent[-1] < 0.0:
+            found.append(self.locate("fold", lambda point: point.tangent[-1], last, new,
+                                     index))
         if orbit.switches != before.switches:
-            kind = "stick-slip" if _stick_phases(orbit) != _stick_phases(before) else "grazing"
-            bifurcations.append(Bifurcation(kind, new.parameter, orbit, complex(math.nan), index,
-                                            (last.parameter, new.parameter)))
+            found.append(self.locate_kink(last, before, new, orbit, index))
+        bifurcations[:] = merged(bifurcations, found, self.span)
         points.append(new)
         orbits.append(orbit)
+
+    def locate_kink(self, a, orbit_a, b, orbit_b, index) -> Bifurcation:
+        """The kink between points a and b, whose orbits' switches differ: bisection on
+        the parameter, each middle solved at a fixed parameter from the chord between
+        them, to ``KINK_WIDTH`` of the range or ``KINK_HALVINGS`` halvings (where several
+        changes lie between a and b, the one nearest b); reported with the orbit on b's
+        side of the final bracket and its parameter at that bracket's middle (the
+        bracket itself in ``Bifurcation.bracket``)."""
+        kind = "stick-slip" if _stick_phases(orbit_a) != _stick_phases(orbit_b) else "grazing"
+        low, high = (a, orbit_a), (b, orbit_b)
+        for _ in range(KINK_HALVINGS):
+            if abs(high[0].parameter - low[0].parameter) <= KINK_WIDTH * self.span:
+                break
+            middle = self.middle(low[0], high[0], a, b)
+            if middle is None:
+                break
+            if switch_counts(middle) == orbit_b.switches:
+                high = (middle, None)
+            else:  # a's switches, or a third sequence: the change nearest b lies beyond
+                low = (middle, None)
+        near = high[0]
+        orbit = orbit_b if near is b else self.orbit(near.with_tangent(b.tangent), 0)
+        return Bifurcation(kind, 0.5 * (low[0].parameter + near.parameter), orbit,
+                           complex(math.nan), index,
+                           (float(low[0].parameter), float(near.parameter)))
+
+    def middle(self, low, high, a, b) -> Point | None:
+        """The point of the branch at the parameter midway between ``low`` and ``high``,
+        from the chord between them, its offsets stuck all through pinned at ``low``'s
+        (``a``'s monodromy its chord), else at ``high``'s (``b``'s); None where neither
+        converges (a pinned offset the contact's friction no longer holds there)."""
+        p = 0.5 * (low.parameter + high.parameter)
+        guess = 0.5 * (low.u + high.u)
+        reach = float(np.linalg.norm(high.u - low.u))
+        for side, chord in ((low, a), (high, b)):
+            try:
+                return self.at_parameter(side, p, guess, reach, linear=chord, formed=False)
+            except SimulationError:
+                continue
+        return None
+
+    def multipliers(self, point) -> np.ndarray:
+        """The multipliers of ``point``'s orbit, the neutral directions' left out: of its
+        whole monodromy where formed (dense), else Arnoldi's leading ones."""
+        rows = pins(point.map, point.value)
+        y = self.state(point.u)
+        found = stability_of(point.map, y, point.value, self.weights, self.jacobian,
+                             len(rows))
+        return tested(found.multipliers, len(rows))
 
     def locate(self, kind, test, a, b, index) -> Bifurcation | None:
         """The zero of ``test`` between points a and b (``bracketed_zero`` on the
@@ -718,7 +949,9 @@ class Solver:
         if bracketed and kind != "fold" and best_value > JUMP:
             return None  # |μ| jumps there: two multipliers met, none crossed the circle
         orbit = self.orbit(best, 0)
-        return Bifurcation(kind, best.parameter, orbit, critical(kind, orbit.multipliers),
+        multiplier = critical(kind, orbit.tested_multipliers) if len(orbit.multipliers) \
+            else complex(math.nan)
+        return Bifurcation(kind, best.parameter, orbit, multiplier,
                            index, (a.parameter, b.parameter))
 
     def trial(self, a, sigma):
@@ -747,7 +980,7 @@ class Solver:
         layout = orbit.scene.arrays.layout  # the orbit's state and monodromy are by dofs
         state = from_dofs(layout, orbit.state)
         self.weights = state_weights(orbit.scene, state)
-        values, vectors = np.linalg.eig(orbit.monodromy)
+        values, vectors = np.linalg.eig(orbit.monodromy_matrix())
         k = np.argmin(np.abs(values - multiplier))
         w = self.weights
         away = np.append(w * from_dofs(layout, np.real(vectors[:, k])), 0.0)
@@ -799,6 +1032,36 @@ def bracketed_zero(test, a, b, trial, failures):
     return best, best_value, bracketed
 
 
+def merged(bifurcations, found, span: float) -> list:
+    """``bifurcations`` and then each of ``found`` (None for none) whose parameter is not
+    within ``SAME`` of ``span`` of one kept already: a bifurcation located twice (a fold
+    approached from both sides), or two at one parameter (a fold at a kink), is one."""
+    kept = list(bifurcations)
+    for bifurcation in found:
+        if bifurcation is not None and not any(
+                abs(bifurcation.parameter - other.parameter) <= SAME * span for other in kept):
+            kept.append(bifurcation)
+    return kept
+
+
+def switch_counts(point) -> dict:
+    """How many switches of each (interface, kind) the orbit of ``point`` makes, from a
+    run of its map (``PeriodicOrbit.switches``, without the outputs)."""
+    found = point.map
+    y = point.value.start
+    run = integrate(found.scene, found.periods, method=found.method, samples_per_period=1,
+                    event_tolerance=found.event_tolerance, initial=state_parts(found.scene, y),
+                    event_capacity=EVENT_LOG).run
+    period = found.scene.excitation_period
+    edge, end = EDGE * period, found.periods * period
+    counts: dict[tuple[int, str], int] = {}
+    for t, e, k in zip(run.events.time, run.events.interface, run.events.kind):
+        if edge < t < end - edge:
+            switch = (int(e), EventKind(k).name.lower())
+            counts[switch] = counts.get(switch, 0) + 1
+    return counts
+
+
 def _stick_phases(orbit):
     return {switch: count for switch, count in orbit.switches.items()
             if switch[1] in ("sticking", "breakaway")}
@@ -832,33 +1095,40 @@ def _counts(multipliers):
             int(np.sum(real & outside & (multipliers.real > 0))))
 
 
-def smooth_changes(a, orbit_a, b, orbit_b, monodromy, symmetric=False):
-    """(kind, test function of a point) of each smooth bifurcation between a and b, their
-    orbits' monodromy matrices M = ``monodromy(point)``. The test functions are
-    continuous along the branch and change sign at the bifurcation: the tangent's
-    parameter component (fold); and |μ| − 1 of the multiplier that crosses the unit
-    circle (``_modulus_crossing``): among the real negative ones (period doubling), the
-    complex pairs (torus), or, on a ``symmetric`` branch where no fold explains it, the
-    real positive ones (symmetry breaking)."""
+def smooth_changes(a, orbit_a, b, orbit_b, multipliers, symmetric=False):
+    """(kind, test function of a point) of each smooth bifurcation between a and b, from
+    their orbits' multipliers (the neutral directions' left out:
+    ``PeriodicOrbit.tested_multipliers``) and ``multipliers(point)``, those of any point
+    between. The test functions are continuous along the branch and change sign at the
+    bifurcation: the tangent's parameter component (fold); and |μ| − 1 of the multiplier
+    that crosses the unit circle (``_modulus_crossing``): among the real negative ones
+    (period doubling), the complex pairs (torus), or, on a ``symmetric`` branch where no
+    fold explains it, the real positive ones (symmetry breaking)."""
     changes = []
     fold = a.tangent[-1] * b.tangent[-1] < 0.0
     if fold:
         changes.append(("fold", lambda point: point.tangent[-1]))
     (doubling_a, torus_a, rising_a), (doubling_b, torus_b, rising_b) = (
-        _counts(orbit_a.multipliers), _counts(orbit_b.multipliers))
+        _counts(_tested(orbit_a)), _counts(_tested(orbit_b)))
     if doubling_a != doubling_b:
         changes.append(("period-doubling", _modulus_crossing(
-            monodromy, lambda mu: _real(mu) & (mu.real < 0.0), min(doubling_a, doubling_b))))
+            multipliers, lambda mu: _real(mu) & (mu.real < 0.0), min(doubling_a, doubling_b))))
     if torus_a != torus_b:
         changes.append(("torus", _modulus_crossing(
-            monodromy, lambda mu: ~_real(mu) & (mu.imag > 0.0), min(torus_a, torus_b) // 2)))
+            multipliers, lambda mu: ~_real(mu) & (mu.imag > 0.0), min(torus_a, torus_b) // 2)))
     if symmetric and not fold and rising_a != rising_b:
         changes.append(("symmetry-breaking", _modulus_crossing(
-            monodromy, lambda mu: _real(mu) & (mu.real > 0.0), min(rising_a, rising_b))))
+            multipliers, lambda mu: _real(mu) & (mu.real > 0.0), min(rising_a, rising_b))))
     return changes
 
 
-def _modulus_crossing(monodromy, kept, rank):
+def _tested(orbit) -> np.ndarray:
+    """The multipliers the bifurcation tests read: a ``PeriodicOrbit``'s less its neutral
+    directions' (``tested_multipliers``); a ``HarmonicOrbit``'s (Hill's) as they are."""
+    return orbit.tested_multipliers if isinstance(orbit, PeriodicOrbit) else orbit.multipliers
+
+
+def _modulus_crossing(multipliers, kept, rank):
     """The test function |μ| − 1 of the multiplier, of those that ``kept`` keeps (one of
     each complex pair), ``rank`` from the largest in modulus (0: the largest): where
     ``rank`` of them lie outside the unit circle at one end of the interval and one more
@@ -868,7 +1138,7 @@ def _modulus_crossing(monodromy, kept, rank):
     size changes by orders of magnitude over an interval, which the secant method follows
     only in as many halvings. −1 where fewer than rank + 1 are kept."""
     def test(point):
-        multipliers = np.linalg.eigvals(monodromy(point))
-        moduli = np.sort(np.abs(multipliers[kept(multipliers)]))[::-1]
+        found = multipliers(point)
+        moduli = np.sort(np.abs(found[kept(found)]))[::-1]
         return float(moduli[rank]) - 1.0 if rank < len(moduli) else -1.0
     return test

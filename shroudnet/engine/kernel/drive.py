@@ -16,7 +16,7 @@ import numpy as np
 
 from shroudnet.engine.advance import is_finite, keep_guards, record, take_step
 from shroudnet.engine.codes import FINISHED, NOT_FINITE, STALLED, STEP_TOO_SMALL
-from shroudnet.engine.compiled import njit_step_callable, njit_step_merged
+from shroudnet.engine.compiled import njit_inlined, njit_step_callable, njit_step_merged
 from shroudnet.engine.controller import (accepted, next_step, retry_step, stalling,
                                          too_small)
 from shroudnet.engine.records import last_sample
@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from .propagation import prepare_phase
     from .resolve import begin, switch
     from .step import trial_step
-    from .tangent import by_phase, carry_phase, stepwise
+    from .tangent import by_phase, carry_tangent, stepwise
 
 
 @njit_step_merged
@@ -60,7 +60,7 @@ def advance(t, h, k, sample, steps, state, topology, s, w, controls, out):
                 return t, h, k, sample, steps, status, False
             t_end = t_final if last else t + h
         else:
-            t_end = controls.t0 + (k + 1) * controls.step
+            t_end = min(grid_time(k + 1, controls), t_final)
             h = t_end - t
         error = trial_step(t, h, state, topology, s, w, controls)
         if not accepted(error):
@@ -89,16 +89,29 @@ def advance(t, h, k, sample, steps, state, topology, s, w, controls, out):
         if ADAPTIVE:
             h = next_step(h, error, controls.h_max)
         else:
-            k, sample = next_on_grid(k, t, state, w, controls, out, sample)
+            k, sample = next_on_grid(k, t, state, topology, s, w, controls, out, sample)
     return t, h, k, sample, steps, FINISHED, False
 
 
+@njit_inlined
+def grid_time(k, controls):
+    """t0 + k·step, the end of fixed step k − 1."""
+    return controls.t0 + k * controls.step
+
+
 @njit_step_merged
-def next_on_grid(k, t, state, w, controls, out, sample):
+def next_on_grid(k, t, state, topology, s, w, controls, out, sample):
     """After fixed step k ended at t: the next step's index, and the sample taken at t
-    every ``steps_per_sample`` steps. Returns (k, the next sample)."""
+    every ``steps_per_sample`` steps (or at the run's last sample, which a run to a given
+    time reaches by a shorter last step). A run that carries its tangent by phase for
+    Lyapunov exponents carries it to the sample and orthonormalises it there, and records
+    its growth. Returns (k, the next sample)."""
     k += 1
-    if k % controls.steps_per_sample == 0:
+    if k % controls.steps_per_sample == 0 or t == last_sample(controls):
+        if HAS_TANGENT and controls.orthonormalise and by_phase(state, controls):
+            carry_tangent(t, state, topology, s, controls)
+            for c in range(len(state.tangent.log_growth)):
+                state.tangent.history[sample, c] = state.tangent.log_growth[c]
         record(out, sample, t, state.x, state.v, state.modes, state.energy, w)
         sample += 1
     return k, sample
@@ -119,25 +132,25 @@ def run(state, s, w, sw, events, controls, out):
     status, topology = begin(state, s, w, sw, controls, out)
     if EXPONENTIAL:
         prepare_phase(state, topology, s)
+    if HAS_TANGENT:
+        state.tangent.since[0] = controls.t0
     # np.int64, not literals: a literal argument would compile the callee twice
     t, h = controls.t0, min(controls.step, controls.h_max)
     k, sample, steps = np.int64(0), np.int64(1), np.int64(0)
     stop_interface = -1
-    phase_start = controls.t0
     while status == FINISHED and sample < controls.n_samples:
         t, h, k, sample, steps, status, switched = advance(t, h, k, sample, steps, state,
                                                            topology, s, w, controls, out)
         if not switched or status != FINISHED:
             break
         if HAS_TANGENT and by_phase(state, controls):
-            carry_phase(phase_start, t, state, topology, s)
-            phase_start = t
+            carry_tangent(t, state, topology, s, controls)
         status, stop_interface, topology = switch(t, state, topology, s, w, sw, events,
                                                   controls)
         if EXPONENTIAL:
             prepare_phase(state, topology, s)
-        if not ADAPTIVE and t == controls.t0 + (k + 1) * controls.step:
-            k, sample = next_on_grid(k, t, state, w, controls, out, sample)
+        if not ADAPTIVE and t == min(grid_time(k + 1, controls), last_sample(controls)):
+            k, sample = next_on_grid(k, t, state, topology, s, w, controls, out, sample)
     if HAS_TANGENT and by_phase(state, controls) and status == FINISHED:
-        carry_phase(phase_start, t, state, topology, s)
+        carry_tangent(t, state, topology, s, controls)
     return status, t, stop_interface, steps if ADAPTIVE else k, sample

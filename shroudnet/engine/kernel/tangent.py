@@ -25,8 +25,8 @@ from shroudnet.engine.slider_tangent import (first_order_field, leave_out_unreso
                                              slider_breakaway_normal)
 from shroudnet.engine.tableau import DP_A, DP_C, DP_STAGES, stage_sum
 from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
-                                      linearised_acceleration, stage_tangent, tangent_error,
-                                      time_scale)
+                                      linearised_acceleration, orthonormalise, stage_tangent,
+                                      tangent_error, time_scale)
 
 if TYPE_CHECKING:
     from .forces import derivative, sliding_coefficient
@@ -141,7 +141,8 @@ def jacobian_into(s, modes, topology, g, jacobian):
 def by_phase(state, controls):
     """Whether this run carries its tangent by phase (``carry_phase``) rather than with
     every step: substructures whose vector field is linear between switches, in a run
-    that keeps no orthonormal basis (``records.Controls.exponentials``)."""
+    that keeps no orthonormal basis or that propagates its phases exactly
+    (``records.Controls.exponentials``)."""
     return HAS_STRUCTURES and controls.exponentials and state.tangent.matrix.shape[1] > 0
 
 
@@ -186,6 +187,18 @@ def carry_phase(t_from, t_to, state, topology, s):
     for r in range(size):
         for column in range(g.matrix.shape[1]):
             g.matrix[r, column] = g.candidate[r, column]
+
+
+@njit_step
+def carry_tangent(t, state, topology, s, controls):
+    """The tangent carried by phase from where it was last carried (``Tangent.since``) to
+    t (``carry_phase``), and, for Lyapunov exponents (``controls.orthonormalise``), its
+    columns orthonormalised there (``tangent.orthonormalise``)."""
+    g = state.tangent
+    carry_phase(g.since[0], t, state, topology, s)
+    g.since[0] = t
+    if controls.orthonormalise:
+        orthonormalise(g, s)
 
 
 @njit_step

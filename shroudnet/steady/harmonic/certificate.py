@@ -100,7 +100,7 @@ def certify(orbit: HarmonicOrbit, *, method: Adaptive | Accuracy = CERTIFYING_ME
     began = time.perf_counter()
     exact = periodic_orbit(orbit.scene, orbit.periods, guess=orbit.initial, method=method,
                            tolerance=tolerance, event_tolerance=event_tolerance,
-                           symmetry="none")
+                           symmetry="none", jacobian="dense")  # every multiplier, for Hill's
     seconds = time.perf_counter() - began
     weights = state_weights(exact.scene, exact.state)
     amplitudes = 0.5 * (exact.maximum - exact.minimum)

@@ -235,7 +235,7 @@ class Follower:
         last, before = points[-1], orbits[-1]
         orbit = self.orbit(new)
         index = len(points) - 1
-        changes = smooth_changes(last, before, new, orbit, self.multiplier_matrix)
+        changes = smooth_changes(last, before, new, orbit, self.multipliers)
         if not (self.stability and before.smooth and orbit.smooth):
             changes = [(kind, test) for kind, test in changes if kind == "fold"]
         for kind, test in changes:
@@ -245,10 +245,10 @@ class Follower:
         points.append(new)
         orbits.append(orbit)
 
-    def multiplier_matrix(self, point: Point) -> np.ndarray:
-        """diag(Hill's multipliers) of ``point``'s orbit: the matrix whose eigenvalues
-        ``smooth_changes``' test functions read."""
-        return np.diag(self.orbit(point).multipliers)
+    def multipliers(self, point: Point) -> np.ndarray:
+        """Hill's multipliers of ``point``'s orbit: those ``smooth_changes``' test
+        functions read."""
+        return self.orbit(point).multipliers
 
     def locate(self, kind, test, a: Point, b: Point, index: int) -> Bifurcation | None:
         """The zero of ``test`` between a and b (``bracketed_zero`` on the arclength from
