@@ -140,7 +140,7 @@ class TestPaperScene:
 
     def test_resonance_at_6487_5_rpm_with_engine_order_2(self):
         scene = scenes.three_blade_paper(speed_rpm=6487.5)
-        f_e = scene.excitation.frequency(6487.5)
+        f_e = scene.excitation.frequency_at(6487.5)
         assert f_e == pytest.approx(216.25)
         assert scenes.paper_frequency_model().at(6487.5) == pytest.approx(f_e, rel=5e-4)
 

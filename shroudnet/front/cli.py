@@ -199,7 +199,8 @@ def _parser() -> argparse.ArgumentParser:
     sweep_.add_argument("--param", required=True, metavar="PATH",
                         help="the number to sweep, as a dotted path into the file: "
                         "speed_rpm, excitation.amplitudes.1, interfaces.0.normal.stiffness, "
-                        "group.interface.gap, ...")
+                        "group.interface.gap, excitation.frequency (a frequency sweep at "
+                        "the file's speed: give [excitation] frequency = f), ...")
     sweep_.add_argument("--values", required=True, nargs="+", metavar="VALUE",
                         help="the values: numbers, or START:STOP:COUNT for COUNT evenly "
                         "spaced ones; negative ones too (--values -1e-5:2e-5:4)")

@@ -11,6 +11,8 @@ A scene file holds one document (SI units; speeds in rev/min)::
                                       # {travelling_wave = 3}, or [φ1, φ2, …] [rad]
     # blades_on_disc = 36             # with "engine-order": the group is a packet on a
                                       # disc of 36 blades (φ_i = 2π l i / 36)
+    # frequency = 210.0               # f [Hz]: forced at f whatever the speed (which
+                                      # still sets the stiffening); l Ω/2π without
 
     [[blades]]                        # one table per blade, in order
     name = "blade1"
@@ -1004,8 +1006,8 @@ def _law_names(kind: type) -> str:
 
 def _excitation(table: dict) -> Excitation:
     _only(table, {"engine_order": _INTEGER, "amplitudes": _NUMBERS,
-                  "phases": _TEXT | _TABLE | _NUMBERS, "blades_on_disc": _INTEGER},
-          "excitation")
+                  "phases": _TEXT | _TABLE | _NUMBERS, "blades_on_disc": _INTEGER,
+                  "frequency": _NUMBER}, "excitation")
     for name in ("engine_order", "amplitudes"):
         if name not in table:
             raise _KeyError(f"excitation.{name}", "is required")
@@ -1030,7 +1032,8 @@ def _excitation(table: dict) -> Excitation:
     amplitudes = table["amplitudes"]
     return _build("excitation", lambda: Excitation(engine_order=table["engine_order"],
                                                    amplitudes=tuple(amplitudes),
-                                                   phases=pattern))
+                                                   phases=pattern,
+                                                   frequency=table.get("frequency")))
 
 
 _METHODS = {"adaptive": (Adaptive, dict.fromkeys(("rtol", "atol", "max_step"), _NUMBER)),
@@ -1262,8 +1265,11 @@ def _excitation_document(excitation: Excitation) -> dict:
         pattern = {"travelling_wave": phases.nodal_diameter}
     else:
         pattern = [float(p) for p in phases.values]
+    frequency = {} if excitation.frequency is None else {
+        "frequency": float(excitation.frequency)}
     return {"engine_order": excitation.engine_order,
-            "amplitudes": [float(q) for q in excitation.amplitudes], "phases": pattern}
+            "amplitudes": [float(q) for q in excitation.amplitudes], "phases": pattern,
+            **frequency}
 
 
 def _run_document(run: RunSettings) -> dict:

@@ -225,7 +225,7 @@ def lower(scene) -> dict:
         sin_angle=sin_angle, cos_angle=cos_angle, **laws, can_stick=exact & tangential,
         amplitudes=amplitudes,
         phases=np.repeat(node_phases, sizes),
-        excitation_frequency=scene.excitation.engine_order * scene.omega,
+        excitation_frequency=scene.excitation_circular_frequency,
         excitation_scale=load,
         harmonic_amplitudes=amplitudes[:, None] * load[None, :],
         harmonic_phases=np.repeat(node_harmonics, sizes, axis=1),

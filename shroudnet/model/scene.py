@@ -51,7 +51,7 @@ class SceneArrays:
     tangential_stiffness: np.ndarray  # k_t [N/m] of an elastic contact; inf where rigid
     amplitudes: np.ndarray     # (q0, q1, …, qn) [N]
     phases: np.ndarray         # φ_i [rad], the phases of the fundamental
-    excitation_frequency: float  # l Ω [rad/s]
+    excitation_frequency: float  # ω = l Ω, or 2π f at a frequency of its own [rad/s]
     excitation_scale: np.ndarray   # s_i [-], the factor on Q(t) of each blade
     harmonic_amplitudes: np.ndarray  # s_i q_n [N]: row n (0 … n_harmonics), column i
     harmonic_phases: np.ndarray      # n φ_i [rad]: row n, column i (paper §2, see excitation)
@@ -273,8 +273,17 @@ class Scene:
 
     @property
     def excitation_period(self) -> float:
-        """T_e = 2π/(l Ω) [s]."""
+        """T_e = 2π/(l Ω) [s], or 1/f at the excitation's own ``frequency`` f."""
+        if self.excitation.frequency is not None:
+            return 1.0 / self.excitation.frequency
         return 2.0 * math.pi / (self.excitation.engine_order * self.omega)
+
+    @property
+    def excitation_circular_frequency(self) -> float:
+        """ω = l Ω, or 2π f at the excitation's own ``frequency`` f [rad/s]."""
+        if self.excitation.frequency is not None:
+            return 2.0 * math.pi * self.excitation.frequency
+        return self.excitation.engine_order * self.omega
 
     def blade_position(self, blade: Hashable | int) -> int:
         """The 0-based position of a blade given by name or by position."""
@@ -408,7 +417,7 @@ class Scene:
             can_stick=exact & (np.abs(cos_angle) > NO_TANGENTIAL),
             amplitudes=np.array(self.excitation.amplitudes, dtype=float),
             phases=self.excitation.blade_phases(len(names)).astype(float),
-            excitation_frequency=self.excitation.engine_order * self.omega,
+            excitation_frequency=self.excitation_circular_frequency,
             excitation_scale=scale,
             harmonic_amplitudes=np.array(self.excitation.amplitudes, dtype=float)[:, None]
             * scale[None, :],
@@ -486,7 +495,7 @@ def check_user_laws(scene: Scene) -> None:
     only called, so its contract (``contact_laws.NormalLaw``, ``FrictionLaw``) is checked
     here by sampling, not proved. With the length scale L = max(|Δ_e|, x_s) (the largest
     gap, or the static deflection x_s under the whole excitation; 1 µm without either) and
-    the rate scale r = L l Ω:
+    the rate scale r = L ω (ω = l Ω, or 2π f):
 
     - a normal law must return a finite N ≥ 0 at penetrations δ = L·10⁻⁶ … 10 L (one per
       decade) and rates δ̇ = 0, ±r, and a finite N at δ = −10⁻³ L (a trial state of a step
@@ -503,7 +512,7 @@ def check_user_laws(scene: Scene) -> None:
     length = max([abs(interface.gap) for _, _, interface in group.interfaces] + [deflection])
     if not length > 0.0:
         length = PROBE_FALLBACK_LENGTH
-    rate = length * excitation.engine_order * scene.omega
+    rate = length * scene.excitation_circular_frequency
     for e, (left, right, interface) in enumerate(group.interfaces):
         where = f"interface {e} ({left!r}, {right!r})"
         if not _builtin(interface.normal):
