@@ -43,8 +43,10 @@ EXCITATION = Excitation(engine_order=2, amplitudes=(0.0, 10.0), phases=AntiPhase
      r"needs two nodes"),
     (lambda: BladeGroup().add_fixed("d").add_fixed("c").connect("d", "c", SHROUD), ValueError,
      r"neither node is a blade \(both are fixed or prescribed\)"),
-    (lambda: BladeGroup.chain(2, BLADE, SHROUD).connect("blade2", "blade1", SHROUD), ValueError,
-     r"already connected"),
+    (lambda: BladeGroup.chain(2, BLADE, SHROUD).connect(("blade2", ["x", "x"]), "blade1",
+                                                         SHROUD), ValueError,
+     r"both ends name as many points \(or one end is a fixed or prescribed node\); got 2 "
+     r"and 1"),
     (lambda: BladeGroup.ring(2, BLADE, SHROUD), ValueError, r"ring needs n >= 3"),
     (lambda: BladeGroup.chain(3, [BLADE, BLADE], SHROUD), ValueError, r"2 blades for n = 3"),
     (lambda: Scene(group=BladeGroup().add_fixed("disc"), excitation=EXCITATION,

@@ -167,6 +167,8 @@ VALID = {
     "HysteresisLoop": record(lambda: shroudnet.hysteresis_loop(run(), 0, 1)),
     "friction_loss_per_cycle": lazy(lambda: ((run(), 1), {})),
     "hysteresis_loop": lazy(lambda: ((run(), 0, 1), {})),
+    "PatchHistory": record(lambda: shroudnet.patch_history(run(), 0, 1)),
+    "patch_history": lazy(lambda: ((run(), 0, 1), {})),
     "spectrum": lazy(lambda: ((run(), 0, 1), {})),
     "zero_one_test": call(np.sin(np.arange(200.0))),
     "cantilever_beam": call(length=0.1, youngs_modulus=2e11, density=7800.0, width=0.02,

@@ -13,7 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
-from ..analysis.readings import Campbell, HysteresisLoop, classify, spectrum
+from ..analysis.readings import Campbell, HysteresisLoop, PatchHistory, classify, spectrum
 from ..engine.codes import Mode
 from ..linear.modes import GroupCampbell, LinearModes, excited_diameter
 from ..run.simulation import Simulation
@@ -37,8 +37,8 @@ def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: 
     shown = slice(None, shown_periods * sim.samples_per_period + 1)
     label = sim.scene.responses[sim.scene.response_position(blade)]
     node = label[0] if sim.scene.arrays.is_structure else label
-    own = np.array([e for e, (left, right, _) in enumerate(sim.scene.group.interfaces)
-                    if node in (left, right)], dtype=int)
+    own = np.array([e for e, contact in enumerate(sim.scene.contacts)
+                    if node in (contact.left, contact.right)], dtype=int)
     figure = Figure(figsize=(11, 8), layout="constrained")
     axes = figure.subplot_mosaic([["history", "history"], ["phase", "spectrum"],
                                   ["impact", "friction"]])
@@ -58,9 +58,10 @@ def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: 
     for name, forces, label in (("impact", sim.normal_force, "N [N]"),
                                 ("friction", sim.friction_force, "f [N]")):
         for e in own:
-            left, right, _ = sim.scene.group.interfaces[e]
+            contact = sim.scene.contacts[e]
+            which = f" ({contact.contact})" if contact.pairs > 1 else ""
             axes[name].plot(t[shown] * 1e3, forces[rows][shown, e], lw=0.8,
-                            label=f"{left}–{right}")
+                            label=f"{contact.left}–{contact.right}{which}")
         axes[name].set(xlabel="t [ms]", ylabel=label, title=f"{name} force")
         if len(own):
             axes[name].legend(loc="upper right", fontsize="small")
@@ -373,13 +374,17 @@ def mistuning_histogram(study: MistuningStudy, *,
     return figure
 
 
-def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
+def stick_slip_cycle(sim: Simulation, interface=0, skip: int = 0, *,
                      shown_periods: int = 10, title: str = "") -> Figure:
     """A friction interface's stick–slip motion after ``skip`` periods: its blade's
     displacement with the stuck phases shaded, the phase portrait with stuck and slipping
     samples apart, and the friction coefficient f/N the interface carried against its slip
-    velocity, over its law's μ(|v|) sgn v."""
-    left, right, face = sim.scene.group.interfaces[interface]
+    velocity, over its law's μ(|v|) sgn v. ``interface`` is an interface's position, or
+    (interface, k) for a patch's k-th contact (``Scene.contact_position``)."""
+    column = sim.checked_interface(interface, "stick_slip_cycle")
+    contact = sim.scene.contacts[column]
+    left, right = contact.left, contact.right
+    face = sim.scene.group.interfaces[contact.interface][2]
     blade = left if left in sim.scene.blades else right
     rows = slice(skip * sim.samples_per_period, None)
     t = sim.t[rows]
@@ -390,8 +395,8 @@ def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
     else:
         i = sim.scene.blade_position(blade)
         x, v = sim.x[rows, i], sim.v[rows, i]
-    stuck = sim.modes[rows, interface] == Mode.STICK
-    normal, friction = sim.normal_force[rows, interface], sim.friction_force[rows, interface]
+    stuck = sim.modes[rows, column] == Mode.STICK
+    normal, friction = sim.normal_force[rows, column], sim.friction_force[rows, column]
     a = sim.scene.arrays
     u_rate = sim.slip_velocity(interface)[rows]
     figure = Figure(figsize=(11, 7.5), layout="constrained")
@@ -418,8 +423,8 @@ def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
         law = face.friction
         axes["law"].plot(speeds, [law(abs(s)) * np.sign(s) for s in speeds], lw=0.8,
                          color="k", label="μ(|v|) sgn v")
-        axes["law"].axhline(a.static_mu[interface], color="0.5", lw=0.6, ls=":")
-        axes["law"].axhline(-a.static_mu[interface], color="0.5", lw=0.6, ls=":")
+        axes["law"].axhline(a.static_mu[column], color="0.5", lw=0.6, ls=":")
+        axes["law"].axhline(-a.static_mu[column], color="0.5", lw=0.6, ls=":")
     axes["law"].set(xlabel="slip velocity v [m/s]", ylabel="f / N",
                     title=f"friction on {left}–{right}")
     axes["law"].legend(loc="lower right", fontsize="small")
@@ -441,6 +446,42 @@ def hysteresis_loops(loops: Mapping[str, HysteresisLoop], *, title: str = "",
              ylabel="friction force f [N]", title=title)
     axes.legend(fontsize="small")
     return figure
+
+
+#: The colours of a contact-state map: open, stuck, slipping (either way).
+STATE_COLOURS = ("0.93", "C1", "C0")
+
+
+def patch_map(patch: PatchHistory, *, quantity: str = "state", ax=None, title: str = ""):
+    """A patch's contacts over time (``analysis.patch_history``): one row per point pair
+    against t/T_e, coloured by its state (``quantity`` "state": open, stuck or slipping)
+    or by its normal load N_k [N] ("normal": the load distribution over the face).
+    Draws on ``ax`` (a new figure's axes if None) and returns it."""
+    from matplotlib.colors import ListedColormap
+
+    if quantity not in ("state", "normal"):
+        raise ValueError(f"patch_map.quantity must be 'state' or 'normal', got {quantity!r}")
+    if ax is None:
+        ax = Figure(figsize=(8, 1.2 + 0.3 * patch.contacts), layout="constrained").subplots()
+    phase = (patch.time - patch.time[0]) / patch.period
+    edges = np.concatenate([phase, [phase[-1] + (phase[-1] - phase[-2] if len(phase) > 1
+                                                 else 1.0)]])
+    rows = np.arange(patch.contacts + 1) - 0.5
+    if quantity == "state":
+        codes = np.where(patch.modes == Mode.OPEN, 0, np.where(patch.modes == Mode.STICK, 1, 2))
+        ax.pcolormesh(edges, rows, codes.T, cmap=ListedColormap(STATE_COLOURS), vmin=-0.5,
+                      vmax=2.5, shading="flat")
+        from matplotlib.patches import Patch
+        ax.legend(handles=[Patch(color=c, label=name) for c, name in
+                           zip(STATE_COLOURS, ("open", "stuck", "slipping"))],
+                  loc="upper right", fontsize="small", ncols=3)
+    else:
+        mesh = ax.pcolormesh(edges, rows, patch.normal.T, cmap="viridis", shading="flat")
+        ax.figure.colorbar(mesh, ax=ax, label="normal force N [N]")
+    ax.set(xlabel="t / T_e", ylabel="contact", yticks=range(patch.contacts),
+           title=title or f"interface {patch.interface}: "
+           + ("contact states" if quantity == "state" else "normal load"))
+    return ax
 
 
 def _energy(joules: float) -> str:

@@ -15,11 +15,11 @@ from functools import cached_property
 import networkx as nx
 import numpy as np
 
-from contact_laws import FrictionLaw, NormalLaw, check_real
+from contact_laws import FrictionLaw, NormalLaw, check_int, check_real
 
 from ..checked_records import check_record
 from .excitation import EngineOrderWave, Excitation, ExplicitPhases
-from .group import BLADE_POINT, BladeGroup
+from .group import BLADE_POINT, BladeGroup, Contact
 from .lowering import NO_TANGENTIAL, Layout, law_arrays, lower
 from .motion import Motion
 from .substructure import Substructure
@@ -29,7 +29,8 @@ from .substructure import Substructure
 class SceneArrays:
     """A scene as flat arrays: blades by position, interfaces by edge order.
 
-    Blade arrays have length n_blades, interface arrays length n_interfaces. ``left`` and
+    Blade arrays have length n_blades, interface arrays length n_interfaces: one entry per
+    contact (``Scene.contacts``: an interface's, or each point pair's of a patch). ``left`` and
     ``right`` hold node positions: a blade's (0 … n_blades − 1), n_blades + p for the
     prescribed-motion node ``motions[p]``, −1 for a fixed node (x ≡ 0).
     """
@@ -296,6 +297,43 @@ class Scene:
             return int(blade)
         raise ValueError(f"unknown blade {blade!r}: give a name in {names} or a position "
                          f"0..{len(names) - 1}")
+
+    @cached_property
+    def contacts(self) -> tuple[Contact, ...]:
+        """Every contact, in the order of the interface arrays (``Scene.arrays``, the
+        columns of ``Simulation.normal_force``, ``friction_force`` and ``modes``, the
+        interfaces of events): an interface's one point pair, or each pair of a patch in
+        turn (``BladeGroup.contacts``)."""
+        return tuple(self.group.contacts)
+
+    def contact_position(self, contact, owner: str = "Scene.contact_position") -> int:
+        """The column of a contact among ``contacts``: ``contact`` an interface's position
+        (0-based, in the order of ``BladeGroup.interfaces``) where the interface is one
+        point pair, or (interface, k), the k-th pair (0-based) of its patch. Messages name
+        ``owner``."""
+        contacts = self.contacts
+        count = len(self.group.interfaces)
+        if count == 0:
+            raise ValueError(f"{owner}: the scene has no interfaces")
+        if isinstance(contact, tuple) and len(contact) == 2:
+            interface, k = contact
+        else:
+            interface, k = contact, None
+        interface = check_int(owner, "interface", interface, low=0, high=count - 1)
+        first = self._first_contacts[interface]
+        pairs = contacts[first].pairs
+        if k is None:
+            if pairs > 1:
+                raise ValueError(f"{owner}: interface {interface} is a patch of {pairs} "
+                                 f"contacts; name one as ({interface}, k), k in 0..{pairs - 1}")
+            return first
+        return first + check_int(owner, "contact", k, low=0, high=pairs - 1)
+
+    @cached_property
+    def _first_contacts(self) -> np.ndarray:
+        """The column of each interface's first contact."""
+        return np.array([c for c, contact in enumerate(self.contacts) if contact.contact == 0],
+                        dtype=int)
 
     @cached_property
     def responses(self) -> tuple:

@@ -200,17 +200,20 @@ class PeriodicOrbit:
         displacement (``Simulation.slip_displacement``: the motion of its pair of points
         along the face), as ``harmonics``."""
         run = self.simulation(samples_per_period)
-        slip = run.slip_displacement(run.checked_interface(interface, "slip_harmonics"))
+        run.checked_interface(interface, "slip_harmonics")
+        slip = run.slip_displacement(interface)
         return harmonics(slip, self.periods * self.scene.excitation_period, order)
 
     def friction_losses(self, samples_per_period: int = 100) -> np.ndarray:
-        """The energy [J] each interface's friction takes per excitation period: the area
-        of its hysteresis loop (``analysis.hysteresis_loop``) over the orbit, from the
-        samples (0 where an interface has no friction)."""
+        """The energy [J] each contact's friction takes per excitation period (one per
+        interface, or per point pair of a patch: ``Scene.contacts``): the area of its
+        hysteresis loop (``analysis.hysteresis_loop``) over the orbit, from the samples
+        (0 where a contact has no friction)."""
         run = self.simulation(samples_per_period)
-        return np.array([hysteresis_loop(run, e, 0).area_per_cycle()
-                         if law is not None else 0.0
-                         for e, law in enumerate(self.scene.arrays.friction_laws)])
+        return np.array([hysteresis_loop(run, (contact.interface, contact.contact),
+                                         0).area_per_cycle() if law is not None else 0.0
+                         for contact, law in zip(self.scene.contacts,
+                                                 self.scene.arrays.friction_laws)])
 
 
 #: The smallest residual Newton is asked for, relative to the state scale: a few times the
