@@ -435,7 +435,7 @@ class Solver:
             step = stroboscopic_step(scene, periods, state_parts(scene, y),
                                      method=self.method, event_tolerance=self.event_tolerance)
         else:
-            step = reduced_step(scene, self.symmetric(scene, p), np.split(y, 2),
+            step = reduced_step(scene, self.symmetric(scene, p), y,
                                 method=self.method, event_tolerance=self.event_tolerance)
         if rate is None:
             h = PARAMETER_DIFFERENCE * max(abs(p), self.span)

@@ -134,11 +134,11 @@ class PeriodicOrbit:
         values, vectors = np.linalg.eig(self.monodromy)
         order = np.argsort(-np.abs(values), kind="stable")
         vectors = vectors[:, order]
-        n = vectors.shape[0] // 2
+        n = self.scene.arrays.n_blades  # the coordinates, the stretches left out
         per_sector = n // sectors
         shapes = np.concatenate(
             [vectors[:n].reshape(sectors, per_sector, -1),
-             vectors[n:].reshape(sectors, per_sector, -1)
+             vectors[n:2 * n].reshape(sectors, per_sector, -1)
              / self.scene.arrays.excitation_frequency], axis=1)
         return nodal_diameters(shapes.reshape(2 * n, -1), sectors)
 
@@ -298,7 +298,7 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
         if cyclic is None:
             return stroboscopic_step(scene, periods, state_parts(scene, z), method=method,
                                      event_tolerance=event_tolerance)
-        return reduced_step(scene, cyclic, np.split(z, 2), method=method,
+        return reduced_step(scene, cyclic, z, method=method,
                             event_tolerance=event_tolerance, repeating=repeating)
 
     for attempt, y in enumerate(starts):
@@ -314,7 +314,7 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
         y, step = solve.state, solve.step
         if repeating:
             y = cyclic.tiled(y)
-            step = reduced_step(scene, cyclic, np.split(y, 2), method=method,
+            step = reduced_step(scene, cyclic, y, method=method,
                                 event_tolerance=event_tolerance)
         if cyclic is not None:
             step = whole_period(cyclic, step)
