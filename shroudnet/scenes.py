@@ -15,6 +15,7 @@ from contact_laws import (
     LinearSpring,
     NormalLaw,
     Stribeck,
+    check_choice,
     check_int,
     check_real,
 )
@@ -395,6 +396,8 @@ FACE_PITCH, FACE_HEIGHT, FACE_WIDTH = 4e-3, 2e-3, 6e-3
 def face_point_names(side: str, count: int) -> list[str]:
     """The names of ``faced_blade``'s ``count`` points on its ``side`` ("L" or "R")
     face: "L0" … in the order of ``faced_blade``'s grid."""
+    side = check_choice("face_point_names", "side", side, ("L", "R"))
+    count = check_int("face_point_names", "count", count, low=1, most=MAX_NODES)
     return [f"{side}{k}" for k in range(count)]
 
 
@@ -450,7 +453,8 @@ def faced_group(*, blades: int = 6, face_points: int = 9, components: int = 3,
                 tangential_stiffness: float | None = 3e5,
                 friction: FrictionLaw = Coulomb(mu=0.3), q1: float = 1.0,
                 engine_order: int = 4, blades_on_disc: int = 36,
-                damping_ratio: float = 0.02, frequency: float | None = None) -> Scene:
+                damping_ratio: float = 0.02, frequency: float | None = None,
+                tangents: int = 2) -> Scene:
     """``blades`` ``faced_blade``s face to face, as a packet (``shape`` "chain") on a disc
     of ``blades_on_disc`` or a whole ring ("ring"), each blade in its own sector frame,
     turned by 2π/N from the last (``BladeGroup.ring``, ``chain``): blade s's right face
@@ -458,9 +462,10 @@ def faced_group(*, blades: int = 6, face_points: int = 9, components: int = 3,
     share the interface's stiffnesses (``contact_stiffness`` and, unless None for rigid
     stick, ``tangential_stiffness`` [N/m] in all), so that refining the patch keeps the
     face's total. The faces are inclined at ``face`` [rad] to the tangential direction
-    about the radial one; with three components they slide in their plane (elastic stick:
-    ``tangential_stiffness`` is needed), with one along the tangential direction alone
-    (the angle form, its angle π/2 − ``face``). ``gap`` [m] (negative: a preload),
+    about the radial one; with three components they slide in their plane (``tangents``
+    2, elastic stick: ``tangential_stiffness`` is needed) or along its in-plane direction
+    of the tangential–axial plane alone (``tangents`` 1, the radial sliding free), with
+    one along the tangential direction alone (the angle form, its angle π/2 − ``face``). ``gap`` [m] (negative: a preload),
     ``friction``; engine order ``engine_order`` at ``q1`` [N] on the load points, at the
     frequency l Ω or at ``frequency`` [Hz] (``Excitation.frequency``)."""
     count = check_int("faced_group", "face_points", face_points, low=1, most=MAX_NODES)
@@ -470,18 +475,17 @@ def faced_group(*, blades: int = 6, face_points: int = 9, components: int = 3,
     tangential = None if tangential_stiffness is None else check_real(
         "faced_group", "tangential_stiffness", tangential_stiffness, low=0.0, low_open=True,
         unit="N/m") / count
+    tangents = check_int("faced_group", "tangents", tangents, low=1, high=2)
     if components == 3:
+        plane = ((0.0, -math.sin(face), math.cos(face)), (1.0, 0.0, 0.0))[:tangents]
         shroud = Interface(gap=gap, normal=LinearSpring(stiffness=normal), friction=friction,
                            normal_direction=(0.0, math.cos(face), math.sin(face)),
-                           tangent_directions=((0.0, -math.sin(face), math.cos(face)),
-                                               (1.0, 0.0, 0.0)),
-                           tangential_stiffness=tangential)
+                           tangent_directions=plane, tangential_stiffness=tangential)
     else:
         shroud = Interface(gap=gap, angle=math.pi / 2 - face, normal=LinearSpring(
             stiffness=normal), friction=friction, tangential_stiffness=tangential)
     faces = (face_point_names("L", count), face_point_names("R", count))
-    if shape not in ("chain", "ring"):
-        raise ValueError(f"faced_group.shape must be 'chain' or 'ring', got {shape!r}")
+    shape = check_choice("faced_group", "shape", shape, ("chain", "ring"))
     blades = check_int("faced_group", "blades", blades, low=1 if shape == "chain" else 3,
                        most=MAX_NODES)
     if shape == "ring":

@@ -409,8 +409,9 @@ class BladeGroup:
             self.graph.add_node(name, blade=body, motion=None)
             components = _face_components(body, at[s])
             if turns is not None and components in (2, 3):
-                self.graph.nodes[name]["frame"] = _rows(
-                    sector_frame(2.0 * math.pi * s / turns, components))
+                self.graph.nodes[name]["frame"] = _frame(
+                    f"{owner}: blade {name!r}",
+                    sector_frame(2.0 * math.pi * s / turns, components), body)
         self._add_edges(pairs, interface, kind, edges)
 
     @classmethod
