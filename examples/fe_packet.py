@@ -159,10 +159,7 @@ def report(packet: Packet):
               f"{peak[top] * 1e6:.2f} µm at {branch.parameter[top]:.1f} rpm, friction "
               f"{friction_share(branch, top):.0%} of the loss there, ζ_eq "
               f"{branch.equivalent_damping[top]:.4f}")
-        shift = branch.frequency_shift(RESPONSE)
-        print(f"  resonance at {shift.peak:.1f} Hz: the linear limits' at {shift.open:.1f} "
-              f"Hz (open) and {shift.stuck:.1f} Hz (stuck); {shift.stiffening:.0%} of the "
-              "way from open to stuck")
+        print(f"  {branch.frequency_shift(RESPONSE)}")
         switches = sum(b.kind in ("grazing", "stick-slip") for b in branch.bifurcations)
         print(f"  {switches} changes of the switch sequence (grazing, stick-slip)")
         for b in branch.bifurcations:

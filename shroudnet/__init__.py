@@ -56,6 +56,7 @@ from .engine.codes import EventKind as EventKind
 from .engine.codes import Mode as Mode
 from .front.studies import mistuning_study as mistuning_study
 from .front.studies import sweep as sweep
+from .front.studies import sweep_map as sweep_map
 from .linear.modes import GroupCampbell as GroupCampbell
 from .linear.modes import LinearModes as LinearModes
 from .linear.modes import group_campbell as group_campbell
@@ -97,10 +98,16 @@ from .run.simulation import Simulation as Simulation
 from .run.simulation import SimulationError as SimulationError
 from .run.simulation import Sweep as Sweep
 from .run.simulation import SweepFailure as SweepFailure
+from .run.simulation import SweepMap as SweepMap
 from .run.simulation import SweepPoint as SweepPoint
 from .steady.continuation import Bifurcation as Bifurcation
 from .steady.continuation import Branch as Branch
 from .steady.continuation import continuation as continuation
+from .steady.harmonic.balance import harmonic_balance as harmonic_balance
+from .steady.harmonic.certificate import Certificate as Certificate
+from .steady.harmonic.certificate import certify as certify
+from .steady.harmonic.continuation import harmonic_continuation as harmonic_continuation
+from .steady.harmonic.orbit import HarmonicOrbit as HarmonicOrbit
 from .steady.orbits import ConvergenceError as ConvergenceError
 from .steady.orbits import PeriodicOrbit as PeriodicOrbit
 from .steady.orbits import periodic_orbit as periodic_orbit
@@ -132,6 +139,11 @@ __all__ = [
     "Bifurcation",
     "Branch",
     "continuation",
+    "Certificate",
+    "certify",
+    "harmonic_balance",
+    "harmonic_continuation",
+    "HarmonicOrbit",
     "Coupling",
     "stick_clusters",
     "Assembly",
@@ -180,6 +192,8 @@ __all__ = [
     "SimulationError",
     "Sweep",
     "SweepFailure",
+    "SweepMap",
     "SweepPoint",
     "sweep",
+    "sweep_map",
 ]

@@ -23,7 +23,8 @@ from contact_laws import (
 from .model.beam import cantilever_beam
 from .model.blade import Blade, Southwell
 from .model.coupling import Coupling
-from .model.excitation import NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation, PhasePattern
+from .model.excitation import (NO_EXCITATION, AntiPhase, EngineOrderWave, Excitation,
+                               ExplicitPhases, PhasePattern)
 from .model.group import BladeGroup
 from .model.interface import Interface
 from .model.motion import ConstantVelocity
@@ -498,3 +499,57 @@ def faced_group(*, blades: int = 6, face_points: int = 9, components: int = 3,
     return Scene(group=group, speed_rpm=speed_rpm, excitation=Excitation(
         engine_order=engine_order, amplitudes=(0.0, q1), phases=phases, frequency=frequency))
 
+
+@_named_arguments
+def jenkins_chain(*, q1: float = 20.0, frequency: float = 12.0,
+                  tangential_stiffness: float = 2e4, normal_force: float = 30.0,
+                  mu: float = 0.3) -> Scene:
+    """The 2-DOF friction-damped chain of the harmonic-balance literature: masses of 1 and
+    0.5 kg on springs of 1e4 and 5e3 N/m to ground (dampers 2 and 1 N·s/m), joined by
+    8e3 N/m (0.5 N·s/m); the first rubs on the ground through a Jenkins element
+    (``tangential_stiffness`` k_t [N/m], Coulomb ``mu``, a constant ``normal_force``
+    [N]), both forced in phase by ``q1`` [N] at ``frequency`` [Hz]. At the defaults it
+    sticks and slips twice a cycle."""
+    group = BladeGroup().add_blade("a", Blade(mass=1.0, damping=2.0, stiffness=1e4))
+    group.add_blade("b", Blade(mass=0.5, damping=1.0, stiffness=5e3)).add_fixed("ground")
+    group.connect("a", "b", Coupling(stiffness=8e3, damping=0.5))
+    group.connect("a", "ground", Interface(
+        gap=0.0, angle=0.0, normal=ConstantLoad(force=normal_force), friction=Coulomb(mu=mu),
+        tangential_stiffness=tangential_stiffness))
+    check_real("jenkins_chain", "frequency", frequency, low=0.0, low_open=True, unit="Hz")
+    return Scene(group=group, speed_rpm=60.0 * frequency, excitation=Excitation(
+        engine_order=1, amplitudes=(0.0, q1), phases=ExplicitPhases((0.0, 0.0))))
+
+
+@_named_arguments
+def modal_pair(*, normal_force: float = 2.0, tangential_stiffness: float = 3e4,
+               q1: float = 3.0, speed_rpm: float = 3100.0, mu: float = 0.3) -> Scene:
+    """Two ``modal_blade``s of three modes whose 3-D shroud points meet on a face
+    inclined at 0.6 rad, pressed by a constant ``normal_force`` [N], sliding in the face's
+    plane through a 2-D Jenkins element (``tangential_stiffness`` k_t [N/m], a circular
+    Coulomb limit ``mu``), forced in anti-phase in engine order 4 by ``q1`` [N]: at the
+    defaults it sticks and slips twice a cycle, below the first flap resonance."""
+    blade = modal_blade(dimensions=3)
+    normal = (math.cos(0.6), math.sin(0.6))
+    group = BladeGroup().add_blade("blade1", blade).add_blade("blade2", blade)
+    group.connect(("blade1", "shroud"), ("blade2", "shroud"), Interface(
+        gap=0.0, normal=ConstantLoad(force=normal_force), friction=Coulomb(mu=mu),
+        normal_direction=(*normal, 0.0),
+        tangent_directions=((-normal[1], normal[0], 0.0), (0.0, 0.0, 1.0)),
+        tangential_stiffness=tangential_stiffness))
+    return Scene(group=group, speed_rpm=speed_rpm, excitation=Excitation(
+        engine_order=4, amplitudes=(0.0, q1), phases=AntiPhase()))
+
+
+@_named_arguments
+def mass_on_stop(*, gap: float = 1e-3, normal: NormalLaw = LinearSpring(stiffness=1e5),
+                 q1: float = 20.0, frequency: float = 100.0 / (2.0 * math.pi)) -> Scene:
+    """A 1 kg mass on a 1e4 N/m spring (2 N·s/m) forced by ``q1`` [N] at ``frequency``
+    [Hz] against a rigid stop ``gap`` [m] away, the contact's ``normal`` law (a negative
+    gap presses the mass on the stop): at the defaults it hits the stop once a cycle."""
+    group = BladeGroup().add_blade("mass", Blade(mass=1.0, damping=2.0, stiffness=1e4))
+    group.add_fixed("stop").connect("mass", "stop", Interface(gap=gap, angle=math.pi / 2,
+                                                              normal=normal))
+    check_real("mass_on_stop", "frequency", frequency, low=0.0, low_open=True, unit="Hz")
+    return Scene(group=group, speed_rpm=60.0 * frequency, excitation=Excitation(
+        engine_order=1, amplitudes=(0.0, q1), phases=AntiPhase()))

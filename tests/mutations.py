@@ -52,10 +52,11 @@ SOURCE_FOLDERS = ("shroudnet", "contact_laws")
 #: the scene's model, the compiled loop (forces, events, modes), the energy ledger, the
 #: tangent flow and its saltation matrices, periodic orbits (Newton on the stroboscopic
 #: map), continuation (its bifurcation test functions), stick as constraints (the
-#: substructures' multipliers and projection) and the linear limits (the forced response
-#: with the interfaces open or stuck).
+#: substructures' multipliers and projection), the linear limits (the forced response
+#: with the interfaces open or stuck) and harmonic balance (the contacts' forces in time,
+#: the condensation onto them and Hill's matrix).
 LAYERS = ("laws", "model", "loop", "ledger", "tangent", "orbits", "continuation",
-          "constraints", "linear")
+          "constraints", "linear", "harmonic")
 
 #: Tests that check the physics, run against every mutation unless it names its own.
 PHYSICS_TESTS = (
@@ -125,6 +126,8 @@ ELASTIC_MONODROMY = ("tests/test_elastic_tangent.py::"
                      "test_monodromy_through_stick_slip_and_separation_of_2d_elastic_faces")
 ELASTIC_ORBIT = ("tests/test_elastic_tangent.py::"
                  "test_the_elastic_packets_orbit_carries_its_stretches_and_its_monodromy_agrees")
+#: Harmonic balance against closed forms, exact orbits and differences of its own forces.
+HARMONIC = "tests/test_harmonic_balance.py"
 
 
 @dataclass(frozen=True)
@@ -524,6 +527,59 @@ MUTATIONS = (
              "    constraints = a.tangent_rows[a.can_stick, :n]",
              "an elastic contact is a constraint as well as its springs: stuck frequencies "
              "ignore k_t", (ELASTIC,)),
+    # ---- harmonic: the contacts' forces in time, the condensation, Hill's matrix ---------
+    Mutation("aft-slider-limit-1.2", "harmonic",
+             "        elif size <= bound:  # stuck: the slider stays",
+             "        elif size <= 1.2 * bound:  # stuck: the slider stays",
+             "the slider holds 20 % beyond μ_s N before it slips: the series converge to "
+             "another orbit than the exact one", (HARMONIC,)),
+    Mutation("aft-open-contact-pushes", "harmonic",
+             "closed = np.flatnonzero((penetration > 0.0) | (not contact.opens))",
+             "closed = np.flatnonzero((penetration > -1.0) | (not contact.opens))",
+             "an open contact's law is read at its negative penetration: the stop pulls the "
+             "mass back", (HARMONIC,)),
+    Mutation("aft-slider-load-rate-dropped", "harmonic",
+             "                df[n, 0, p] = u0 * dlimit[n, p] + bound * d_direction[0, p]",
+             "                df[n, 0, p] = bound * d_direction[0, p]",
+             "a slipping slider's force is differentiated as if its limit μ_s N did not "
+             "move with the normal load: the Jacobian is not the forces' derivative",
+             (HARMONIC,)),
+    Mutation("aft-reversal-at-the-last-sample", "harmonic",
+             "    if s == 0.0 or s == 1.0:  # g turned back at t_{n−1}, or still rises at t_n",
+             "    if s <= 1.0:  # g turned back at t_{n−1}, or still rises at t_n",
+             "a slip that ends between samples stops the slider at the sample before: "
+             "O(h²) of the motion, the accuracy stalls near 1e-5", (HARMONIC,)),
+    Mutation("aft-regularised-slope-sign", "harmonic",
+             "rate = slope * np.sign(speed) * smooth + mu * (1.0 - smooth * smooth) / \\",
+             "rate = -slope * np.sign(speed) * smooth + mu * (1.0 - smooth * smooth) / \\",
+             "the friction's derivative in the slip velocity takes μ' with the wrong sign",
+             (HARMONIC,)),
+    Mutation("condensation-damping-sign", "harmonic",
+             "return model.stiffness - rate * rate * model.mass + 1j * rate * model.damping",
+             "return model.stiffness - rate * rate * model.mass - 1j * rate * model.damping",
+             "the dynamic compliance's damping leads the motion: every phase is mirrored",
+             (HARMONIC,)),
+    Mutation("condensation-jacobian-conjugated", "harmonic",
+             'product = np.einsum("kab,kbc->kac", self.compliance, complex_amplitudes(columns))',
+             'product = np.einsum("kab,kbc->kac", self.compliance.conj(), '
+             'complex_amplitudes(columns))',
+             "W applied to the Jacobian's columns conjugates each harmonic's compliance: "
+             "Newton's Jacobian is not the balance's", (HARMONIC,)),
+    Mutation("condensation-recovery-sign", "harmonic",
+             "        response = self.to_load - np.einsum(",
+             "        response = self.to_load + np.einsum(",
+             "the full response is recovered with the contacts pulling where they push",
+             (HARMONIC,)),
+    Mutation("hill-velocity-coupling-once", "harmonic",
+             "second = (np.kron(identity, model.damping) + 2.0 * np.kron(derivative, model.mass)",
+             "second = (np.kron(identity, model.damping) + 1.0 * np.kron(derivative, model.mass)",
+             "Hill's λ-term takes ṗ once, not 2λṗ: the exponents are not the Floquet ones",
+             (HARMONIC,)),
+    Mutation("hill-contacts-left-out", "harmonic",
+             "             + rows.T @ contact_jacobian @ rows)",
+             "             + 0.0 * rows.T @ contact_jacobian @ rows)",
+             "Hill's matrix leaves out the contacts' stiffness: the multipliers are the open "
+             "structure's", (HARMONIC,)),
 )
 
 

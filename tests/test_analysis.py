@@ -88,7 +88,8 @@ def test_classifier_inputs_are_checked():
         classify_section(np.zeros((1, 2)))
     with pytest.raises(ValueError, match="not finite"):
         classify_section(np.array([[0.0, 1.0], [np.nan, 1.0]]))
-    assert math.isnan(zero_one_test(np.arange(10.0)))
+    with pytest.raises(ValueError, match=r"zero_one_test\.series needs at least 50 entries"):
+        zero_one_test(np.arange(10.0))
     with pytest.raises(ValueError, match="window must be"):
         amplitude_spectrum(np.arange(8.0), 4, window="flat")
 

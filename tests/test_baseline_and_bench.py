@@ -70,7 +70,7 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
     for heading in ("0. First run", "1. Integration speed", "2. Effects", "3. Against plain",
                     "4. Sweeps", "Fig. 6-class diagram", "peak resident memory",
                     "5. The tangent flow", "6. Steady states", "8. Tuned rings",
-                    "wall time of the benchmark"):
+                    "9. Harmonic balance", "10. GPU batches", "wall time of the benchmark"):
         assert heading in out
     for wall, compiling in figures(rf"\): {N} s, of which {N} s compiling$", out, 2):
         assert 0.0 <= compiling <= wall

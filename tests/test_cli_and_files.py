@@ -78,9 +78,9 @@ def test_every_shipped_scene_saves_from_python_and_loads_back_equal(preset, tmp_
         np.testing.assert_array_equal(getattr(built, field), getattr(original, field))
     assert scenefile.load(scenefile.save(tmp_path / "swapped.toml", scene)).scene.blades \
         == scene.blades
-    with pytest.raises(TypeError, match="scenefile.save needs a shroudnet.Scene"):
+    with pytest.raises(TypeError, match=r"scenefile\.save\.scene must be a shroudnet\.Scene"):
         scenefile.save(tmp_path / "x.toml", "scene")
-    with pytest.raises(TypeError, match="needs a path"):
+    with pytest.raises(TypeError, match=r"scenefile\.save\.path must be a path"):
         scenefile.save(scene, 5)
 
 

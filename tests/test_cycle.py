@@ -96,6 +96,28 @@ def test_a_branch_carries_the_content_and_the_figure_draws_any_of_it(tmp_path):
         forced_response({"up": branch}, "b", quantity="colour")
 
 
+def test_the_frequency_shift_says_when_the_branch_peaks_at_its_end():
+    """Below resonance a linear blade's amplitude rises all the way, so the branch's
+    largest is its last point: flagged and said. The linear limits (no interface: all
+    three one) peak at the damped resonance ω_n √(1 − 2ζ²), ζ = c/(2 m ω_n). Across the
+    resonance the branch's largest amplitude is inside it, there within its spacing."""
+    def blade(speed):
+        return single_blade(speed_rpm=speed, amplitudes=(Q0, Q1), damping=DAMPING)
+
+    zeta = DAMPING / (2 * MASS * NATURAL)
+    resonance = NATURAL * math.sqrt(1 - 2 * zeta ** 2) / (2 * math.pi)
+    rising = sn.continuation(blade, rpm(0.7 * NATURAL), rpm(0.8 * NATURAL), max_points=3)
+    shift = rising.frequency_shift("b")
+    assert shift.at_end and "at its end" in str(shift)
+    assert shift.peak == pytest.approx(rising.parameter[-1] / 60.0, rel=1e-12)
+    assert shift.open == shift.stuck == shift.closed == pytest.approx(resonance, rel=1e-5)
+    assert math.isnan(shift.stiffening)
+    across = sn.continuation(blade, rpm(0.9 * NATURAL), rpm(1.1 * NATURAL))
+    shift = across.frequency_shift("b")
+    assert not shift.at_end and "at its end" not in str(shift)
+    assert shift.peak == pytest.approx(resonance, rel=0.01)
+
+
 @pytest.mark.slow
 def test_the_frequency_shift_places_a_stuck_pairs_peak_at_its_stuck_resonance():
     """Two blades forced in phase through a preloaded contact that never slips: the pair
@@ -116,7 +138,7 @@ def test_the_frequency_shift_places_a_stuck_pairs_peak_at_its_stuck_resonance():
     stuck = math.sqrt(3e5 / 0.4) / (2 * math.pi)
     branch = sn.continuation(pair, 60 * 0.9 * stuck, 60 * 1.1 * stuck, max_step=0.05)
     shift = branch.frequency_shift("a")
-    assert shift.stuck == pytest.approx(stuck, rel=1e-3)
+    assert shift.stuck == shift.closed == pytest.approx(stuck, rel=1e-3)  # preloaded
     assert shift.open == pytest.approx(math.sqrt(1e5 / 0.1) / (2 * math.pi), rel=1e-3)
     assert shift.peak == pytest.approx(stuck, rel=5e-3)
     assert shift.stiffening == pytest.approx(1.0, abs=0.02)

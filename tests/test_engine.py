@@ -28,7 +28,7 @@ from contact_laws import (
     Stribeck,
     check_real,
 )
-from shroudnet import Mode, Simulation, simulate
+from shroudnet import Mode, Simulation, atomic, simulate
 from shroudnet.engine import cache, codes, generate, locate, tableau
 from shroudnet.engine.cache import cache_size, clear_cache
 from shroudnet.engine.clusters import cluster_labels
@@ -471,7 +471,7 @@ def test_a_write_the_system_refuses_is_told_as_the_cache_folders(tmp_path, monke
     def refuse(*args, **kwargs):
         raise OSError(30, "Read-only file system")
     monkeypatch.setenv("SHROUDNET_CACHE", str(tmp_path))
-    monkeypatch.setattr(cache.tempfile, "NamedTemporaryFile", refuse)
+    monkeypatch.setattr(atomic.tempfile, "mkstemp", refuse)
     with pytest.raises(ValueError, match=r"SHROUDNET_CACHE=.*: cannot write there "
                                          r"\(Read-only file system\)"):
         cache.keep("kernel_x.py", "x = 1")

@@ -1,8 +1,12 @@
-"""Examples and the README's code run as they are shown, and compute what they claim.
+"""Examples, the README's code and the documentation's run as they are shown, and compute
+what they claim.
 
 Each example runs with arguments small enough for a test, saves its figures in a temporary
 folder (never in the source tree), and its result is checked against what physics or the
-example's own definition fixes, not against numbers taken from an earlier run.
+example's own definition fixes, not against numbers taken from an earlier run. The
+documentation's pages are checked too: every Python block of the README and of the pages
+in docs/ runs, every public name is in the API reference, and every gallery figure is on
+the gallery page and made by an example.
 """
 
 import importlib.util
@@ -15,17 +19,116 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import contact_laws
+import shroudnet
+
 ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
 LABEL = re.compile(r"p\d+|quasi-periodic|chaotic|undetermined")
 
+#: A Python block of a page, with the comment that may stand on the line before it.
+BLOCK = re.compile(r"(<!--[^\n]*-->\n)?```python\n(.*?)```", re.S)
+#: The comment that shows a block without running it; it must say why, after the colon.
+NOT_RUN = re.compile(r"<!-- shown, not run: \S.* -->\n")
 
-@pytest.mark.slow  # some 12 s: a continuation, a Lyapunov run, a local dask cluster
-def test_readme_python_blocks_run():
-    """Each block as it runs pasted into a script of its own (``__name__ == "__main__"``)."""
-    blocks = re.findall(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re.S)
-    assert blocks
-    for block in blocks:
-        exec(compile(block, "README.md", "exec"), {"__name__": "__main__"})
+
+def pages() -> list[Path]:
+    """The README and every Markdown page of the site (not what a build leaves)."""
+    return [ROOT / "README.md", *sorted(path for path in DOCS.rglob("*.md")
+                                         if "_build" not in path.parts)]
+
+
+def python_blocks(page: Path) -> list[str]:
+    """The Python blocks of ``page`` that run: all but those marked as shown, not run."""
+    blocks = []
+    for comment, block in BLOCK.findall(page.read_text()):
+        if comment and NOT_RUN.fullmatch(comment):
+            continue
+        assert not comment, f"{page.name}: a comment before a block must read " \
+                            f"'<!-- shown, not run: why -->', got {comment!r}"
+        blocks.append(block)
+    return blocks
+
+
+#: Pages whose blocks take over 10 s together on two busy cores, or compile a kernel of
+#: their own on a fresh cache (fixed steps, the tangent flow, substructures), or start a
+#: dask cluster. The others run in a second or two on the shared kernel.
+SLOW_PAGES = {"docs/guide/simulating.md", "docs/guide/stability.md",
+              "docs/guide/steady-states.md", "docs/guide/fe-blades.md",
+              "docs/guide/discs-and-mistuning.md", "docs/guide/scale.md"}
+
+
+def page_parameters() -> list:
+    """Each page as a test parameter named by its path, marked slow where it is."""
+    parameters = []
+    for page in pages():
+        name = page.relative_to(ROOT).as_posix()
+        marks = [pytest.mark.slow] if name in SLOW_PAGES else []
+        parameters.append(pytest.param(page, id=name, marks=marks))
+    return parameters
+
+
+@pytest.mark.parametrize("page", page_parameters())
+def test_a_pages_python_blocks_run(page, tmp_path, monkeypatch):
+    """Each block as it runs pasted into a script of its own (``__name__ ==
+    "__main__"``), in an empty folder holding the repository's examples/, as a
+    checkout's root does: what a block writes is thrown away."""
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    monkeypatch.chdir(tmp_path)
+    for block in python_blocks(page):
+        exec(compile(block, str(page), "exec"), {"__name__": "__main__"})
+
+
+def test_the_readme_and_the_guide_show_python_that_runs():
+    """The pages that teach by code have blocks that run (none left out by mistake)."""
+    for name in ("README.md", "getting-started.md", "simulating.md", "analysis.md",
+                 "stability.md", "steady-states.md", "fe-blades.md",
+                 "discs-and-mistuning.md", "prescribed-motion.md", "files.md", "scale.md"):
+        page = next(path for path in pages() if path.name == name)
+        assert python_blocks(page), name
+
+
+def referenced_names() -> set[str]:
+    """Every name an autosummary of the API reference lists, qualified by the module
+    current where it stands."""
+    names, module = set(), ""
+    for page in sorted((DOCS / "reference").glob("*.rst")):
+        listing = False
+        for line in page.read_text().splitlines():
+            if line.startswith(".. currentmodule::"):
+                module = line.split("::")[1].strip()
+            elif line.startswith(".. autosummary::"):
+                listing = True
+            elif listing and line.startswith("   ") and not line.strip().startswith(":"):
+                names.add(f"{module}.{line.strip()}")
+            elif listing and line.strip() and not line.startswith("   "):
+                listing = False
+    return names
+
+
+def test_every_public_name_is_in_the_api_reference():
+    listed = referenced_names()
+    for package in (shroudnet, contact_laws):
+        missing = [name for name in package.__all__
+                   if f"{package.__name__}.{name}" not in listed]
+        assert not missing, f"not in docs/reference: {missing}"
+    for module in ("scenes", "scenefile", "results", "front.figures"):
+        assert f"shroudnet.{module}" in listed
+
+
+def test_every_gallery_figure_is_shown_and_made_by_an_example():
+    gallery = (DOCS / "gallery.md").read_text()
+    made = {figure for _, figures, _ in EXAMPLES.values() for figure in figures}
+    for figure in sorted((DOCS / "gallery").glob("*.png")):
+        assert f"(gallery/{figure.name})" in gallery, figure.name
+        assert figure.name in made, f"{figure.name}: no example in EXAMPLES saves it"
+
+
+def test_the_site_builds_by_the_command_the_readme_and_ci_give():
+    command = "python -m sphinx -W -b html docs docs/_build/html"
+    assert command in (ROOT / "README.md").read_text()
+    assert command in (ROOT / ".ci" / "run").read_text()
+    assert "docs/_build/" in (ROOT / ".gitignore").read_text().splitlines()
 
 
 def load_example(name: str):
@@ -205,7 +308,8 @@ def check_bladed_disc(example, result, arguments):
         assert result.stuck.of_diameter(nd)[0] > result.open.of_diameter(nd)[0]
     branch = result.branch
     assert branch.parameter[0] == example.CURVE[0] and np.all(np.diff(branch.parameter) > 0)
-    assert len(branch) == arguments["max_points"]
+    # every point asked for, unless the branch ended where asked (steps move by rounding)
+    assert len(branch) == arguments["max_points"] or branch.ended.startswith("reached p")
     factors = result.mistuning.amplification
     assert factors.shape == (arguments["samples"],) and np.all(factors > 0.0)
     assert result.mistuning.patterns.shape == (arguments["samples"], 24)
@@ -230,13 +334,23 @@ def check_belt_stick_slip(example, result, arguments):
     assert abs(ledger.residual) < 1e-6 * ledger.excitation_work
 
 
+def check_harmonic_balance_packet(example, result, arguments):
+    """Every series converged; the curves approach the exact orbits (independent shooting)
+    as H grows, H = 7 within 1e-3 of them; each curve was timed."""
+    assert all(result.converged.values())
+    assert len(result.exact) == arguments["speeds"] and np.all(result.exact > 0.0)
+    assert result.error(7) < result.error(1) and result.error(7) <= 1e-3
+    assert all(seconds > 0.0 for seconds in result.seconds.values())
+
+
 #: Each example: arguments small enough for a test, the figures it must save, its check.
 STUDY = {"transient": 20, "record": 10, "steady": 10}
 EXAMPLES = {
     "paper_scene": ({}, [], check_paper_scene),
     "paper_three_blade": ({"periods": 20, "skip": 10}, [], check_paper_three_blade),
     "fig06_11_stiffness_ratio": ({"values": 4, **STUDY},
-                                 ["fig06_bifurcation_gamma1.png", "fig11_gamma1_8.8.png"],
+                                 ["fig06_bifurcation_gamma1.png", "fig08_gamma1_3.5.png",
+                                  "fig11_gamma1_8.8.png"],
                                  check_paper_study),
     "fig12_15_rotating_speed": ({"values": 3, **STUDY},
                                 ["fig12_bifurcation_speed.png", "fig15_speed_5990.png"],
@@ -267,6 +381,8 @@ EXAMPLES = {
     "fe_packet_elastic": ({"speeds": 8, "transient": 20, "record": 3, "loop_transient": 10},
                           ["fe_packet_elastic_response.png", "fe_packet_elastic_loops.png"],
                           check_fe_packet_elastic),
+    "harmonic_balance_packet": ({"speeds": 3}, ["harmonic_balance_packet.png"],
+                                check_harmonic_balance_packet),
     "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
                                 ["fig21_energy_density_gamma1.png",
                                  "fig22_energy_density_gap.png",
@@ -274,8 +390,9 @@ EXAMPLES = {
 }
 
 
-#: Examples that take over 10 s even at a test's size: the 24-sector disc's branch.
-SLOW_EXAMPLES = {"bladed_disc"}
+#: Examples that take over 10 s even at a test's size: the 24-sector disc's branch, and
+#: the exact orbits of the elastic packet that certify its harmonic balance (some 15 s).
+SLOW_EXAMPLES = {"bladed_disc", "harmonic_balance_packet"}
 
 
 @pytest.mark.parametrize("name", [pytest.param(name, marks=pytest.mark.slow)

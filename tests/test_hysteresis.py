@@ -77,3 +77,15 @@ def test_an_interface_that_is_not_there_is_refused_by_name(interface):
             method(interface)
     with pytest.raises((TypeError, ValueError), match="hysteresis_loop.interface"):
         sn.hysteresis_loop(sim, interface, 0)
+
+
+def test_a_whole_float_skip_reads_the_same_cycles_as_its_int():
+    """``skip`` may be a float of integral value (as every reading of a steady response
+    takes it): the loop's cycles and the loss per cycle are those of the int."""
+    sim = sn.simulate(SCENES["paper group, sticking"], 3, samples_per_period=50)
+    for skip in (0, 2):
+        loop, same = sn.hysteresis_loop(sim, 0, float(skip)), sn.hysteresis_loop(sim, 0, skip)
+        assert type(loop.cycles) is int and loop.cycles == 3 - skip
+        assert loop.area_per_cycle() == same.area_per_cycle()
+        assert sn.friction_loss_per_cycle(sim, float(skip)) == \
+            sn.friction_loss_per_cycle(sim, skip)

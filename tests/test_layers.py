@@ -12,25 +12,27 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "shroudnet"
 
-_COMPUTATION = ("checked_records", "model", "engine", "run", "linear", "analysis", "steady",
-                "studies")
+_COMPUTATION = ("checked_records", "machine", "model", "engine", "run", "linear", "analysis",
+                "steady", "studies")
 #: What each part of the package may import (besides itself): its layer and the layers
 #: below it, by the first part of a module's dotted name ("" is the package itself).
 ALLOWED = {
     "checked_records": set(),
-    "model": {"checked_records"},
-    "engine": {"checked_records", "model"},
-    "run": {"checked_records", "model", "engine"},
+    "atomic": set(),
+    "machine": set(),
+    "model": {"checked_records", "machine"},
+    "engine": {"checked_records", "atomic", "model"},
+    "run": {"checked_records", "machine", "model", "engine"},
     "linear": {"checked_records", "model", "engine"},
     "analysis": {"checked_records", "model", "engine", "run"},
     "steady": {"checked_records", "model", "engine", "run", "linear", "analysis"},
     "studies": {"checked_records", "model", "scenes", "engine", "run", "linear", "analysis",
                 "steady"},
-    "io": {*_COMPUTATION},
+    "io": {*_COMPUTATION, "atomic"},
     "scenes": {"checked_records", "model"},
     # The independent references share no code with the engine: its enums at most.
     "references": {"model", "engine.codes"},
-    "front": {*_COMPUTATION, "io", "scenes", "references"},
+    "front": {*_COMPUTATION, "atomic", "io", "scenes", "references"},
     "results": {"io"},
     "scenefile": {"io"},
     "__main__": {"front"},

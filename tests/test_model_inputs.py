@@ -109,7 +109,7 @@ def test_group_presets_take_numpy_counts_and_refuse_others():
     (lambda: FixedStep(steps_per_period=True), TypeError,
      r"FixedStep\.steps_per_period must be an int, got bool"),
     (lambda: FixedStep(steps_per_period=4), ValueError,
-     r"FixedStep\.steps_per_period must be an int >= 8, got 4"),
+     r"FixedStep\.steps_per_period must be an int >= 8 and <= 1000000, got 4"),
     (lambda: ZenoGuard(events=2.5), TypeError, r"ZenoGuard\.events must be an int, got float"),
     (lambda: Excitation(engine_order=2.0, amplitudes=(0.0,), phases=AntiPhase()), TypeError,
      r"Excitation\.engine_order must be an int, got float 2\.0"),

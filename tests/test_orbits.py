@@ -271,8 +271,8 @@ def test_a_period_doubling_starts_a_doubled_branch_that_a_transient_lands_on():
 
 def test_the_papers_resonance_loses_period_one_at_a_torus_bifurcation():
     """Below about 6120 rpm the period-1 orbit of the paper's group has a complex pair of
-    multipliers outside the unit circle: the quasi-periodic motion of the README's
-    5990 rpm case."""
+    multipliers outside the unit circle: the quasi-periodic motion of the
+    paper's 5990 rpm case (docs/guide/analysis.md)."""
     branch = continuation(lambda rpm: three_blade_paper(speed_rpm=rpm), 5900.0, 6400.0)
     (torus,) = [b for b in branch.bifurcations if b.kind == "torus"]
     assert abs(abs(torus.multiplier) - 1.0) <= 1e-6 and abs(torus.multiplier.imag) > 0.1

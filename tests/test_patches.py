@@ -337,8 +337,8 @@ def test_a_patchs_history_gives_its_contact_state_map_and_load_distribution():
     expected = np.trapezoid(sim.normal_force[100:], sim.t[100:], axis=0)
     assert np.allclose(loads, expected / expected.sum(), rtol=1e-12)
     from shroudnet.front.figures import patch_map
-    ax = patch_map(patch)
-    assert ax.get_ylabel() == "contact" and ax.figure is not None
-    assert patch_map(patch, quantity="normal", ax=ax) is ax
-    with pytest.raises(ValueError, match=r"patch_map.quantity must be 'state' or 'normal'"):
+    figure = patch_map(patch)
+    assert figure.axes[0].get_ylabel() == "contact"
+    assert patch_map(patch, quantity="normal", ax=figure.axes[0]) is figure.axes[0]
+    with pytest.raises(ValueError, match=r"patch_map.quantity"):
         patch_map(patch, quantity="pressure")

@@ -107,6 +107,26 @@ def swept():
                            progress=None)
 
 
+def map_at(speed: float, q1: float) -> Scene:
+    return scenes.three_blade_paper(gap=1.0, speed_rpm=speed, q1=q1)
+
+
+@functools.cache
+def mapped():
+    return shroudnet.sweep_map(map_at, [6000.0], [40.0], transient=1, record=3, workers=1,
+                               progress=None)
+
+
+@functools.cache
+def harmonic_orbit():
+    """The Jenkins chain's orbit by harmonic balance, three harmonics (no kernel)."""
+    return shroudnet.harmonic_balance(scenes.jenkins_chain(), 3)
+
+
+def chain_at(frequency: float) -> Scene:
+    return scenes.jenkins_chain(frequency=frequency)
+
+
 @functools.cache
 def fe_file(folder=None) -> str:
     import tempfile
@@ -160,6 +180,15 @@ VALID = {
     "scenes.faced_blade": call(face_points=4),
     "scenes.faced_group": call(blades=2, face_points=1),
     "scenes.face_point_names": call("L", 4),
+    "scenes.jenkins_chain": call(),
+    "scenes.modal_pair": call(),
+    "scenes.mass_on_stop": call(),
+    "harmonic_balance": lazy(lambda: ((scenes.jenkins_chain(), 3), {})),
+    "harmonic_continuation": lazy(lambda: ((chain_at, 11.0, 11.2, 3),
+                                           dict(max_points=2, stability=False))),
+    "HarmonicOrbit": record(harmonic_orbit),
+    "certify": lazy(lambda: ((harmonic_orbit(),), {})),
+    "Certificate": record(lambda: shroudnet.certify(harmonic_orbit())),
     "Campbell": record(lambda: shroudnet.campbell(scenes.paper_frequency_model(),
                                                   [0.0, 6000.0])),
     "Spectrum": record(lambda: shroudnet.amplitude_spectrum(np.sin(np.arange(64.0)), 8)),
@@ -245,6 +274,9 @@ VALID = {
     "SweepPoint": record(lambda: swept().points[0]),
     "sweep": lazy(lambda: ((scene_at, [6000.0]), dict(transient=1, record=3, workers=1,
                                                      progress=None))),
+    "SweepMap": record(mapped),
+    "sweep_map": lazy(lambda: ((map_at, [6000.0], [40.0]), dict(transient=1, record=3,
+                                                               workers=1, progress=None))),
     "contact_laws.check_array": call("Owner", "value", [1.0], shape=(None,)),
     "contact_laws.check_callable": call("Owner", "value", print),
     "contact_laws.check_calls_with": call("Owner", "value", max, 2, expected="max(a, b)"),
@@ -290,7 +322,6 @@ ONLY_ARGUMENTS = {
 
 #: Doors whose result may hold NaN by their documented contract.
 DOCUMENTED_NAN = {
-    "zero_one_test": "K is NaN below 50 points, as its docstring says",
     **{f"contact_laws.check_{kind}": "returns the value it checks as given: its type, "
                                      "callability or membership is all it checks"
        for kind in ("callable", "calls_with", "choice", "instance", "sequence")},
@@ -368,9 +399,11 @@ WALKED = sorted(name for name in DOORS if name in VALID and name not in NOT_INPU
 #: Doors that run the dynamics are walked with fewer examples: each example is a short run.
 SLOW = {"simulate", "periodic_orbit", "continuation", "lyapunov", "monodromy",
         "mistuning_study", "sweep", "Branch", "MistuningStudy", "Sweep", "SweepPoint",
+        "sweep_map", "SweepMap",
         "LyapunovExponents", "PeriodicOrbit", "Simulation", "classify", "spectrum",
         "hysteresis_loop", "friction_loss_per_cycle", "Bifurcation", "Scene",
-        "scenes.bladed_disc_24", "scenes.beam_pair", "scenes.modal_packet"}
+        "scenes.bladed_disc_24", "scenes.beam_pair", "scenes.modal_packet",
+        "harmonic_continuation", "certify", "Certificate", "scenes.modal_pair"}
 
 CASES = {"generated": 0}
 

@@ -136,7 +136,7 @@ def replacing(name, value):
 
 
 @pytest.mark.parametrize("change, message", [
-    (replacing("format", 99), r"results format 99; this shroudnet reads format 1"),
+    (replacing("format", 99), r"results format 99; this shroudnet reads formats 1 and 2"),
     (replacing("kind", "sweep point"), r"holds a 'sweep point', not a simulation"),
     (without("energy"), r"its meta header has no 'energy'"),
     (replacing("energy", {"excitation_work": 1.0}),
@@ -245,7 +245,8 @@ def test_saving_under_a_file_or_onto_a_folder_is_refused_by_name(saved, tmp_path
 # ---- a run whose law was defined in a script ----------------------------------------------
 
 SCRIPT = '''
-"""The README's own law, defined in the script that runs it."""
+"""The guide's own law (docs/guide/scenes-and-laws.md), defined in the script that runs
+it."""
 import sys
 from dataclasses import dataclass
 
@@ -436,10 +437,10 @@ def test_points_from_before_fingerprints_still_resume(tmp_path, whole):
     assert_same(resumed, whole)
 
 
-def test_the_script_in_this_file_is_what_the_readme_shows():
-    readme = (ROOT / "README.md").read_text()
+def test_the_script_in_this_file_is_what_the_guide_shows():
+    guide = (ROOT / "docs" / "guide" / "scenes-and-laws.md").read_text()
     law = SCRIPT[SCRIPT.index("@dataclass"):SCRIPT.index("\n\n\nsim = ")]
-    assert textwrap.dedent(law) in readme
+    assert textwrap.dedent(law) in guide
 
 
 def test_without_a_reporter_a_damaged_point_is_a_warning(tmp_path, whole):

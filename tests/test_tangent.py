@@ -593,7 +593,7 @@ def test_the_papers_chaotic_case_has_a_positive_exponent_beyond_its_error():
 
 # ---- classification by λ_max ----------------------------------------------------------------
 
-ELEVEN = {  # the paper's chosen points (README, "The paper's claims beside shroudnet's")
+ELEVEN = {  # the paper's chosen points (docs/guide/analysis.md, the paper's claims)
     "γ1 = 1": {"gamma1": 1.0}, "γ1 = 3.5": {"gamma1": 3.5}, "γ1 = 5.31": {"gamma1": 5.31},
     "γ1 = 6": {"gamma1": 6.0}, "γ1 = 8.8": {"gamma1": 8.8}, "5030 rpm": {"speed_rpm": 5030.0},
     "5790 rpm": {"speed_rpm": 5790.0}, "5990 rpm": {"speed_rpm": 5990.0},

@@ -32,7 +32,7 @@ from ..run.classification import (
     Classification,
 )
 from ..run.methods import Adaptive
-from ..run.simulation import Simulation, steady_rows
+from ..run.simulation import Simulation, steady_rows, steady_skip
 from .stability import LYAPUNOV_BLOCKS, LyapunovExponents, lyapunov
 
 
@@ -106,16 +106,16 @@ def zero_one_test(series, *, n_frequencies: int = 100, seed: int = 0) -> float:
 
     ``series`` is an observable sampled once per forcing period (a Poincaré coordinate).
     K is near 1 for chaotic dynamics and near 0 for periodic or quasi-periodic ones. It needs
-    a few hundred points; below 50 it returns NaN. The random frequencies c ∈ (π/5, 4π/5)
-    come from ``seed``, so the result is reproducible.
+    a few hundred points; fewer than ``MIN_ZERO_ONE_POINTS`` (50), from which it could not
+    tell, are refused (a ValueError naming ``zero_one_test.series``). The random
+    frequencies c ∈ (π/5, 4π/5) come from ``seed``, so the result is reproducible.
     """
-    phi = check_array("zero_one_test", "series", series, shape=(None,))
+    phi = check_array("zero_one_test", "series", series, shape=(None,),
+                      min_length=MIN_ZERO_ONE_POINTS)
     n_frequencies = check_int("zero_one_test", "n_frequencies", n_frequencies, low=1,
                               most=100_000)
     seed = check_int("zero_one_test", "seed", seed, low=0)
     n = len(phi)
-    if n < 50:
-        return math.nan
     spread = np.ptp(phi)
     if spread == 0.0:
         return 0.0
@@ -167,7 +167,7 @@ def classify_section(points, *, scale=None, tolerance: float = REPEAT_TOLERANCE,
     if period is not None:
         return Classification(f"p{period}", period, len(points), tolerance, mismatch, 0.0,
                               broadband)
-    k = zero_one_test(points[:, 0])
+    k = zero_one_test(points[:, 0]) if len(points) >= MIN_ZERO_ONE_POINTS else math.nan
     if exponent is not None:
         label, reason = exponent_label(exponent)
         return Classification(label, None, len(points), tolerance, mismatch, k, broadband,
@@ -226,8 +226,9 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
     See ``classify_section``. Distances are relative to the largest |x| and |ẋ| of the
     steady response; 2N + 1 recorded periods recognise pN. When no period repeats, the
     largest Lyapunov exponent over the recorded periods decides (``exponent_label``): it
-    is computed by ``stability.lyapunov`` from the state at ``skip`` periods, with the
-    run's rtol (the first time, that compiles the integrator with its tangent flow).
+    is computed by ``stability.lyapunov`` from the whole state at ``skip`` periods
+    (``Simulation.state``: with elastic contacts, their stretches too), with the run's
+    rtol (the first time, that compiles the integrator with its tangent flow).
     Fewer than ``stability.LYAPUNOV_BLOCKS`` recorded periods give "undetermined". With
     ``exponent=False`` the 0–1 test decides instead, as ``classify_section`` does without
     an exponent.
@@ -253,8 +254,8 @@ def classify(sim: Simulation, blade: Hashable | int, skip: int, *,
         # The tangent flow to the run's rtol; after a fixed-step run, to the default one.
         run = sim.settings.method
         rtol = run.rtol if isinstance(run, Adaptive) else Adaptive().rtol
-        result = lyapunov(sim.scene, recorded, transient=0,
-                          initial=(sim.x[start], sim.v[start]), method=Adaptive(rtol=rtol))
+        result = lyapunov(sim.scene, recorded, transient=0, initial=sim.state(start),
+                          method=Adaptive(rtol=rtol))
     return classify_section(points, scale=scale, tolerance=tolerance, max_period=max_period,
                             broadband=broadband, exponent=result)
 
@@ -295,8 +296,8 @@ def friction_loss_per_cycle(sim: Simulation, skip: int) -> float:
     """
     check_instance("friction_loss_per_cycle", "sim", sim, Simulation,
                    expected="a shroudnet.Simulation")
-    rows = steady_rows(sim, skip, "friction_loss_per_cycle")
-    work = sim.work[rows]
+    skip = steady_skip(sim, skip, "friction_loss_per_cycle")
+    work = sim.work[steady_rows(sim, skip, "friction_loss_per_cycle")]
     return float((work[-1, 2] + work[-1, 4] - work[0, 2] - work[0, 4])
                  / (sim.periods - skip))
 
@@ -347,6 +348,7 @@ def hysteresis_loop(sim: Simulation, interface, skip: int,
         raise ValueError(f"hysteresis_loop.direction = 2: {sim.scene.contacts[column]} "
                          "slides along one direction; a face that slides in its plane "
                          "takes Interface(tangent_directions=(t1, t2), ...)")
+    skip = steady_skip(sim, skip, "hysteresis_loop")
     rows = steady_rows(sim, skip, "hysteresis_loop")
     slip = sim.slip_displacement(interface, direction)[rows]
     return HysteresisLoop(slip=slip, force=sim.friction_along(interface, direction)[rows],

@@ -13,9 +13,10 @@ import numpy as np
 from contact_laws import check_instance, check_int
 
 from ..checked_records import check_record
+from ..model.lowering import from_dofs, to_dofs
 from ..model.scene import Scene
 from ..run.methods import EVENT_TOLERANCE, TRANSIENT, Accuracy, Adaptive
-from ..run.simulate import MAX_PERIODS, integrate
+from ..run.simulate import MAX_PERIODS, integrate, start_coordinates
 from ..run.simulation import SimulationError
 
 #: The default accuracy of the tangent flow: the trajectory to rtol 1e-10, so that the
@@ -43,11 +44,12 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
     periods : int
         Excitation periods of the map, ≥ 1.
     initial : (x0, v0) or (x0, v0, u0), optional
-        The start: displacements [m] and velocities [m/s] by blade position; default at
-        rest. A start with stuck interfaces has its velocities projected onto the stick
-        clusters first, and M includes that projection. With elastic contacts, (x0, v0,
-        u0) gives their springs' stretches too (``Simulation.stretches``; relaxed by
-        default); a contact that starts at its friction limit, or beyond, slips, its
+        The start: displacements [m] and velocities [m/s] by blade position (with
+        substructures, the nodes' own degrees of freedom, as ``simulate`` takes them);
+        default at rest. A start with stuck interfaces has its velocities projected onto
+        the stick clusters first, and M includes that projection. With elastic contacts,
+        (x0, v0, u0) gives their springs' stretches too (``Simulation.stretches``; relaxed
+        by default); a contact that starts at its friction limit, or beyond, slips, its
         stretch on the limit.
     method : Adaptive or Accuracy
         The accuracy of the trajectory; M is the exact derivative of the computed map.
@@ -58,8 +60,9 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
     -------
     float array (``state_size``, ``state_size``): (2 n_blades, 2 n_blades), and two more
         per elastic contact
-        Rows and columns: displacements by blade position, then velocities; with elastic
-        contacts, then their stretches.
+        Rows and columns: displacements by blade position (with substructures, the nodes'
+        own degrees of freedom), then velocities; with elastic contacts, then their
+        stretches.
 
     Raises
     ------
@@ -70,11 +73,24 @@ def monodromy(scene: Scene, periods: int = 1, initial=None, *,
     """
     check_instance("monodromy", "scene", scene, Scene, expected="a shroudnet.Scene")
     periods = check_int("monodromy", "periods", periods, low=1, most=MAX_PERIODS)
-    step = stroboscopic_step(scene, periods, initial, method=method,
-                             event_tolerance=event_tolerance)
+    step = stroboscopic_step(scene, periods,
+                             start_coordinates(scene, initial, "monodromy"),
+                             method=method, event_tolerance=event_tolerance)
     if step.singular:
         raise SimulationError(step.singular_reason("the monodromy matrix"))
-    return step.jacobian
+    return jacobian_in_dofs(scene, step.jacobian)
+
+
+def jacobian_in_dofs(scene: Scene, jacobian: np.ndarray) -> np.ndarray:
+    """A Jacobian of the stroboscopic map by the engine's coordinates (a
+    ``StroboscopicStep``'s) taken to the nodes' own degrees of freedom, T M T⁻¹ with
+    T = ``to_dofs`` on a state: its eigenvalues stay, its eigenvectors are states as a
+    user reads them. A scene of ``Blade``s gets it back as it is."""
+    layout = scene.arrays.layout
+    if layout is None or layout.identity:
+        return jacobian
+    return to_dofs(layout, jacobian @ from_dofs(layout, np.eye(len(jacobian)), axis=0),
+                   axis=0)
 
 
 def state_size(scene: Scene) -> int:
@@ -122,8 +138,8 @@ def stroboscopic_step(scene: Scene, periods: int, initial=None, *,
                       method: Adaptive | Accuracy = TANGENT_METHOD,
                       event_tolerance: float = EVENT_TOLERANCE) -> StroboscopicStep:
     """φ and its Jacobian from ``initial`` = (x0, v0) or, with elastic contacts,
-    (x0, v0, u0) (default at rest), in one run of the state with its square tangent flow.
-    Arguments as ``monodromy``."""
+    (x0, v0, u0) (default at rest), in one run of the state with its square tangent flow,
+    all by the engine's coordinates (``integrate``). Arguments as ``monodromy``."""
     size = state_size(scene)
     done = integrate(scene, periods, method=method, samples_per_period=1,
                      event_tolerance=event_tolerance, initial=initial, event_capacity=0,
@@ -194,7 +210,8 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
         How many, from the largest: 1 … ``state_size`` (2 n_blades, and two per elastic
         contact).
     initial : (x0, v0) or (x0, v0, u0), optional
-        The start of the transient, as ``monodromy`` takes it.
+        The start of the transient, as ``monodromy`` takes it (with substructures, the
+        nodes' own degrees of freedom).
     method : Adaptive or Accuracy
     event_tolerance : float
         As ``simulate``.
@@ -208,6 +225,7 @@ def lyapunov(scene: Scene, periods: int, *, transient: int = TRANSIENT, exponent
     seed = check_int("lyapunov", "seed", seed, low=0)
     size = state_size(scene)
     exponents = check_int("lyapunov", "exponents", exponents, low=1, high=size)
+    initial = start_coordinates(scene, initial, "lyapunov")
     if transient > 0:
         before = integrate(scene, transient, method=method, samples_per_period=1,
                            event_tolerance=event_tolerance, initial=initial,

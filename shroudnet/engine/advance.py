@@ -1,7 +1,9 @@
 """Advance: the parts of a Runge–Kutta step that do not evaluate forces.
 
 The Dormand–Prince dense output, moving the state to the end of a step, and recording a
-sample. The steps themselves (``kernel.step``) evaluate the scene's laws; the step-size
+sample: as a row of the run's ``records.Output``, or reduced into its
+``records.Reduction`` (``record`` picks by the output's type while compiling). The steps
+themselves (``kernel.step``) evaluate the scene's laws; the step-size
 controller is ``controller``.
 """
 
@@ -9,6 +11,8 @@ import math
 
 from .codes import N_POWERS, N_WORK
 from .compiled import njit_inlined
+from .dispatch import by_record
+from .records import Reduction
 from .tableau import DP_P, DP_STAGES, stage_sum
 
 
@@ -83,7 +87,7 @@ def is_finite(state):
 
 
 @njit_inlined
-def record(out, k, t, x, v, modes, energy, w):
+def record_row(out, k, t, x, v, modes, energy, w):
     """Sample k of the output: the state and the forces last evaluated into w."""
     out.t[k] = t
     for i in range(len(x)):
@@ -95,3 +99,37 @@ def record(out, k, t, x, v, modes, energy, w):
         out.modes[k, e] = modes[e]
     for c in range(N_WORK):
         out.energy[k, c] = energy[c]
+
+
+@njit_inlined
+def reduce_sample(out, k, t, x, v, modes, energy, w):
+    """Sample k reduced into the ``records.Reduction`` ``out``: a Poincaré point every
+    ``out.every`` samples, the extent of the response, its ∫ x² dt by the trapezoidal rule
+    (Δt (x_k² + x_{k−1}²) / 2 a sample, as ``numpy.trapezoid`` takes it) and the work
+    columns at the first and the latest sample."""
+    r = out.response
+    position, rate = x[r], v[r]
+    square = position * position
+    if k % out.every == 0:
+        row = k // out.every
+        out.poincare[row, 0] = position
+        out.poincare[row, 1] = rate
+    if k == 0:
+        out.extent[0] = abs(position)
+        out.extent[1] = abs(rate)
+        out.square[0] = 0.0
+        for c in range(N_WORK):
+            out.work[0, c] = energy[c]
+    else:
+        out.extent[0] = max(out.extent[0], abs(position))
+        out.extent[1] = max(out.extent[1], abs(rate))
+        out.square[0] += (t - out.square[1]) * (square + out.square[2]) / 2.0
+    out.square[1] = t
+    out.square[2] = square
+    for c in range(N_WORK):
+        out.work[1, c] = energy[c]
+
+
+#: Sample k of a run: a row of its ``records.Output``, or reduced into its
+#: ``records.Reduction``.
+record = by_record("record", "out", Reduction, record_row, reduce_sample)

@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import os
 import shutil
-import tempfile
 from pathlib import Path
+
+from .. import atomic
 
 _ENGINE = Path(__file__).parent
 _NUMBA_SUFFIXES = (".nbi", ".nbc")
@@ -56,13 +57,9 @@ def keep(name: str, text: str) -> Path:
         return path
     folder = checked_cache_folder()
     try:
-        folder.mkdir(parents=True, exist_ok=True)
-        with tempfile.NamedTemporaryFile("w", dir=folder, suffix=".tmp", delete=False) as f:
-            f.write(text)
-        os.replace(f.name, path)
-    except OSError as error:
-        raise _unusable(folder, f"cannot write there ({error.strerror or error})") from None
-    return path
+        return atomic.write_text(path, text)
+    except atomic.WriteError as error:
+        raise _unusable(folder, f"cannot write there ({error.strerror})") from None
 
 
 def _unusable(folder: Path, why: str) -> ValueError:

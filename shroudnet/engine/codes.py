@@ -54,12 +54,15 @@ class Status(IntEnum):
         """What stopped the run ``when`` (a time) ``where`` (an interface), and what to do.
 
         ``details`` fill the message's numbers: ``zeno_events`` and ``zeno_window``
-        [periods] for ZENO, ``smallest_step`` [periods] for STEP_TOO_SMALL and STALLED.
+        [periods] for ZENO, ``smallest_step`` [periods] for STEP_TOO_SMALL and STALLED;
+        ``fixed_step``, true for a run of the classical Runge–Kutta on a fixed grid, adds
+        its step to the suspects of NOT_FINITE (an adaptive step shrinks instead).
         """
+        suspects = _FIXED_STEP_SUSPECT if details.get("fixed_step") else ""
         return _MESSAGES[self].format(when=when, where=where, max_idle=MAX_IDLE_SWITCHES,
                                       stall_steps=STALL_STEPS,
                                       stall_step=STALL_SIZE * details.get("smallest_step", 0.0),
-                                      **details)
+                                      fixed_step_suspect=suspects, **details)
 
 
 class WorkColumn(IntEnum):
@@ -111,10 +114,9 @@ _MESSAGES = {
         "chatter across it); make the law continuous, or loosen rtol/atol."),
     Status.NOT_FINITE: (
         "the state or the forces became non-finite {when}{where}: the motion left the range "
-        "of a float there. Either a contact or friction law returned inf or NaN, or the "
-        "fixed step is too large for the stiffest contact (use Adaptive, or more steps per "
-        "period), or the scene's forces and stiffnesses grow the motion beyond 1e308 (check "
-        "their units)."),
+        "of a float there. Either a contact or friction law returned inf or NaN, "
+        "{fixed_step_suspect}or the scene's forces and stiffnesses grow the motion beyond "
+        "1e308 (check their units)."),
     Status.OVERCONSTRAINED: (
         "no consistent set of stick and slip modes {when}{where}: sticking there would tie "
         "two prescribed motions together (or a prescribed motion to a fixed node), and "
@@ -123,6 +125,10 @@ _MESSAGES = {
         "through a coupling."),
     Status.FINISHED: "the run finished {when}{where}",
 }
+
+#: What NOT_FINITE suspects besides the laws and the scene's units in a run on a fixed grid.
+_FIXED_STEP_SUSPECT = ("or the fixed step is too large for the stiffest contact (use "
+                       "Adaptive, or more steps per period), ")
 
 # The same codes as plain ints, for the compiled code.
 OPEN, STICK, SLIP_POSITIVE, SLIP_NEGATIVE = (int(m) for m in Mode)

@@ -53,6 +53,7 @@ import functools
 import hashlib
 import os
 from pathlib import Path
+from types import ModuleType
 
 from numba import njit
 from numba.core import caching
@@ -203,3 +204,29 @@ njit_inlined_callable = _flavour(**_STEP, forceinline=True)
 # a third (left to LLVM's forceinline, they compile in 95 s against 57 s).
 #: Step-path code merged into its caller.
 njit_step_merged = _flavour(**_STEP, inline="always", **_NOT_FROM_PYTHON)
+
+
+#: How long compiling each flavour of kernel takes [s of processor time], by (method,
+#: substructures, elastic contacts, tangent flow): measured from an empty cache, each in a
+#: fresh process, on a 2-core machine (``shroudnet cache --warm`` compiles them all). A
+#: kernel of laws of one's own compiles fewer effects, so a little faster.
+COMPILE_SECONDS = {
+    ("adaptive", False, False, False): 32,
+    ("adaptive", False, False, True): 79,
+    ("fixed_step", False, False, False): 40,
+    ("adaptive", True, False, False): 41,
+    ("adaptive", True, False, True): 92,
+    ("fixed_step", True, False, False): 54,
+    ("exponential", True, False, False): 70,
+    ("adaptive", True, True, False): 45,
+    ("adaptive", True, True, True): 94,
+    ("fixed_step", True, True, False): 63,
+}
+
+
+def compile_seconds(kernel: ModuleType) -> int:
+    """About how long compiling ``kernel``'s driver takes (``COMPILE_SECONDS``; the
+    longest of its method's where a flavour is not listed)."""
+    key = (kernel.METHOD, kernel.HAS_STRUCTURES, kernel.HAS_SLIDERS, kernel.TANGENT)
+    return COMPILE_SECONDS.get(key) or max(
+        seconds for flavour, seconds in COMPILE_SECONDS.items() if flavour[0] == kernel.METHOD)

@@ -7,7 +7,9 @@ the two (the interfaces' kinematics, stick as clusters or as constraints, the ta
 accelerations and the guards' gradients) are written twice, and ``by_scene`` joins each
 pair under one name: numba picks the version by the type of the scene argument while it
 compiles, and LLVM inlines the call through the join, so a scene of blades compiles and
-runs its own version alone, as before, and pays nothing for the other.
+runs its own version alone, as before, and pays nothing for the other. ``by_record``
+joins a pair the same way on any argument and record type (``advance.record``: a run's
+samples kept as rows, or reduced as they are taken).
 """
 
 import inspect
@@ -26,8 +28,13 @@ JOIN = {**STEP_OPTIONS, "forceinline": True, "no_cpython_wrapper": True}
 
 def is_structure(scene_type) -> bool:
     """Whether a numba type (or a Python value) is that of a ``StructureScene``."""
-    return (getattr(scene_type, "instance_class", None) is StructureScene
-            or isinstance(scene_type, StructureScene))
+    return is_record(StructureScene, scene_type)
+
+
+def is_record(record, value_type) -> bool:
+    """Whether a numba type (or a Python value) is that of the namedtuple class ``record``."""
+    return (getattr(value_type, "instance_class", None) is record
+            or isinstance(value_type, record))
 
 
 def by_scene(name, blades, structures):
@@ -37,17 +44,24 @@ def by_scene(name, blades, structures):
 
     Called from compiled code, the choice is made while compiling; called as plain
     Python (with numba's JIT disabled, for debugging), at run time."""
-    names = list(inspect.signature(getattr(blades, "py_func", blades)).parameters)
-    where = names.index("s")
+    return by_record(name, "s", StructureScene, blades, structures)
+
+
+def by_record(name, argument, record, usual, other):
+    """A function called ``name`` that runs ``other`` (compiled) where its argument named
+    ``argument`` is a ``record`` (a namedtuple class), else ``usual``; both take the same
+    arguments. The choice is made as ``by_scene`` makes it."""
+    names = list(inspect.signature(getattr(usual, "py_func", usual)).parameters)
+    where = names.index(argument)
     listed = ", ".join(names)
-    namespace = {"_choose": lambda *args: structures if is_structure(args[where]) else blades}
+    namespace = {"_choose": lambda *args: other if is_record(record, args[where]) else usual}
     exec(f"def {name}({listed}):\n"  # noqa: S102 - a signature, built once
          f"    return _choose({listed})({listed})\n", namespace)
     stub = namespace[name]
-    stub.__doc__ = getattr(blades, "__doc__", None)
+    stub.__doc__ = getattr(usual, "__doc__", None)
 
     def implementation(*types):
-        chosen = structures if is_structure(types[where]) else blades
+        chosen = other if is_record(record, types[where]) else usual
         local = {"_chosen": chosen}
         exec(f"def implementation({listed}):\n"  # noqa: S102
              f"    return _chosen({listed})\n", local)

@@ -42,10 +42,10 @@ from contact_laws import base as law_base
 
 from ..model.scene import Scene
 from .cache import cache_folder, keep
+from .compiled import compile_seconds
 from .header import derivative_function, has_derivative, header, law_function
 from .kernel import PHASES
 from .records import KernelScene, StructureScene
-from .regroup import fill_groups
 
 _ENGINE = Path(__file__).parent
 _PHASES = [_ENGINE / "kernel" / f"{phase}.py" for phase in PHASES]
@@ -53,14 +53,6 @@ _PHASES = [_ENGINE / "kernel" / f"{phase}.py" for phase in PHASES]
 #: The phase modules whose code is the same for every method: they never read ``ADAPTIVE``
 #: or ``EXPONENTIAL``, nor call a function of another phase (which their module lacks).
 METHOD_FREE = ("forces", "tangent", "resolve")
-
-#: About how long compiling one driver of a kernel takes on a 2-core machine [s], with
-#: the engine's own compiled code in the cache, and without (the very first run); and
-#: the driver with its tangent flow.
-COMPILE_ESTIMATE = 30
-FIRST_COMPILE_ESTIMATE = 35
-TANGENT_COMPILE_ESTIMATE = 60
-
 
 def announce(message: str) -> None:
     """Tell the user about a compile before it starts (replaceable, e.g. by a GUI)."""
@@ -72,12 +64,13 @@ def _classes(laws) -> list[type]:
     return sorted(unique, key=lambda c: (c.__module__, c.__qualname__))
 
 
-def _law_classes(arrays) -> tuple[list[type], list[type]]:
+def _law_classes(arrays, shared: bool = True) -> tuple[list[type], list[type]]:
     """The kernel's normal and (exact) friction law classes, in its index order: every
-    built-in class where the scene has no other, else the scene's own."""
+    built-in class where the scene has no other (and the kernel is ``shared``), else the
+    scene's own."""
     frictions = [f.exact for f in arrays.friction_laws if f is not None]
     normal, friction = _classes(arrays.normal_laws), _classes(frictions)
-    if built_in(normal, friction):
+    if shared and built_in(normal, friction):
         return list(BUILT_IN_NORMAL), list(BUILT_IN_FRICTION)
     return normal, friction
 
@@ -151,18 +144,22 @@ def law_sources(law_class, kind: str) -> str:
     return "\n".join(f"# {name}\n{source}" for name, source in sorted(sources.items()))
 
 
-def load_kernel(scene: Scene, tangent: bool = False, method: str = "adaptive") -> ModuleType:
+def load_kernel(scene: Scene, tangent: bool = False, method: str = "adaptive",
+                shared: bool = True) -> ModuleType:
     """The kernel module for the law classes of ``scene`` and a method ("adaptive",
     "fixed_step" or "exponential"); with ``tangent``, the one that integrates the tangent
-    flow too (adaptive steps only)."""
+    flow too (adaptive steps only). Without ``shared``, a scene of built-in laws gets a
+    kernel of its own law classes and effects too, as one with a law of the user's own
+    does (the CUDA flavour, ``batch``, compiles each kernel anew for the device, where
+    code never run costs compile time and registers)."""
     if tangent and method != "adaptive":
         raise ValueError("the tangent flow is integrated by the adaptive method only")
     arrays = scene.arrays
     if tangent:
         _check_slider_laws(scene)
-    normal_classes, friction_classes = _law_classes(arrays)
+    normal_classes, friction_classes = _law_classes(arrays, shared)
     effects = flags(arrays, tangent)
-    if built_in(normal_classes, friction_classes):
+    if shared and built_in(normal_classes, friction_classes):
         effects = {flag: True for flag in effects} | {
             "HAS_TANGENT": tangent, "HAS_STRUCTURES": arrays.is_structure,
             "HAS_SLIDERS": has_sliders(arrays)}
@@ -264,8 +261,7 @@ def compiled(driver, arguments) -> tuple[Callable, float]:
     if not driver.overloads:
         if not _cached(driver):
             module = sys.modules[driver.py_func.__module__]
-            seconds = TANGENT_COMPILE_ESTIMATE if module.TANGENT else \
-                COMPILE_ESTIMATE if _cached(fill_groups) else FIRST_COMPILE_ESTIMATE
+            seconds = compile_seconds(module)
             flow = " with its tangent flow" if module.TANGENT else ""
             laws = "every built-in contact law (once" if module.SHARED else \
                 f"{' + '.join(module.LAWS)} (once for these law classes"
@@ -289,18 +285,22 @@ def _cached(driver) -> bool:
 _KERNEL_SCENES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def kernel_scene(scene: Scene) -> KernelScene | StructureScene:
+def kernel_scene(scene: Scene, shared: bool = True) -> KernelScene | StructureScene:
     """The scene's arrays with each law given as (index of its class, parameter row), and
     its prescribed-motion nodes after the blades (``KernelScene``); with substructures or
     elastic contacts, a ``StructureScene``, with the elastic contacts' sliders as
-    coordinates between the free and the prescribed ones. Made once per scene."""
+    coordinates between the free and the prescribed ones. Made once per scene; without
+    ``shared``, made afresh for the kernel of the scene's own law classes
+    (``load_kernel(..., shared=False)``)."""
+    if not shared:
+        return _lowered(scene, shared=False)
     found = _KERNEL_SCENES.get(scene)
     if found is None:
         found = _KERNEL_SCENES[scene] = _lowered(scene)
     return found
 
 
-def _lowered(scene: Scene) -> KernelScene | StructureScene:
+def _lowered(scene: Scene, shared: bool = True) -> KernelScene | StructureScene:
     """``kernel_scene``, made afresh."""
     a = scene.arrays
     for e in a.elastic_interfaces:
@@ -309,7 +309,7 @@ def _lowered(scene: Scene) -> KernelScene | StructureScene:
                 f"{scene.contacts[e]}: an elastic contact "
                 "(Interface.tangential_stiffness) slips at the one coefficient of Coulomb "
                 f"friction; give friction=Coulomb(mu=...), not {a.friction_laws[e]!r}")
-    normal_classes, friction_classes = _law_classes(a)
+    normal_classes, friction_classes = _law_classes(a, shared)
     normal_kind = np.array([normal_classes.index(type(law)) for law in a.normal_laws],
                            dtype=np.int64)
     friction_kind = np.array([-1 if f is None else friction_classes.index(type(f.exact))

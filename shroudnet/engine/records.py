@@ -184,6 +184,17 @@ Events = namedtuple("Events", ["time", "interface", "kind", "counts", "recent", 
 #: Sampled output of one run: one row per sample time.
 Output = namedtuple("Output", ["t", "x", "v", "normal", "friction", "modes", "energy"])
 
+#: What a run keeps of its samples where it keeps no record of them (a batch of runs, one
+#: per GPU thread: ``batch``), reduced as they are taken (``advance.reduce_sample``): the
+#: Poincaré points (x, ẋ) of coordinate ``response`` at every ``every``-th sample, one row
+#: each (``poincare``, as ``Simulation.poincare`` takes them); the largest |x| and |ẋ| of
+#: that coordinate over the samples (``extent``); ∫ x² dt by the trapezoidal rule over the
+#: samples (``square[0]``, [m² s]) with the last sample's t and x² (``square[1]``,
+#: ``square[2]``); and the work columns [J] at the first and at the last sample (``work``,
+#: 2 × N_WORK). ``response`` and ``every`` are numbers, the rest arrays.
+Reduction = namedtuple("Reduction", ["response", "every", "poincare", "extent", "square",
+                                     "work"])
+
 #: What a driver returns: its ``codes.Status``, the time it stopped at [s], the interface
 #: that stopped it (−1 for none), the Runge–Kutta steps taken (accepted ones, for the
 #: adaptive driver), the samples taken, the events logged, and the tangent state.
@@ -234,6 +245,13 @@ def new_events(capacity, zeno_events):
                   np.empty(capacity, dtype=np.int8), np.zeros(N_EVENT_KINDS, dtype=np.int64),
                   np.full(max(zeno_events, 1), -np.inf), np.zeros(1, dtype=np.int64),
                   np.zeros(1, dtype=np.int64))
+
+
+def new_reduction(response, every, n_points):
+    """A ``Reduction`` of coordinate ``response`` keeping ``n_points`` Poincaré points, one
+    every ``every`` samples."""
+    return Reduction(int(response), int(every), np.zeros((n_points, 2)), np.zeros(2),
+                     np.zeros(3), np.zeros((2, N_WORK)))
 
 
 def new_output(n_samples, n_blades, n_interfaces):

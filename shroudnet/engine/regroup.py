@@ -9,6 +9,8 @@ allocates nothing. Sums here stay as written (``njit_step_exact``). None of it d
 the contact or friction laws.
 """
 
+import math
+
 import numpy as np
 
 from .clusters import label_clusters
@@ -157,7 +159,7 @@ def _spd_inverse(matrix, labels, lower, inverse):
             for k in range(j):
                 if labels[k] == labels[j]:
                     value -= lower[i, k] * lower[j, k]
-            lower[i, j] = np.sqrt(value) if i == j else value / lower[j, j]
+            lower[i, j] = math.sqrt(value) if i == j else value / lower[j, j]
     for c in range(n):
         for i in range(n):  # L z = e_c
             if labels[i] != labels[c]:

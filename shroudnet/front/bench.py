@@ -32,6 +32,19 @@
    (``cyclic``), for the 24-blade ring and the 24-sector disc at an engine order coprime
    with 24 and at engine order 6; and a forced-response curve of 100 orbits of the ring
    both ways.
+9. Harmonic balance (``bench_harmonic``): a point of the packet with 3-D elastic faces
+   at H = 7, its certificate by exact shooting, its forced-response curve, and the error
+   against H and time.
+10. GPU batches (``--gpu`` runs this section alone, in under five minutes on one H200):
+    the paper's group at 512 fixed steps a period, one thread per trajectory, in periods
+    per second at 1,024 / 8,192 / 65,536 / 262,144 trajectories (γ1 over the Fig. 6 range)
+    against the CPU fixed-step engine at the same steps on one core and on every core; the
+    agreement of the first 50 periods of each of the 1,024 trajectories with the CPU's
+    (to 1e-9 of the motion's size; the chaotic ones diverge after a while and are counted
+    as such); and the 256 × 256 map of stiffness ratio × speed (300 + 100 periods a cell),
+    whose figure goes to docs/gallery. Without a GPU it says what is missing and, with
+    ``--gpu`` where numba-cuda's toolkit is installed, the kernel's registers and
+    occupancy from its compile report for an H200 (sm_90).
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
 the kernel); nothing here is asserted, because timings depend on the machine.
@@ -67,6 +80,7 @@ from ..scenes import beam_pair, bladed_disc_24, modal_packet, three_blade_paper
 from ..steady.continuation import continuation
 from ..steady.orbits import periodic_orbit
 from ..studies.sweep import default_workers, sweep
+from . import bench_harmonic
 from .options import whole
 from .progress import progress_callback
 
@@ -211,7 +225,7 @@ def _diagram_only(points, transient, record, workers) -> None:
         "worker_mb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}))
 
 
-RING = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "ring_24_travelling_wave.toml"
+RING = Path(__file__).resolve().parents[2] / "examples" / "scenes" / "ring_24_travelling_wave.toml"
 
 
 def tangent_costs(scene, periods: int, repeats: int) -> tuple[float, float, float]:
@@ -402,6 +416,200 @@ def against_ours(rows: dict[str, tuple[float, float]]) -> dict[str, tuple[str, f
     return ratios
 
 
+#: The GPU section's method: the issue's 512 RK4 steps a period.
+GPU_METHOD = FixedStep(steps_per_period=512)
+#: Trajectories per batch, and the periods each runs, for the throughput.
+GPU_BATCHES = (1024, 8192, 65536, 262144)
+GPU_PERIODS = 20
+#: The agreement: periods compared against the CPU engine, and to what (of the motion).
+AGREEMENT_PERIODS = 50
+AGREEMENT = 1e-9
+AGREEMENT_RUNS = 1024
+#: The map: stiffness ratio γ1 × speed [rpm], cells per side, transient + recorded periods.
+MAP_GAMMA = (0.5, 10.0)
+MAP_SPEED = (5500.0, 7500.0)
+MAP_CELLS = 256
+MAP_PERIODS = (300, 100)
+MAP_FIGURE = Path(__file__).resolve().parents[2] / "docs" / "gallery" / "gpu_map_gamma_speed.png"
+
+
+def paper_runs(gammas, *, record: int, transient: int = 0):
+    """The prepared runs (``run.batch.prepare_run``) of the paper's group at each γ1 of
+    ``gammas`` and 6000 rpm, made from one: γ1 sets the contact springs k_c = γ1 k(Ω) and
+    nothing else, so each run is the first with its normal law's row replaced (preparing
+    262,144 scenes one by one would take the host longer than the GPU takes to run them).
+    Checked against scenes made one by one at three values."""
+    from dataclasses import replace
+
+    from ..engine.records import KernelScene
+    from ..run.batch import prepare_run
+
+    options = dict(transient=transient, record=record, method=GPU_METHOD,
+                   samples_per_period=1)
+    base = prepare_run(three_blade_paper(gamma1=1.0), **options)
+    where = KernelScene._fields.index("normal_params")
+    stiffness = base.fields[KernelScene._fields.index("stiffness")][0]
+
+    def run_at(gamma):
+        fields = list(base.fields)
+        fields[where] = np.full_like(base.fields[where], float(gamma) * stiffness)
+        return replace(base, fields=tuple(fields))
+
+    for gamma in (gammas[0], gammas[len(gammas) // 2], gammas[-1]):
+        made = prepare_run(three_blade_paper(gamma1=float(gamma)), **options)
+        assert all(np.array_equal(a, b) for a, b in zip(made.fields, run_at(gamma).fields))
+    return [run_at(gamma) for gamma in gammas]
+
+
+def gpu_throughput(runs: int) -> tuple[float, float]:
+    """(periods per second, seconds) of one batch of ``runs`` trajectories of
+    ``GPU_PERIODS`` periods each, γ1 over [0.5, 10] in order."""
+    from ..run.batch import run_batch
+
+    gammas = np.linspace(0.5, 10.0, runs)
+    prepared = paper_runs(gammas, record=GPU_PERIODS)
+    done = run_batch(three_blade_paper(), prepared, response=1, transient=0,
+                     record=GPU_PERIODS, samples_per_period=1)
+    return runs * GPU_PERIODS / done.seconds, done.seconds
+
+
+def cpu_rates(cores: int) -> tuple[float, float]:
+    """Periods per second of the CPU fixed-step engine at ``GPU_METHOD``'s steps on the
+    same trajectories: one core (``simulate`` of 32 of them in turn) and every core (a
+    sweep of 64 a core on a pool whose workers have loaded the kernel)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    gammas = np.linspace(0.5, 10.0, 32)
+    simulate(three_blade_paper(gamma1=1.0), 1, method=GPU_METHOD, samples_per_period=1)
+    began = time.perf_counter()
+    for gamma in gammas:
+        simulate(three_blade_paper(gamma1=gamma), GPU_PERIODS, method=GPU_METHOD,
+                 samples_per_period=1)
+    one = len(gammas) * GPU_PERIODS / (time.perf_counter() - began)
+    values = np.linspace(0.5, 10.0, 64 * cores)
+    with ProcessPoolExecutor(cores) as pool:
+        # two samples a period: the classification's spectrum needs four samples at least
+        sweep(gamma_scene, values[:2 * cores], transient=0, record=3, method=GPU_METHOD,
+              samples_per_period=2, executor=pool)  # each worker loads the kernel
+        began = time.perf_counter()
+        sweep(gamma_scene, values, transient=GPU_PERIODS - 3, record=3, method=GPU_METHOD,
+              samples_per_period=2, executor=pool)
+        every = len(values) * GPU_PERIODS / (time.perf_counter() - began)
+    return one, every
+
+
+def gpu_agreement(cores: int) -> dict:
+    """The first ``AGREEMENT_PERIODS`` periods of ``AGREEMENT_RUNS`` trajectories on the GPU
+    against the CPU engine's: the largest difference of the blade's Poincaré points
+    relative to its motion's extent, per trajectory, and the CPU's classification of
+    those beyond ``AGREEMENT``."""
+    from ..run.batch import run_batch
+
+    gammas = np.linspace(0.5, 10.0, AGREEMENT_RUNS)
+    done = run_batch(three_blade_paper(), paper_runs(gammas, record=AGREEMENT_PERIODS),
+                     response=1, transient=0, record=AGREEMENT_PERIODS,
+                     samples_per_period=1)
+    cpu = sweep(gamma_scene, gammas, transient=0, record=AGREEMENT_PERIODS,
+                method=GPU_METHOD, samples_per_period=1, workers=cores)
+    gaps, labels = [], []
+    for k, point in enumerate(cpu.points):
+        scale = np.abs(point.poincare).max(axis=0)
+        gaps.append(float(np.abs((done.poincare[k] - point.poincare) / scale).max()))
+        labels.append(point.classification.label)
+    return {"gaps": np.array(gaps), "labels": labels}
+
+
+def gpu_map(progress=False):
+    """The 256 × 256 map of γ1 × speed on the GPU (``MAP_PERIODS``), its wall time [s]."""
+    from ..studies.maps import sweep_map
+
+    def scene_at(gamma1, speed_rpm):
+        return three_blade_paper(gamma1=gamma1, speed_rpm=speed_rpm)
+
+    began = time.perf_counter()
+    result = sweep_map(scene_at, np.linspace(*MAP_GAMMA, MAP_CELLS),
+                       np.linspace(*MAP_SPEED, MAP_CELLS), parameters=("gamma1", "speed_rpm"),
+                       transient=MAP_PERIODS[0], record=MAP_PERIODS[1], method=GPU_METHOD,
+                       samples_per_period=64, executor="cuda", progress=progress)
+    return time.perf_counter() - began, result
+
+
+def kernel_resources():
+    """The paper kernel's compile report for an H200 (``engine.batch_report.kernel_report``)."""
+    from ..engine.batch import kernel_for, kernel_key, layout_of
+    from ..engine.batch_report import kernel_report
+    from ..run.batch import batch_input
+
+    scene = three_blade_paper()
+    prepared = paper_runs([1.0, 2.0], record=3)
+    numbers = batch_input(prepared, [0, 1], kernel_key(scene), response=1, transient=0,
+                          record=3, samples_per_period=1)
+    return kernel_report(kernel_for(scene), layout_of(scene, prepared[0].controls[1]),
+                         numbers)
+
+
+def gpu_section(cores: int, report: bool = True) -> None:
+    """Section 9 of the benchmark (see the module's docstring); without a GPU, the
+    kernel's compile report where ``report`` (it takes minutes)."""
+    from ..engine.batch import cuda_missing
+
+    print(f"\n10. GPU batches: the paper's group, fixed-step RK4 at "
+          f"{GPU_METHOD.steps_per_period} steps a period, switches located to "
+          f"{EVENT_TOLERANCE:g} of the period")
+    missing = cuda_missing()
+    if missing is not None:
+        print(f"   no GPU here: {missing}")
+        if not report:
+            return
+        try:
+            report = kernel_resources()
+        except Exception as error:  # noqa: BLE001 - no toolkit either: say so and stop
+            print(f"   no compile report either: {error}")
+            return
+        print(f"   compile report for sm_{''.join(map(str, report.compute_capability))} "
+              f"(no device): {report.registers} registers a thread, {report.stack} bytes "
+              f"of stack, spills {report.spill_stores} bytes stored and "
+              f"{report.spill_loads} loaded; occupancy {report.occupancy:.1%} at 64 "
+              f"threads a block; PTX {report.ptx_bytes / 1e6:.1f} MB in "
+              f"{report.ptx_seconds:.0f} s, assembled in {report.assembly_seconds:.0f} s")
+        return
+    began = time.perf_counter()
+    gpu_throughput(64)  # compiles (or loads) the kernel
+    print(f"   compiling (or loading) the kernel: {time.perf_counter() - began:.0f} s")
+    one, every = cpu_rates(cores)
+    print(f"   CPU fixed-step engine: {one:,.0f} periods/s on one core, {every:,.0f} on "
+          f"{cores} cores")
+    for runs in GPU_BATCHES:
+        rate, seconds = gpu_throughput(runs)
+        print(f"   {runs:>7,} trajectories × {GPU_PERIODS} periods: {rate:,.0f} periods/s "
+              f"({seconds:.2f} s), {rate / one:,.0f}x one core, {rate / every:,.1f}x "
+              f"{cores} cores")
+    found = gpu_agreement(cores)
+    gaps, labels = found["gaps"], found["labels"]
+    beyond = gaps > AGREEMENT
+    chaotic = sum(1 for k in np.flatnonzero(beyond) if labels[k] == "chaotic")
+    print(f"   agreement over the first {AGREEMENT_PERIODS} periods, {AGREEMENT_RUNS:,} "
+          "trajectories: "
+          f"{int((~beyond).sum())} within {AGREEMENT:g} of the motion (largest "
+          f"{gaps[~beyond].max(initial=0.0):.1e}); {int(beyond.sum())} beyond, of them "
+          f"{chaotic} chaotic by the CPU's classification"
+          + (f" (the others: {sorted({labels[k] for k in np.flatnonzero(beyond)} - {'chaotic'})})"
+             if int(beyond.sum()) > chaotic else ""))
+    seconds, result = gpu_map()
+    counts = {label: int((result.labels == label).sum())
+              for label in np.unique(result.labels)}
+    print(f"   {MAP_CELLS} × {MAP_CELLS} map of γ1 × speed ({MAP_PERIODS[0]} + "
+          f"{MAP_PERIODS[1]} periods a cell): {seconds:.1f} s; "
+          + ", ".join(f"{label} {n}" for label, n in sorted(counts.items())))
+    from .figures import save_figure, sweep_map_figure
+
+    figure = sweep_map_figure(result, xlabel="stiffness ratio γ1", ylabel="speed [rpm]",
+                              title="The paper's group: classification of the steady response")
+    MAP_FIGURE.parent.mkdir(parents=True, exist_ok=True)
+    save_figure(figure, MAP_FIGURE, dpi=120)
+    print(f"   figure: {MAP_FIGURE}")
+
+
 def options_parser(prog: str = "python -m shroudnet.front.bench",
                    parser_class: type[argparse.ArgumentParser] = argparse.ArgumentParser
                    ) -> argparse.ArgumentParser:
@@ -420,6 +628,8 @@ def options_parser(prog: str = "python -m shroudnet.front.bench",
                         help="periods of the comparison with solve_ivp (default 50)")
     parser.add_argument("--quick", action="store_true",
                         help="small sizes everywhere, to check that the benchmark runs")
+    parser.add_argument("--gpu", action="store_true",
+                        help="run section 10 alone: batches of trajectories on a GPU")
     parser.add_argument("--diagram-only", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--workers", type=whole(1), default=None, help=argparse.SUPPRESS)
     return parser
@@ -430,6 +640,8 @@ def main(argv=None) -> None:
     args = options_parser().parse_args(argv)
     if args.diagram_only:
         return _diagram_only(args.points, args.transient, args.record, args.workers)
+    if args.gpu:
+        return gpu_section(default_workers())
     if args.quick:
         args.points, args.transient, args.record, args.baseline_periods = 8, 20, 10, 5
     cores = default_workers()
@@ -607,6 +819,8 @@ def main(argv=None) -> None:
           f"{len(branch)} orbits in {full:.1f} s, symmetric {len(reduced)} in "
           f"{symmetric:.1f} s ({full / len(branch) / (symmetric / len(reduced)):.1f}x per "
           "orbit)")
+    bench_harmonic.section(args.quick)
+    gpu_section(cores, report=False)
     print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 

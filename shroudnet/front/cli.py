@@ -40,9 +40,9 @@ import numpy as np
 import contact_laws
 
 from ..analysis.readings import classify
-from ..engine.cache import cache_folder, cache_size, clear_cache
+from ..engine.cache import cache_folder, cache_size, checked_cache_folder, clear_cache
 from ..io import results, scenefile
-from ..linear.modes import CONTACTS, linear_modes
+from ..linear.modes import linear_modes
 from ..model.group import BLADE_POINT
 from ..model.substructure import Substructure
 from ..run.methods import TRANSIENT
@@ -50,7 +50,7 @@ from ..run.simulate import simulate
 from ..run.simulation import SimulationError, steady_rows
 from ..steady.continuation import LARGEST_STEP, Branch, continuation
 from ..steady.parametric import same_scene
-from ..studies.sweep import sweep
+from ..studies.sweep import default_workers, sweep
 from .options import whole
 from .progress import ProgressReporter, TerminalProgress
 from .studies import mistuning_study
@@ -64,7 +64,8 @@ BAD_INPUT, FAULT, INTERRUPTED = 2, 1, 130
 _INPUT_ERRORS = (ValueError, OSError, EOFError, zipfile.BadZipFile, SimulationError)
 
 #: The folders of the packages whose ``raise TypeError(...)`` is a check of an argument.
-_CHECKING_CODE = (Path(__file__).resolve().parent, Path(contact_laws.__file__).resolve().parent)
+_CHECKING_CODE = (Path(__file__).resolve().parents[1],  # shroudnet
+                  Path(contact_laws.__file__).resolve().parent)
 
 
 class UsageError(ValueError):
@@ -322,8 +323,15 @@ def _parser() -> argparse.ArgumentParser:
         "the built-in laws, and one per combination of law classes of your own) and how "
         "much room they take: $SHROUDNET_CACHE, else ~/.cache/shroudnet; a file there, "
         "or a folder that cannot be written, is refused. "
-        "With --clear, delete them: the next run compiles again, once.")
-    cache.add_argument("--clear", action="store_true", help="delete the compiled integrators")
+        "With --clear, delete them: the next run compiles again, once. With --warm, "
+        "compile every integrator the built-in laws call for now, on every core, so that "
+        "no first run waits for one.")
+    action = cache.add_mutually_exclusive_group()
+    action.add_argument("--clear", action="store_true", help="delete the compiled integrators")
+    action.add_argument("--warm", action="store_true",
+                        help="compile every built-in integrator now (minutes, once)")
+    cache.add_argument("--workers", type=whole(1), default=None,
+                       help="integrators compiled at once with --warm (default: every core)")
     cache.set_defaults(command=_cache, name="cache")
 
     bench = commands.add_parser(
@@ -361,9 +369,28 @@ def _cache(args) -> int:
         freed = clear_cache()
         print(f"cleared  {cache_folder()} ({freed / 2**20:.1f} MiB)")
         return 0
+    if args.warm:
+        return _warm(args.workers)
     size, files = cache_size()
     print(f"cache    {cache_folder()}: {size / 2**20:.1f} MiB in {files} files "
           "(clear with 'shroudnet cache --clear')")
+    return 0
+
+
+def _warm(workers: int | None) -> int:
+    """Compile every shipped flavour, printing each as it is done and the whole."""
+    from .warm import FLAVOURS, warm
+
+    checked_cache_folder()
+    workers = min(workers or default_workers(), len(FLAVOURS))
+    print(f"warming  {len(FLAVOURS)} integrators in {cache_folder()}, {workers} at once",
+          flush=True)
+    began = time.perf_counter()
+    seconds = warm(FLAVOURS, workers,
+                   lambda flavour, took: print(f"  {flavour.name:<42} {took:6.1f} s",
+                                               flush=True))
+    print(f"warmed   {len(FLAVOURS)} integrators in {time.perf_counter() - began:.0f} s "
+          f"(their compiles: {sum(seconds.values()):.0f} s of processor time)")
     return 0
 
 
@@ -630,12 +657,10 @@ def _point_peaks(sim, skip: int) -> list[tuple]:
 
 
 def _save_response(sim, settings, path: Path) -> Path:
-    from .figures import response_panel  # matplotlib only when a figure is drawn
+    from .figures import response_panel, save_figure  # matplotlib only when one is drawn
     figure = response_panel(sim, settings.blade, skip=settings.transient,
                             title=f"{path.stem}: {_about(sim.scene, settings.blade)}")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=110)
-    return path
+    return save_figure(figure, path)
 
 
 def _sweep(args) -> int:
@@ -747,12 +772,11 @@ def _number(text: str, token: str, option: str) -> float:
 
 
 def _save_diagram(result, path: Path) -> Path:
-    from .figures import bifurcation_diagram
+    from .figures import bifurcation_diagram, save_figure
     target = result.blade
     about = f"{target[0]}.{target[1]}[{target[2]}]" if isinstance(target, tuple) \
         else f"blade {target}"  # a point's component, as ``_sweep`` names it
-    bifurcation_diagram(result, title=f"{result.parameter}: {about}").savefig(path, dpi=110)
-    return path
+    return save_figure(bifurcation_diagram(result, title=f"{result.parameter}: {about}"), path)
 
 
 def _continue(args) -> int:
@@ -808,15 +832,20 @@ def _diameter(bifurcation) -> str:
     return f", along ND {bifurcation.wave_number}"
 
 
+#: The limits of the interfaces ``shroudnet modes`` tabulates side by side
+#: (``linear_modes``).
+TABULATED = ("open", "stuck")
+
+
 def _modes(args) -> int:
-    from .figures import zzenf_diagram
+    from .figures import save_figure, zzenf_diagram
     loaded = _load_scene(args.scene, _import_laws(args.laws))
     scene = loaded.scene
     _check_folder(args.output, "--output")
     path = args.output / f"{args.scene.stem}-modes.png"
     _check_file(path, "--output")
     _prove_writable(args.output, "--output")
-    both = {contacts: linear_modes(scene, contacts) for contacts in CONTACTS}
+    both = {contacts: linear_modes(scene, contacts) for contacts in TABULATED}
     if both["open"].sectors is None:
         for contacts, found in both.items():
             listed = ", ".join(f"{f:.2f}" for f in found.frequencies)
@@ -828,19 +857,20 @@ def _modes(args) -> int:
     tables = {contacts: found.families()[:, :families] for contacts, found in both.items()}
     for nd in range(tables["open"].shape[0]):
         cells = ["  ".join(f"{f:9.2f}" for f in tables[c][nd] if np.isfinite(f))
-                 for c in CONTACTS]
+                 for c in TABULATED]
         print(f"ND {nd:3d}  {cells[0]}  |  {cells[1]}")
     sectors = both["open"].sectors
-    zzenf_diagram({f"interfaces {c}": both[c] for c in CONTACTS}, speed_rpm=scene.speed_rpm,
-                  engine_orders=range(1, sectors // 2 + 1), families=families,
-                  title=f"{args.scene.stem}: frequency against nodal diameter").savefig(
-        path, dpi=110)
+    save_figure(zzenf_diagram({f"interfaces {c}": both[c] for c in TABULATED},
+                              speed_rpm=scene.speed_rpm,
+                              engine_orders=range(1, sectors // 2 + 1), families=families,
+                              title=f"{args.scene.stem}: frequency against nodal diameter"),
+                path)
     print(f"saved    {path}")
     return 0
 
 
 def _mistuning(args) -> int:
-    from .figures import mistuning_histogram
+    from .figures import mistuning_histogram, save_figure
     loaded = _load_scene(args.scene, _import_laws(args.laws))
     speeds = _values(args.speeds, "--speeds")
     _check_folder(args.output, "--output")
@@ -858,7 +888,7 @@ def _mistuning(args) -> int:
           f"{np.percentile(factors, 95):.4f}, largest {factors.max():.4f} (pattern "
           f"{study.worst}); Whitehead's bound ½(1 + √{study.sectors}) = "
           f"{study.whitehead_bound:.4f}")
-    mistuning_histogram(study, title=f"{args.scene.stem}: mistuning").savefig(path, dpi=110)
+    save_figure(mistuning_histogram(study, title=f"{args.scene.stem}: mistuning"), path)
     print(f"saved    {path}")
     return 0
 
@@ -875,11 +905,10 @@ def _branch_progress(name: str):
 
 
 def _save_branch_figure(branch, blade, path: Path) -> Path:
-    from .figures import forced_response
-    forced_response({f"period {branch.periods}": branch}, blade,
-                    title=f"{branch.name}: {_about(branch.orbits[0].scene, blade)}"
-                    ).savefig(path, dpi=110)
-    return path
+    from .figures import forced_response, save_figure
+    return save_figure(forced_response(
+        {f"period {branch.periods}": branch}, blade,
+        title=f"{branch.name}: {_about(branch.orbits[0].scene, blade)}"), path)
 
 
 def _plot(args) -> int:

@@ -1,35 +1,66 @@
 """Figures in the paper's style, drawn with matplotlib from computed results.
 
-Nothing in the computation imports this module. Each function returns a matplotlib
-``Figure`` and leaves saving to the caller (``fig.savefig(path)``).
+Nothing in the computation imports this module. Each function draws on the Axes it is
+given, ``ax=`` (or ``axes=``, a sequence of them in the order its docstring lists, for a
+figure of several panels), and returns what it drew on, so that figures compose::
+
+    sim = simulate(three_blade_paper(), 100)
+    figure = Figure(figsize=(12, 4.5), layout="constrained")
+    left, right = figure.subplots(1, 2)
+    campbell_diagram(campbell(paper_frequency_model(), range(0, 9001, 100)), ax=left)
+    hysteresis_loops({"blade1–blade2": hysteresis_loop(sim, 0, skip=50)}, ax=right)
+    save_figure(figure, "composed.png")
+
+Given no Axes, a function draws on a new ``Figure`` of its own size and returns that, as
+it always has, leaving saving to the caller: ``save_figure(fig, path)`` writes it whole or
+not at all (``fig.savefig(path)`` would leave half an image where it is interrupted).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Hashable, Mapping, Sequence
+from pathlib import Path
 
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
+from contact_laws import check_choice, check_instance, check_sequence
+
+from .. import atomic
 from ..analysis.readings import Campbell, HysteresisLoop, PatchHistory, classify, spectrum
 from ..engine.codes import Mode
 from ..linear.modes import GroupCampbell, LinearModes, excited_diameter
 from ..run.simulation import Simulation
 from ..steady.continuation import Branch
 from ..steady.orbits import PeriodicOrbit
+from ..studies.harmonic_precision import HarmonicPrecision
 from ..studies.mistuning import MistuningStudy
 from ..studies.precision import Study
+from ..run.classification import CHAOTIC, FAILED, QUASI_PERIODIC, UNDETERMINED
+from ..run.simulation import SweepMap
 from ..studies.sweep import Sweep
 
 
+def save_figure(figure: Figure, path, *, dpi: float = 110) -> Path:
+    """Write ``figure`` to the image file ``path`` (its format from the suffix: ``.png``,
+    ``.pdf``, ``.svg``, ...) whole or not at all (``atomic.write``); returns the path."""
+    path = Path(path)
+    kind = path.suffix[1:].lower() or None  # None: matplotlib's default format
+    return atomic.write(path, lambda file: figure.savefig(file, format=kind, dpi=dpi))
+
+
 def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: str = "",
-                   max_ratio: float = 6.0, shown_periods: int = 30) -> Figure:
+                   max_ratio: float = 6.0, shown_periods: int = 30,
+                   axes: Sequence[Axes] | None = None) -> Figure | Sequence[Axes]:
     """The panel of the paper's Figs. 7–19 for one blade after ``skip`` periods.
 
     Displacement history, phase portrait with Poincaré points, amplitude spectrum against
-    f/f_e, and the impact (normal) and friction forces of the blade's interfaces.
+    f/f_e, and the impact (normal) and friction forces of the blade's interfaces: five
+    panels, on ``axes`` in that order when given (the title and the motion's
+    classification then head the first), else on a new figure, which is returned.
     """
     rows = slice(skip * sim.samples_per_period, None)
     t = sim.t[rows]
@@ -39,9 +70,10 @@ def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: 
     node = label[0] if sim.scene.arrays.is_structure else label
     own = np.array([e for e, contact in enumerate(sim.scene.contacts)
                     if node in (contact.left, contact.right)], dtype=int)
-    figure = Figure(figsize=(11, 8), layout="constrained")
-    axes = figure.subplot_mosaic([["history", "history"], ["phase", "spectrum"],
-                                  ["impact", "friction"]])
+    given = axes
+    figure, axes = _mosaic(given, "response_panel", (11, 8),
+                           [["history", "history"], ["phase", "spectrum"],
+                            ["impact", "friction"]])
     axes["history"].plot(t[shown] * 1e3, x[shown] * 1e3, lw=0.8)
     axes["history"].set(xlabel="t [ms]", ylabel="x [mm]", title="displacement")
     section = sim.poincare(blade, skip=skip)
@@ -66,24 +98,33 @@ def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: 
         if len(own):
             axes[name].legend(loc="upper right", fontsize="small")
     kind = classify(sim, blade, skip)
-    figure.suptitle(f"{title}  [{kind.label}]" if title else kind.label)
-    return figure
+    _headed(figure, axes, f"{title}  [{kind.label}]" if title else kind.label)
+    return _drawn(figure, given)
 
 
 def bifurcation_diagram(result: Sweep, *, xlabel: str = "", title: str = "",
-                        scale: float = 1e3, unit: str = "mm") -> Figure:
+                        scale: float = 1e3, unit: str = "mm",
+                        axes: Sequence[Axes] | None = None) -> Figure | Sequence[Axes]:
     """Poincaré displacements of the swept blade against the parameter (Figs. 6, 12, 16);
     below them, where the sweep kept it (``sweep(..., lyapunov=True)``), the largest
-    Lyapunov exponent of each point that does not repeat, with its error."""
+    Lyapunov exponent of each point that does not repeat, with its error.
+
+    Given ``axes``, one or two of them, the diagram is drawn on the first and the
+    exponents on the second; without them, on a new figure (with a second panel only
+    where there are exponents), which is returned.
+    """
     values, section = result.diagram(0)
     exponents = [(p.value, p.classification.lyapunov, p.classification.lyapunov_error)
                  for p in result.points
                  if not p.failed and math.isfinite(p.classification.lyapunov)]
-    figure = Figure(figsize=(8, 7 if exponents else 5), layout="constrained")
-    if exponents:
-        axes, below = figure.subplots(2, 1, sharex=True, height_ratios=(3, 1.4))
+    given = axes
+    if given is None:
+        figure = Figure(figsize=(8, 7 if exponents else 5), layout="constrained")
+        panels = (figure.subplots(2, 1, sharex=True, height_ratios=(3, 1.4)) if exponents
+                  else (figure.add_subplot(),))
     else:
-        axes, below = figure.add_subplot(), None
+        figure, panels = None, _given_panels(given, "bifurcation_diagram", (1, 2))
+    axes, below = panels[0], (panels[1] if len(panels) > 1 else None)
     axes.plot(values, section * scale, ",", color="k")
     if len(result.points) < 40:
         axes.plot(values, section * scale, ".", ms=2, color="k")
@@ -91,19 +132,63 @@ def bifurcation_diagram(result: Sweep, *, xlabel: str = "", title: str = "",
     label = xlabel or result.parameter
     if below is None:
         axes.set(xlabel=label)
-        return figure
-    where, largest, error = (np.array(column) for column in zip(*exponents))
+        return _drawn(figure, given)
     below.axhline(0.0, color="0.6", lw=0.8)
-    below.errorbar(where, largest, yerr=2.0 * error, fmt=".", ms=3, color="C3", lw=0.6)
+    if exponents:
+        where, largest, error = (np.array(column) for column in zip(*exponents))
+        below.errorbar(where, largest, yerr=2.0 * error, fmt=".", ms=3, color="C3", lw=0.6)
     below.set(xlabel=label, ylabel="λ_max per period")
-    return figure
+    return _drawn(figure, given)
+
+
+#: The colours of a map's classes: periods in order, then the motions that do not repeat.
+PERIOD_COLOURS = ("#4477aa", "#66ccee", "#228833", "#ccbb44", "#aa3377", "#88ccaa",
+                  "#332288", "#999933")
+OTHER_COLOURS = {QUASI_PERIODIC: "#ee7733", CHAOTIC: "#cc3311", UNDETERMINED: "#bbbbbb",
+                 FAILED: "#ffffff"}
+
+
+def map_classes(labels) -> list[str]:
+    """The classes that ``labels`` hold, in the order a map's legend lists them: periods
+    by their number, then quasi-periodic, chaotic, undetermined and failed."""
+    found = set(np.asarray(labels, dtype=object).ravel())
+    periods = sorted((label for label in found if label not in OTHER_COLOURS),
+                     key=lambda label: int(label[1:]))
+    return periods + [label for label in OTHER_COLOURS if label in found]
+
+
+def sweep_map_figure(result: SweepMap, *, ax=None, title: str = "", xlabel: str = "",
+                     ylabel: str = ""):
+    """A two-parameter map (``sweep_map``) coloured by each cell's classification
+    (period-k, quasi-periodic, chaotic, undetermined, failed), the first parameter along
+    x, the second along y, as the paper's diagrams but in two parameters, on ``ax``;
+    returns ``ax``, or the new figure drawn when none is given."""
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    figure, ax = _canvas(ax, "sweep_map_figure", (7, 5.5))
+    labels = result.labels
+    classes = map_classes(labels)
+    code = {label: index for index, label in enumerate(classes)}
+    cells = np.vectorize(code.__getitem__, otypes=[float])(labels)
+    colours = [OTHER_COLOURS.get(label) or PERIOD_COLOURS[index % len(PERIOD_COLOURS)]
+               for index, label in enumerate(classes)]
+    ax.pcolormesh(result.first, result.second, cells.T, shading="nearest",
+                  cmap=ListedColormap(colours), vmin=-0.5, vmax=len(classes) - 0.5)
+    ax.set(xlabel=xlabel or result.parameters[0], ylabel=ylabel or result.parameters[1],
+           title=title)
+    ax.legend(handles=[Patch(facecolor=colour, edgecolor="0.5", label=label)
+                       for label, colour in zip(classes, colours)],
+              loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small", frameon=False)
+    return _drawn(figure, ax)
 
 
 def curves(x: Sequence[float], series: Mapping[str, Sequence[float]], *, xlabel: str,
-           ylabel: str, title: str = "", logy: bool = False) -> Figure:
-    """Labelled curves over one axis (the E_ρ curves of Figs. 21–23)."""
-    figure = Figure(figsize=(7, 4.5), layout="constrained")
-    axes = figure.add_subplot()
+           ylabel: str, title: str = "", logy: bool = False,
+           ax: Axes | None = None) -> Figure | Axes:
+    """Labelled curves over one axis (the E_ρ curves of Figs. 21–23), on ``ax`` when given
+    (returned), else on a new figure (returned)."""
+    figure, axes = _canvas(ax, "curves", (7, 4.5))
     for label, values in series.items():
         axes.plot(x, values, "o-", ms=3, label=label)
     if logy:
@@ -111,13 +196,14 @@ def curves(x: Sequence[float], series: Mapping[str, Sequence[float]], *, xlabel:
     axes.set(xlabel=xlabel, ylabel=ylabel, title=title)
     if len(series) > 1:
         axes.legend()
-    return figure
+    return _drawn(figure, ax)
 
 
-def campbell_diagram(diagram: Campbell, *, title: str = "Campbell diagram") -> Figure:
-    """f_d1 against speed with the engine-order lines and the resonances (Fig. 20)."""
-    figure = Figure(figsize=(7, 5), layout="constrained")
-    axes = figure.add_subplot()
+def campbell_diagram(diagram: Campbell, *, title: str = "Campbell diagram",
+                     ax: Axes | None = None) -> Figure | Axes:
+    """f_d1 against speed with the engine-order lines and the resonances (Fig. 20), on
+    ``ax`` when given (returned), else on a new figure (returned)."""
+    figure, axes = _canvas(ax, "campbell_diagram", (7, 5))
     axes.plot(diagram.speeds_rpm, diagram.frequency, lw=2, label="f_d1")
     for order in diagram.engine_orders:
         axes.plot(diagram.speeds_rpm, diagram.line(order), "--", lw=0.8, label=f"l = {order}")
@@ -128,16 +214,17 @@ def campbell_diagram(diagram: Campbell, *, title: str = "Campbell diagram") -> F
     top = 1.3 * diagram.frequency.max()
     axes.set(xlabel="Ω [rev/min]", ylabel="frequency [Hz]", ylim=(0, top), title=title)
     axes.legend(loc="upper left")
-    return figure
+    return _drawn(figure, ax)
 
 
 def group_campbell_diagram(diagram: GroupCampbell, *, modes: int | None = None,
-                           title: str = "Campbell diagram of the group") -> Figure:
+                           title: str = "Campbell diagram of the group",
+                           ax: Axes | None = None) -> Figure | Axes:
     """The group's natural frequencies against speed (the lowest ``modes``; by default
     all), the engine-order lines, and the crossings where an order meets a mode it
-    excites (its nodal diameter, on a ring)."""
-    figure = Figure(figsize=(7, 5), layout="constrained")
-    axes = figure.add_subplot()
+    excites (its nodal diameter, on a ring); on ``ax`` when given (returned), else on a
+    new figure (returned)."""
+    figure, axes = _canvas(ax, "group_campbell_diagram", (7, 5))
     shown = diagram.frequencies[:, :modes]
     axes.plot(diagram.speeds_rpm, shown, color="C0", lw=1.0)
     axes.plot([], [], color="C0", lw=1.0, label=f"modes, interfaces {diagram.contacts}")
@@ -150,18 +237,28 @@ def group_campbell_diagram(diagram: GroupCampbell, *, modes: int | None = None,
     axes.set(xlabel="Ω [rev/min]", ylabel="frequency [Hz]", ylim=(0, 1.1 * shown.max()),
              title=title)
     axes.legend(loc="upper left", fontsize="small")
-    return figure
+    return _drawn(figure, ax)
 
 
-def work_precision_diagram(study: Study, *, title: str = "What accuracy costs") -> Figure:
+def work_precision_diagram(study: Study, *, title: str = "What accuracy costs",
+                           axes: Sequence[Axes] | None = None) -> Figure | Sequence[Axes]:
     """Relative error against CPU time per period, one panel per regime, one line per family
-    of settings; in chaos, the sampling floor of the record as a dashed line."""
+    of settings; in chaos, the sampling floor of the record as a dashed line.
+
+    On ``axes`` when given, one per regime in the study's order (the title then heads the
+    first), else on a new figure, which is returned.
+    """
     regimes = list(study.floors)
-    figure = Figure(figsize=(5 * len(regimes), 4.5), layout="constrained")
-    axes = figure.subplots(1, len(regimes), squeeze=False)[0]
+    given = axes
+    if given is None:
+        figure = Figure(figsize=(5 * len(regimes), 4.5), layout="constrained")
+        panels = figure.subplots(1, len(regimes), squeeze=False)[0]
+    else:
+        figure = None
+        panels = _given_panels(given, "work_precision_diagram", (len(regimes),))
     styles = {"FixedStep": "o-", "Adaptive": "s-", "event tolerance": "^-",
               "Regularised": "v-", "Accuracy": "x:"}
-    for ax, regime in zip(axes, regimes):
+    for ax, regime in zip(panels, regimes):
         rows = [m for m in study.measurements if m.regime == regime]
         for family, style in styles.items():
             chosen = [m for m in rows if m.setting.family == family]
@@ -175,9 +272,9 @@ def work_precision_diagram(study: Study, *, title: str = "What accuracy costs") 
         ax.set(xlabel="CPU time per period [ms]", ylabel="relative error", title=regime)
         ax.xaxis.set_minor_formatter(NullFormatter())
         ax.grid(True, which="major", lw=0.3)
-    axes[0].legend(fontsize="small")
-    figure.suptitle(title)
-    return figure
+    panels[0].legend(fontsize="small")
+    _headed(figure, panels, title)
+    return _drawn(figure, given)
 
 
 #: Markers of bifurcation points by kind.
@@ -206,7 +303,8 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
                     sweeps: Mapping[str, Sweep] | None = None,
                     limits: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None,
                     xlabel: str = "", title: str = "", scale: float = 1e3,
-                    unit: str = "mm", quantity: str = "amplitude") -> Figure:
+                    unit: str = "mm", quantity: str = "amplitude",
+                    axes: Sequence[Axes] | None = None) -> Figure | Sequence[Axes]:
     """Forced-response curves: the amplitude of ``blade`` (half its peak-to-peak,
     ``PeriodicOrbit.amplitude``), or another ``quantity`` of ``QUANTITIES`` (its peak
     |x|, the orbit's equivalent damping ratio, its friction loss per cycle, the phase of
@@ -215,7 +313,11 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
     transient ``sweeps`` (e.g. up and down) as points. ``limits`` are labelled curves
     (parameter, amplitude [m]) drawn thin and grey on the amplitude panel: the linear
     responses with the interfaces open and stuck (``frequency_response``), between which
-    friction moves the branches."""
+    friction moves the branches.
+
+    Two panels, the quantity above and E_ρ below: on ``axes`` when given, two of them in
+    that order, else on a new figure, which is returned.
+    """
     if quantity not in QUANTITIES:
         raise ValueError(f"forced_response: quantity must be one of {list(QUANTITIES)}, "
                          f"got {quantity!r}")
@@ -223,8 +325,13 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
     if limits and not length:
         raise ValueError("forced_response: linear limits are amplitudes; draw them with "
                          "quantity='amplitude' or 'peak'")
-    figure = Figure(figsize=(8, 7), layout="constrained")
-    peak_axes, energy_axes = figure.subplots(2, 1, sharex=True)
+    given = axes
+    if given is None:
+        figure = Figure(figsize=(8, 7), layout="constrained")
+        peak_axes, energy_axes = figure.subplots(2, 1, sharex=True)
+    else:
+        figure = None
+        peak_axes, energy_axes = _given_panels(given, "forced_response", (2,))
     for k, (label, (parameter, amplitude)) in enumerate((limits or {}).items()):
         peak_axes.plot(parameter, np.asarray(amplitude) * scale, color="0.45", lw=0.9,
                        ls=("-", ":", "-.", (0, (5, 2, 1, 2)))[k % 4], label=label)
@@ -234,19 +341,19 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
         peak = np.array([value_of(orbit, blade) for orbit in branch.orbits]) * factor
         energy = branch.energy_density(blade) * scale**2
         stable = branch.stable
-        for axes, values in ((peak_axes, peak), (energy_axes, energy)):
+        for panel, values in ((peak_axes, peak), (energy_axes, energy)):
             for start, stop, is_stable in _runs(stable):
                 piece = slice(start, min(stop + 1, len(stable)))
-                axes.plot(branch.parameter[piece], values[piece], color=color,
-                          ls="-" if is_stable else "--", lw=1.2,
-                          label=label if start == 0 and axes is peak_axes else None)
+                panel.plot(branch.parameter[piece], values[piece], color=color,
+                           ls="-" if is_stable else "--", lw=1.2,
+                           label=label if start == 0 and panel is peak_axes else None)
         for bifurcation in branch.bifurcations:
             marker, marker_color = BIFURCATION_MARKERS[bifurcation.kind]
             orbit = bifurcation.orbit
-            for axes, value in ((peak_axes, value_of(orbit, blade) * factor),
-                                (energy_axes, orbit.energy_density(blade) * scale**2)):
-                axes.plot(bifurcation.parameter, value, marker, color=marker_color, ms=5,
-                          mfc="none")
+            for panel, value in ((peak_axes, value_of(orbit, blade) * factor),
+                                 (energy_axes, orbit.energy_density(blade) * scale**2)):
+                panel.plot(bifurcation.parameter, value, marker, color=marker_color, ms=5,
+                           mfc="none")
     for k, (label, result) in enumerate((sweeps or {}).items()):
         kept = [p for p in result.points if not p.failed]
         energy_axes.plot([p.value for p in kept], [p.energy_density * scale**2 for p in kept],
@@ -263,33 +370,41 @@ def forced_response(branches: Mapping[str, Branch], blade: Hashable | int, *,
                     ylabel=f"E_ρ [{unit}²]")
     if sweeps:
         energy_axes.legend(fontsize="small")
-    return figure
+    return _drawn(figure, given)
 
 
 def branch_content(branches: Mapping[str, Branch], blade: Hashable | int, *,
                    xlabel: str = "", title: str = "", scale: float = 1e3,
-                   unit: str = "mm") -> Figure:
+                   unit: str = "mm",
+                   axes: Sequence[Axes] | None = None) -> Figure | Sequence[Axes]:
     """A branch's response in an engineer's terms, one panel each along the branches: the
     amplitude of ``blade`` (half its peak-to-peak), the phase of its first harmonic
     against the excitation's sine, unwrapped along each branch, and the orbit's
-    equivalent damping ratio ζ_eq; stable orbits solid, unstable ones dashed."""
-    figure = Figure(figsize=(8, 8), layout="constrained")
-    panels = figure.subplots(3, 1, sharex=True)
+    equivalent damping ratio ζ_eq; stable orbits solid, unstable ones dashed.
+
+    On ``axes`` when given, three of them in that order, else on a new figure, which is
+    returned.
+    """
+    if axes is None:
+        figure = Figure(figsize=(8, 8), layout="constrained")
+        panels = figure.subplots(3, 1, sharex=True)
+    else:
+        figure, panels = None, _given_panels(axes, "branch_content", (3,))
     for k, (label, branch) in enumerate(branches.items()):
         phases = np.unwrap(branch.harmonics(blade, order=1)[1][:, 1])
         curves = (branch.amplitude(blade) * scale, phases, branch.equivalent_damping)
-        for axes, values in zip(panels, curves):
+        for panel, values in zip(panels, curves):
             for start, stop, stable in _runs(branch.stable):
                 piece = slice(start, min(stop + 1, len(branch)))
-                axes.plot(branch.parameter[piece], values[piece], color=f"C{k}",
-                          ls="-" if stable else "--", lw=1.2,
-                          label=label if start == 0 and axes is panels[0] else None)
+                panel.plot(branch.parameter[piece], values[piece], color=f"C{k}",
+                           ls="-" if stable else "--", lw=1.2,
+                           label=label if start == 0 and panel is panels[0] else None)
     panels[0].set(ylabel=f"amplitude, ½ peak-to-peak [{unit}]", title=title)
     panels[0].legend(fontsize="small")
     panels[1].set(ylabel="phase of the 1st harmonic [rad]")
     panels[2].set(ylabel="equivalent damping ratio ζ_eq [-]",
                   xlabel=xlabel or next(iter(branches.values())).name)
-    return figure
+    return _drawn(figure, axes)
 
 
 def _runs(flags):
@@ -302,12 +417,13 @@ def _runs(flags):
 
 def zzenf_diagram(modes: Mapping[str, LinearModes], *, speed_rpm: float,
                   engine_orders: Sequence[int] = (), families: int = 3,
-                  title: str = "Frequency against nodal diameter") -> Figure:
+                  title: str = "Frequency against nodal diameter",
+                  ax: Axes | None = None) -> Figure | Axes:
     """The ZZENF (SAFE) diagram: each family's frequency against the nodal diameter, for
     each set of modes (e.g. contacts open and stuck), and the zig-zag of the engine orders
-    at ``speed_rpm``: order l excites diameter ``excited_diameter(l, N)`` at l Ω/60."""
-    figure = Figure(figsize=(7, 5), layout="constrained")
-    axes = figure.add_subplot()
+    at ``speed_rpm``: order l excites diameter ``excited_diameter(l, N)`` at l Ω/60. On
+    ``ax`` when given (returned), else on a new figure (returned)."""
+    figure, axes = _canvas(ax, "zzenf_diagram", (7, 5))
     sectors = None
     for k, (label, result) in enumerate(modes.items()):
         table = result.families()[:, :families]
@@ -329,23 +445,24 @@ def zzenf_diagram(modes: Mapping[str, LinearModes], *, speed_rpm: float,
                           xytext=(4, 4), fontsize="small")
     axes.set(xlabel="nodal diameter", ylabel="frequency [Hz]", title=title)
     axes.legend(fontsize="small")
-    return figure
+    return _drawn(figure, ax)
 
 
 def sector_amplitudes(orbits: Mapping[str, PeriodicOrbit], slot: int = -1, *,
                       scale: float = 1e3, unit: str = "mm",
-                      title: str = "Amplitude round the ring") -> Figure:
+                      title: str = "Amplitude round the ring",
+                      ax: Axes | None = None) -> Figure | Axes:
     """Each sector's amplitude (half its peak-to-peak, [m] times ``scale`` in ``unit``) of
     the node in position ``slot`` of its sector, one line per orbit of a ring or disc of
     sectors: flat for a travelling wave, localised where a symmetry-breaking bifurcation
-    has taken over."""
-    figure = Figure(figsize=(7, 4.5), layout="constrained")
-    axes = figure.add_subplot()
-    for k, (label, orbit) in enumerate(orbits.items()):
-        sectors = orbit.scene.group.graph.graph.get("sectors")
-        if sectors is None:
+    has taken over. On ``ax`` when given (returned), else on a new figure (returned)."""
+    for label, orbit in orbits.items():
+        if orbit.scene.group.graph.graph.get("sectors") is None:
             raise ValueError(f"sector_amplitudes: the orbit {label!r} is not of a ring or a "
                              "disc of sectors")
+    figure, axes = _canvas(ax, "sector_amplitudes", (7, 4.5))
+    for k, (label, orbit) in enumerate(orbits.items()):
+        sectors = orbit.scene.group.graph.graph["sectors"]
         half = 0.5 * (orbit.maximum - orbit.minimum)
         per_sector = len(half) // sectors
         values = half.reshape(sectors, per_sector)[:, slot] * scale
@@ -353,15 +470,16 @@ def sector_amplitudes(orbits: Mapping[str, PeriodicOrbit], slot: int = -1, *,
     axes.set(xlabel="sector", ylabel=f"amplitude, ½ peak-to-peak [{unit}]", title=title,
              ylim=(0.0, None))
     axes.legend(fontsize="small")
-    return figure
+    return _drawn(figure, ax)
 
 
 def mistuning_histogram(study: MistuningStudy, *,
-                        title: str = "Mistuning: amplification factor") -> Figure:
+                        title: str = "Mistuning: amplification factor",
+                        ax: Axes | None = None) -> Figure | Axes:
     """The distribution of the amplification factors of a ``MistuningStudy``, with its
-    largest and Whitehead's bound ½(1 + √N) marked."""
-    figure = Figure(figsize=(7, 4.5), layout="constrained")
-    axes = figure.add_subplot()
+    largest and Whitehead's bound ½(1 + √N) marked; on ``ax`` when given (returned), else
+    on a new figure (returned)."""
+    figure, axes = _canvas(ax, "mistuning_histogram", (7, 4.5))
     factors = study.amplification
     axes.hist(factors, bins=max(5, min(30, len(factors) // 2)), color="C0", alpha=0.8,
               label=f"{len(factors)} patterns, spread {study.spread:g}")
@@ -371,16 +489,21 @@ def mistuning_histogram(study: MistuningStudy, *,
                  label=f"Whitehead ½(1 + √{study.sectors}) = {study.whitehead_bound:.3f}")
     axes.set(xlabel="worst blade peak / tuned peak", ylabel="patterns", title=title)
     axes.legend(fontsize="small")
-    return figure
+    return _drawn(figure, ax)
 
 
 def stick_slip_cycle(sim: Simulation, interface=0, skip: int = 0, *,
-                     shown_periods: int = 10, title: str = "") -> Figure:
+                     shown_periods: int = 10, title: str = "",
+                     axes: Sequence[Axes] | None = None) -> Figure | Sequence[Axes]:
     """A friction interface's stick–slip motion after ``skip`` periods: its blade's
     displacement with the stuck phases shaded, the phase portrait with stuck and slipping
     samples apart, and the friction coefficient f/N the interface carried against its slip
     velocity, over its law's μ(|v|) sgn v. ``interface`` is an interface's position, or
-    (interface, k) for a patch's k-th contact (``Scene.contact_position``)."""
+    (interface, k) for a patch's k-th contact (``Scene.contact_position``).
+
+    Three panels, on ``axes`` in that order when given (the title then heads the first),
+    else on a new figure, which is returned.
+    """
     column = sim.checked_interface(interface, "stick_slip_cycle")
     contact = sim.scene.contacts[column]
     left, right = contact.left, contact.right
@@ -399,8 +522,9 @@ def stick_slip_cycle(sim: Simulation, interface=0, skip: int = 0, *,
     normal, friction = sim.normal_force[rows, column], sim.friction_force[rows, column]
     a = sim.scene.arrays
     u_rate = sim.slip_velocity(interface)[rows]
-    figure = Figure(figsize=(11, 7.5), layout="constrained")
-    axes = figure.subplot_mosaic([["history", "history"], ["phase", "law"]])
+    given = axes
+    figure, axes = _mosaic(given, "stick_slip_cycle", (11, 7.5),
+                           [["history", "history"], ["phase", "law"]])
     shown = slice(None, shown_periods * sim.samples_per_period + 1)
     axes["history"].plot(t[shown] * 1e3, x[shown] * 1e3, lw=0.9, color="C0")
     axes["history"].fill_between(t[shown] * 1e3, 0, 1, where=stuck[shown], color="C1",
@@ -428,16 +552,17 @@ def stick_slip_cycle(sim: Simulation, interface=0, skip: int = 0, *,
     axes["law"].set(xlabel="slip velocity v [m/s]", ylabel="f / N",
                     title=f"friction on {left}–{right}")
     axes["law"].legend(loc="lower right", fontsize="small")
-    figure.suptitle(title or f"stick–slip of {blade}")
-    return figure
+    _headed(figure, axes, title or f"stick–slip of {blade}")
+    return _drawn(figure, given)
 
 
 def hysteresis_loops(loops: Mapping[str, HysteresisLoop], *, title: str = "",
-                     scale: float = 1e6, unit: str = "µm") -> Figure:
+                     scale: float = 1e6, unit: str = "µm",
+                     ax: Axes | None = None) -> Figure | Axes:
     """Friction force against tangential relative displacement, one labelled loop each
-    (``analysis.hysteresis_loop``), with its dissipated energy per cycle in the legend."""
-    figure = Figure(figsize=(7, 5), layout="constrained")
-    axes = figure.subplots()
+    (``hysteresis_loop``), with its dissipated energy per cycle in the legend; on ``ax``
+    when given (returned), else on a new figure (returned)."""
+    figure, axes = _canvas(ax, "hysteresis_loops", (7, 5))
     for label, loop in loops.items():
         axes.plot(loop.slip * scale, loop.force, lw=1.0,
                   label=f"{label}: {_energy(loop.area_per_cycle())}/cycle")
@@ -445,43 +570,44 @@ def hysteresis_loops(loops: Mapping[str, HysteresisLoop], *, title: str = "",
     axes.set(xlabel=f"tangential relative displacement u_t [{unit}]",
              ylabel="friction force f [N]", title=title)
     axes.legend(fontsize="small")
-    return figure
+    return _drawn(figure, ax)
 
 
 #: The colours of a contact-state map: open, stuck, slipping (either way).
 STATE_COLOURS = ("0.93", "C1", "C0")
 
 
-def patch_map(patch: PatchHistory, *, quantity: str = "state", ax=None, title: str = ""):
+def patch_map(patch: PatchHistory, *, quantity: str = "state", title: str = "",
+              ax: Axes | None = None) -> Figure | Axes:
     """A patch's contacts over time (``analysis.patch_history``): one row per point pair
     against t/T_e, coloured by its state (``quantity`` "state": open, stuck or slipping)
-    or by its normal load N_k [N] ("normal": the load distribution over the face).
-    Draws on ``ax`` (a new figure's axes if None) and returns it."""
+    or by its normal load N_k [N] ("normal": the load distribution over the face); on
+    ``ax`` when given (returned), else on a new figure (returned)."""
     from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
 
-    if quantity not in ("state", "normal"):
-        raise ValueError(f"patch_map.quantity must be 'state' or 'normal', got {quantity!r}")
-    if ax is None:
-        ax = Figure(figsize=(8, 1.2 + 0.3 * patch.contacts), layout="constrained").subplots()
+    check_instance("patch_map", "patch", patch, PatchHistory,
+                   expected="a PatchHistory (analysis.patch_history)")
+    quantity = check_choice("patch_map", "quantity", quantity, ("state", "normal"))
+    figure, axes = _canvas(ax, "patch_map", (8, 1.2 + 0.3 * patch.contacts))
     phase = (patch.time - patch.time[0]) / patch.period
     edges = np.concatenate([phase, [phase[-1] + (phase[-1] - phase[-2] if len(phase) > 1
                                                  else 1.0)]])
     rows = np.arange(patch.contacts + 1) - 0.5
     if quantity == "state":
         codes = np.where(patch.modes == Mode.OPEN, 0, np.where(patch.modes == Mode.STICK, 1, 2))
-        ax.pcolormesh(edges, rows, codes.T, cmap=ListedColormap(STATE_COLOURS), vmin=-0.5,
-                      vmax=2.5, shading="flat")
-        from matplotlib.patches import Patch
-        ax.legend(handles=[Patch(color=c, label=name) for c, name in
-                           zip(STATE_COLOURS, ("open", "stuck", "slipping"))],
-                  loc="upper right", fontsize="small", ncols=3)
+        axes.pcolormesh(edges, rows, codes.T, cmap=ListedColormap(STATE_COLOURS), vmin=-0.5,
+                        vmax=2.5, shading="flat")
+        axes.legend(handles=[Patch(color=c, label=name) for c, name in
+                             zip(STATE_COLOURS, ("open", "stuck", "slipping"))],
+                    loc="upper right", fontsize="small", ncols=3)
     else:
-        mesh = ax.pcolormesh(edges, rows, patch.normal.T, cmap="viridis", shading="flat")
-        ax.figure.colorbar(mesh, ax=ax, label="normal force N [N]")
-    ax.set(xlabel="t / T_e", ylabel="contact", yticks=range(patch.contacts),
-           title=title or f"interface {patch.interface}: "
-           + ("contact states" if quantity == "state" else "normal load"))
-    return ax
+        mesh = axes.pcolormesh(edges, rows, patch.normal.T, cmap="viridis", shading="flat")
+        axes.figure.colorbar(mesh, ax=axes, label="normal force N [N]")
+    axes.set(xlabel="t / T_e", ylabel="contact", yticks=range(patch.contacts),
+             title=title or f"interface {patch.interface}: "
+             + ("contact states" if quantity == "state" else "normal load"))
+    return _drawn(figure, ax)
 
 
 def _energy(joules: float) -> str:
@@ -490,3 +616,91 @@ def _energy(joules: float) -> str:
         if abs(joules) * factor >= 1.0:
             return f"{joules * factor:.3g} {unit}"
     return f"{joules * 1e6:.3g} µJ"
+
+
+#: What ``harmonic_precision_diagram`` draws against: the number of harmonics, or the CPU
+#: time of a solve.
+HARMONIC_AXES = ("harmonics", "time")
+
+
+def harmonic_precision_diagram(study: HarmonicPrecision, *, ax=None, against: str = "harmonics",
+                               label: str = ""):
+    """Harmonic balance against the exact orbit (``studies.harmonic_precision``): the
+    relative errors of the amplitude and of the energy dissipated per cycle against the
+    number of harmonics H, or against the CPU time of a solve [ms] with the exact
+    shooting's time marked, on ``ax``; returns ``ax``, or the new figure drawn when none
+    is given. ``label`` prefixes the curves' labels (several scenes on one axes)."""
+    if against not in HARMONIC_AXES:
+        raise ValueError(f"harmonic_precision_diagram: against must be one of "
+                         f"{HARMONIC_AXES}, got {against!r}")
+    figure, ax = _canvas(ax, "harmonic_precision_diagram", (6, 4.5))
+    x = study.harmonics if against == "harmonics" else study.seconds * 1e3
+    prefix = f"{label}: " if label else ""
+    for values, style, name in ((study.amplitude_error, "o-", "amplitude"),
+                                (study.energy_error, "s--", "energy per cycle")):
+        ax.loglog(x, np.maximum(values, 1e-16), style, ms=4, label=f"{prefix}{name}")
+    if against == "time":
+        ax.axvline(study.exact_seconds * 1e3, color="0.4", ls=":", lw=1.0,
+                   label=f"{prefix}exact orbit by shooting")
+        for h, t, e in zip(study.harmonics, x, study.amplitude_error):
+            ax.annotate(f"H={h}", (t, max(e, 1e-16)), textcoords="offset points",
+                        xytext=(3, 3), fontsize="x-small")
+    ax.set(xlabel="harmonics H" if against == "harmonics" else "CPU time of a solve [ms]",
+           ylabel="relative error against the exact orbit")
+    ax.grid(True, which="major", lw=0.3)
+    ax.legend(fontsize="small")
+    return _drawn(figure, ax)
+
+
+# ---- where a figure is drawn --------------------------------------------------------------
+
+def _canvas(ax: Axes | None, owner: str, size: tuple[float, float]
+            ) -> tuple[Figure | None, Axes]:
+    """(the new figure, or None when ``ax`` is given; the Axes to draw on): ``ax`` itself,
+    checked, or the one Axes of a new figure of ``size`` inches."""
+    if ax is None:
+        figure = Figure(figsize=size, layout="constrained")
+        return figure, figure.add_subplot()
+    return None, check_instance(owner, "ax", ax, Axes, expected="a matplotlib Axes")
+
+
+def _given_panels(axes: object, owner: str, counts: tuple[int, ...]) -> tuple[Axes, ...]:
+    """The Axes of ``axes`` (a sequence, or an array of them as ``subplots`` returns), of
+    one of the numbers ``counts``, or raise naming ``owner.axes``."""
+    if isinstance(axes, np.ndarray):
+        axes = axes.ravel()
+    wanted = " or ".join(str(count) for count in counts)
+    panels = check_sequence(owner, "axes", axes, expected=f"a sequence of {wanted} Axes")
+    if len(panels) not in counts:
+        raise ValueError(f"{owner}.axes needs {wanted} Axes, one a panel; got {len(panels)}")
+    for k, panel in enumerate(panels):
+        check_instance(owner, f"axes[{k}]", panel, Axes, expected="a matplotlib Axes")
+    return panels
+
+
+def _mosaic(axes: object, owner: str, size: tuple[float, float],
+            layout: list[list[str]]) -> tuple[Figure | None, dict[str, Axes]]:
+    """(the new figure, or None when ``axes`` are given; the panels by name): the given
+    ``axes``, one for each name of ``layout`` in reading order, or a new figure of
+    ``size`` inches laid out as ``layout``."""
+    if axes is None:
+        figure = Figure(figsize=size, layout="constrained")
+        return figure, figure.subplot_mosaic(layout)
+    names = list(dict.fromkeys(name for row in layout for name in row))
+    return None, dict(zip(names, _given_panels(axes, owner, (len(names),))))
+
+
+def _headed(figure: Figure | None, panels, heading: str) -> None:
+    """Put ``heading`` over a figure of several ``panels`` (a sequence, or a mapping in
+    reading order): the suptitle of a figure of its own, else before the first panel's
+    title, leaving the given figure's suptitle to its owner."""
+    if figure is not None:
+        figure.suptitle(heading)
+        return
+    first = next(iter(panels.values())) if isinstance(panels, dict) else panels[0]
+    first.set_title(f"{heading}: {first.get_title()}" if first.get_title() else heading)
+
+
+def _drawn(figure: Figure | None, given):
+    """What a figure function returns: the new ``figure``, or what it was ``given``."""
+    return given if figure is None else figure

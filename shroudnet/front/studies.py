@@ -14,7 +14,8 @@ from collections.abc import Callable, Hashable, Sequence
 from ..model.scene import Scene
 from ..run.classification import REPEAT_TOLERANCE
 from ..run.methods import TRANSIENT, Adaptive
-from ..run.simulation import Sweep
+from ..run.simulation import Sweep, SweepMap
+from ..studies import maps as maps_module
 from ..studies import mistuning as mistuning_module
 from ..studies import sweep as sweep_module
 from ..studies.mistuning import MistuningStudy
@@ -32,9 +33,10 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
 
     Each point runs ``transient`` periods, then records ``record`` periods of which it keeps
     the Poincaré points of ``blade``, E_ρ, the friction loss per cycle and the
-    classification. Every point starts from ``initial`` (default rest) and is independent
-    of the others, so the points run in parallel and the result is the same, bit for bit,
-    however they are spread.
+    classification. Every point starts from ``initial`` (default rest; (x0, v0) as
+    ``simulate`` takes it: with substructures, the nodes' own degrees of freedom) and is
+    independent of the others, so the points run in parallel and the result is the same,
+    bit for bit, however they are spread.
 
     A point whose simulation stops with a ``SimulationError`` is kept as a failed point
     (``SweepPoint.failed``, listed in ``Sweep.failures``) and reported as a notice (see
@@ -54,9 +56,16 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         Worker processes of the pool the sweep makes for itself; default every core of the
         machine. 1 runs the points one after the other in this process. The workers ignore
         Ctrl-C (this process stops them) and exit when this process dies.
-    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+    executor : concurrent.futures.Executor, dask.distributed.Client or "cuda", optional
         Run the points there instead (a thread pool gains nothing: the loop holds the GIL).
         A dask client runs them on its cluster (``pip install 'shroudnet[dask]'``).
+        "cuda" runs every point at once on the GPU, one thread each, by the fixed-step
+        method (``method`` a ``FixedStep``; ``pip install 'shroudnet[gpu]'``); the points
+        equal the CPU's to rounding (chaos amplifies it), their classification decided
+        by the repeat test and the 0–1 test (``lyapunov`` is refused), with a NaN
+        broadband fraction and no peaks, since the GPU keeps no time history. ``workers``
+        then make the points' scenes. Where no GPU can run it, a ``run.batch.NoDevice``
+        says in one line what is missing.
     continuation : bool
         Chain the points in order: each starts from the final state of the last point
         before it that did not fail (the first from ``initial``), so a forward and a
@@ -120,16 +129,102 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
         store=store, retry_failed=retry_failed)
 
 
+def sweep_map(scene_at: Callable[[float, float], Scene], first: Sequence[float],
+              second: Sequence[float], *, parameters: tuple[str, str] = ("first", "second"),
+              blade: Hashable | int = 1, transient: int = TRANSIENT, record: int = 100,
+              method=Adaptive(), samples_per_period: int = 50, initial=None,
+              tolerance: float = REPEAT_TOLERANCE, workers: int | None = None,
+              executor=None, progress="auto") -> SweepMap:
+    """The steady response of ``scene_at(a, b)`` at every a of ``first`` and b of
+    ``second``: each cell a sweep point (Poincaré points of ``blade``, E_ρ, friction loss
+    per cycle, classification), every cell from ``initial``. ``executor="cuda"`` runs
+    every cell at once on the GPU; ``front.figures.sweep_map_figure`` draws the map
+    coloured by the classification.
+
+    Parameters
+    ----------
+    scene_at : callable
+        (a, b) ↦ Scene.
+    first, second : sequences of numbers
+        The grid's values of each parameter.
+    parameters : (str, str)
+        The parameters' names.
+    executor : None, concurrent.futures.Executor, dask client or "cuda"
+        Where the cells run, as for ``sweep``; "cuda" runs them all at once on the GPU, one
+        thread each, neighbouring cells in a warp (``method`` a ``FixedStep``;
+        ``pip install 'shroudnet[gpu]'``).
+    progress : "auto", bool, None or callable
+        As for ``sweep``.
+
+    The other arguments are ``sweep``'s, for every cell.
+
+    Returns
+    -------
+    SweepMap
+
+    Raises
+    ------
+    ValueError, TypeError
+        A bad argument, named, before any cell runs.
+    run.batch.NoDevice
+        ``executor="cuda"`` where no GPU can run it, saying what is missing.
+    """
+    return maps_module.sweep_map(
+        scene_at, first, second, parameters=parameters, blade=blade, transient=transient,
+        record=record, method=method, samples_per_period=samples_per_period,
+        initial=initial, tolerance=tolerance, workers=workers, executor=executor,
+        progress=display("sweep_map", progress))
+
+
 def mistuning_study(scene: Scene, *, spread: float, samples: int,
                     speeds_rpm: Sequence[float], blades: Sequence[Hashable] | None = None,
                     patterns=None, seed: int = 0, transient: int = TRANSIENT, record: int = 10,
                     samples_per_period: int = 100, method=Adaptive(),
                     workers: int | None = None, executor=None,
                     progress="auto") -> MistuningStudy:
-    """``studies.mistuning.mistuning_study`` (where every argument is documented) with its
-    progress shown as ``sweep`` shows it: ``progress`` "auto" (on standard error when it is
-    a terminal), True (always), False or None (silent), or a callable
-    ``progress(done, total)``."""
+    """A Monte Carlo of the forced response over random mistuning patterns.
+
+    Every sample, and the tuned group, runs at every speed of ``speeds_rpm`` (one
+    ``sweep``, on every core or on ``executor``, a dask cluster included); a point keeps
+    the peak |x| of each node (of a substructure, the largest over its points' components)
+    over ``record`` periods after ``transient`` ones, sampled ``samples_per_period`` times a
+    period.
+
+    Parameters
+    ----------
+    scene : Scene
+        The tuned group; its speed is replaced by each of ``speeds_rpm``.
+    spread : float
+        The standard deviation of the blade frequency deviation ε, 0 ≤ spread < 0.3 [-].
+    samples : int
+        Number of random patterns, ≥ 1.
+    speeds_rpm : sequence of float
+        The speeds [rev/min] the peak is sought over: the resonance to study.
+    blades : sequence of node names, optional
+        The nodes that are mistuned and whose amplitudes count; default every node, or
+        every node whose name starts with "blade" in a group built by
+        ``BladeGroup.bladed_disc``.
+    patterns : array (samples × sectors), optional
+        Given deviations ε instead of random ones (then ``spread`` is only reported).
+    seed : int
+        Of the random generator: the same seed gives the same patterns.
+    transient, record : int
+        Periods run before a point is read, and periods read.
+    samples_per_period : int
+        Samples a period the peaks are read from.
+    method : FixedStep, Adaptive, Exponential or Accuracy
+        As for ``simulate``.
+    workers, executor
+        Where the runs go, as for ``sweep``.
+    progress : "auto", bool, None or callable
+        As for ``sweep``: "auto" shows runs done, rate and time left on standard error
+        when it is a terminal, True always; False or None is silent; a callable
+        ``progress(done, total)`` (a ``ProgressReporter`` hears the notices too).
+
+    Returns
+    -------
+    MistuningStudy
+    """
     return mistuning_module.mistuning_study(
         scene, spread=spread, samples=samples, speeds_rpm=speeds_rpm, blades=blades,
         patterns=patterns, seed=seed, transient=transient, record=record,

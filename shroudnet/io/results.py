@@ -14,8 +14,9 @@ folder of an interrupted sweep, so that it runs only the points still missing
 finished one. Each point file carries the fingerprint of the sweep it belongs to (a hash
 of ``sweep.json``'s content).
 
-Every file is written to a temporary name in its folder and renamed into place, so a run
-killed at any moment leaves either the whole file or none. A file damaged anyway (cut
+Every file is written to a temporary name in its folder and renamed into place
+(``atomic.write``), so a run killed at any moment leaves either the whole file or none, and
+a full disc leaves the file that was there as it was. A file damaged anyway (cut
 short by a full disk, a flipped bit, edited by hand) raises ``ResultsError`` naming the
 file and what is wrong with it, never a bare zip, JSON or numpy error. Resuming a sweep
 computes a damaged point again, with a notice; a damaged ``sweep.json`` is written again
@@ -30,9 +31,7 @@ import functools
 import hashlib
 import json
 import math
-import os
 import re
-import tempfile
 import warnings
 from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass
@@ -41,10 +40,13 @@ from pathlib import Path
 
 import numpy as np
 
+from contact_laws import check_instance
+
+from .. import atomic
 from ..analysis.stability import state_parts, state_size
 from ..engine.codes import EventKind, Mode
 from ..run.classification import Classification
-from ..run.methods import SimulationSettings
+from ..run.methods import SimulationSettings, transient_for
 from ..run.reporting import SweepWarning
 from ..run.simulation import EnergyLedger, EventLog, Simulation, Sweep, SweepPoint
 from ..steady.continuation import Bifurcation, Branch
@@ -52,8 +54,15 @@ from ..steady.cycle import EnergyPerCycle
 from ..steady.orbits import PeriodicOrbit
 from . import scenefile
 
-#: Version of the file layout, stored in every file.
-FORMAT = 1
+#: Version of the file layout, stored in every file: 2 since every state a file holds
+#: (a run's x and v, a branch's initial states and monodromy matrices, a sweep point's
+#: final state) is by the nodes' own degrees of freedom, as the runs give them.
+FORMAT = 2
+#: The formats read. Format 1 held the states of scenes with substructures by the
+#: engine's modal coordinates, which nothing in such a file allows to convert (the
+#: modes are not in it, and an eigensolver may give them other signs, or other bases of
+#: equal frequencies): those files are refused by name; the others read as they are.
+READABLE = (1, 2)
 
 
 class ResultsError(ValueError):
@@ -64,30 +73,22 @@ class ResultsError(ValueError):
 # ---- writing and reading one file ---------------------------------------------------------
 
 def atomic_write(path: str | Path, write: Callable[[object], None]) -> Path:
-    """Call ``write(file)`` on a temporary file beside ``path``, then rename it to ``path``.
+    """Call ``write(file)`` on a temporary file beside ``path``, then rename it to ``path``
+    (``atomic.write``).
 
-    Raises ``ResultsError`` when ``path`` is a folder, when a part of its folder is a file,
-    or when the folder cannot be written.
+    Raises ``ResultsError`` naming ``path`` when it is a folder, when a part of its folder
+    is a file, or when the system refuses the write (a folder that cannot be written, a
+    full disc); the file that was there before is then left as it was.
     """
     path = Path(path)
     _make_folder(path.parent, f"cannot save {path}")
     if path.is_dir():
         raise ResultsError(f"{path}: is a folder; give the name of a file to save to")
     try:
-        handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.",
-                                             suffix=".part")
-    except OSError as error:
-        raise ResultsError(f"cannot save {path}: {error.strerror or error}") from None
-    try:
-        with os.fdopen(handle, "wb") as file:
-            write(file)
-            file.flush()
-            os.fsync(file.fileno())
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    return path
+        return atomic.write(path, write)
+    except atomic.WriteError as error:
+        raise ResultsError(f"cannot save {path}: {error.strerror}; nothing was changed "
+                           "there") from None
 
 
 def _make_folder(folder: Path, doing: str) -> None:
@@ -114,12 +115,32 @@ def _load_npz(path, kind: str | None = None) -> tuple[dict, dict]:
     path = Path(path)
     arrays = _read_archive(path)
     meta = _header(path, arrays.pop("meta", None))
-    if meta.get("format") != FORMAT:
+    if meta.get("format") not in READABLE:
         raise ResultsError(f"{path}: results format {meta.get('format')!r}; this shroudnet "
-                           f"reads format {FORMAT}")
+                           f"reads formats {' and '.join(map(str, READABLE))}")
     if kind is not None and meta.get("kind") != kind:
         raise ResultsError(f"{path}: holds a {meta.get('kind')!r}, not a {kind}")
     return meta, arrays
+
+
+def _check_states(path: Path, meta: dict, documents: list | None, states: str) -> None:
+    """Refuse a file of format 1 whose ``states`` (what it holds of them, in words) may be
+    by the engine's modal coordinates: where a scene document of ``documents`` has a
+    substructure, or where there are none to tell (None)."""
+    if meta.get("format") != 1:
+        return
+    if documents is not None and not any(
+            scenefile.is_substructure(entry) for document in documents
+            for entry in (document.get("blades") or [] if isinstance(document, dict) else [])):
+        return  # blades only: their coordinates are their displacements
+    why = ("its scenes have substructures" if documents is not None else
+           "nothing in it says whether its scenes have substructures")
+    raise ResultsError(
+        f"{path}: written in results format 1, which kept the {states} of a scene with "
+        f"substructures by the engine's modal coordinates, not by the nodes' own degrees of "
+        f"freedom, and {why}; the file does not hold the modes that would convert them (an "
+        f"eigensolver may give them other signs, or other bases of equal frequencies), so "
+        f"they cannot be read correctly. Compute it again to write it in format {FORMAT}.")
 
 
 def _read_archive(path: Path) -> dict[str, np.ndarray]:
@@ -349,6 +370,27 @@ def _count(n: int | None, word: str) -> str:
     return word + "s" if n is None else f"{n} {word}" + ("s" if n != 1 else "")
 
 
+#: The names an event count may be kept under: the event kinds, as ``EventLog.counts``
+#: names them.
+_EVENT_KINDS = tuple(kind.name.lower() for kind in EventKind)
+
+
+def _is_event_counts(value) -> bool:
+    """Whether ``value`` is a table of counts by name (``_check_event_kinds`` checks the
+    names)."""
+    return isinstance(value, dict) and all(isinstance(k, str) and _is_count(n)
+                                           for k, n in value.items())
+
+
+def _check_event_kinds(path: Path, counts: dict, where: str = "meta.event_counts") -> None:
+    """Refuse a table of event counts that counts a kind of event there is not."""
+    unknown = [kind for kind in counts if kind not in _EVENT_KINDS]
+    if unknown:
+        raise ResultsError(f"{path}: {where} counts the unknown event kind "
+                           f"{', '.join(map(repr, unknown))}; the kinds are "
+                           f"{', '.join(_EVENT_KINDS)}")
+
+
 # ---- a simulation -------------------------------------------------------------------------
 
 _SIMULATION_HEADER = (
@@ -356,16 +398,14 @@ _SIMULATION_HEADER = (
     _Field("settings", "a JSON object", lambda v: isinstance(v, dict)),
     _Field("energy", "the energy ledger: " + ", ".join(f.name for f in dataclasses.fields(
         EnergyLedger)) + " [J]", _number_table(f.name for f in dataclasses.fields(EnergyLedger))),
-    _Field("event_counts", "a table of event counts by kind",
-           lambda v: isinstance(v, dict) and all(isinstance(k, str) and _is_count(n)
-                                                 for k, n in v.items())),
+    _Field("event_counts", "a table of event counts by kind", _is_event_counts),
     _Field("samples_per_period", "an int >= 1", lambda v: _is_count(v) and v >= 1),
     _Field("steps", "an int >= 0", _is_count),
 )
 
 
 #: The arrays of a simulation file, in the order checked: a column is a blade (with
-#: substructures, a coordinate); the events are in time order.
+#: substructures, a degree of freedom of a node); the events are in time order.
 _EVENT_ARRAYS = (
     _Array("event_time", ("event",), rising="not decrease"),
     _Array("event_interface", ("event",), _INTEGER, indexes="interface"),
@@ -396,7 +436,7 @@ class SimulationArrays:
     document: dict           # the scene (and run settings), as ``scenefile.read`` takes it
     settings: SimulationSettings
     t: np.ndarray            # (n_t,) [s]
-    x: np.ndarray            # (n_t × n_blades) [m]; with substructures, by coordinate
+    x: np.ndarray            # (n_t × n_blades) [m]; with substructures, by dof
     v: np.ndarray            # (n_t × n_blades) [m/s]
     normal_force: np.ndarray     # (n_t × n_interfaces) [N]
     friction_force: np.ndarray   # (n_t × n_interfaces) [N]
@@ -421,6 +461,10 @@ def save_simulation(path: str | Path, sim: Simulation,
 
     Raises ``ResultsError`` when ``path`` cannot be written (a folder, or under a file).
     """
+    check_instance("results.save_simulation", "sim", sim, Simulation,
+                   expected="a shroudnet.Simulation (what simulate returns)")
+    check_instance("results.save_simulation", "run", run, scenefile.RunSettings,
+                   optional=True, expected="scenefile.RunSettings(...) or None")
     meta = {"format": FORMAT, "kind": "simulation",
             "scene": scenefile.document(sim.scene, run), "settings": sim.settings.as_dict(),
             "energy": asdict(sim.energy), "event_counts": sim.events.counts,
@@ -439,17 +483,20 @@ def load_arrays(path: str | Path) -> SimulationArrays:
 
     Every array is checked as ``_SIMULATION_ARRAYS`` says: there, numbers of its kind,
     finite, its shape consistent with the others and with the numbers of blades and
-    interfaces of the scene document (with substructures, whose coordinates the document
-    does not count, x and v with each other), its times in order, its modes and event
+    interfaces of the scene document (with substructures, whose degrees of freedom the
+    document does not count, x and v with each other), its times in order, its modes and event
     kinds known; raises ``ResultsError`` naming the file, the array and what is wrong.
     """
     path = Path(path)
     meta, arrays = _load_npz(path, kind="simulation")
     _checked(path, meta, _SIMULATION_HEADER)
     blades, interfaces = _document_counts(path, meta["scene"])
-    # with substructures, whose coordinates the document does not count, x sets them
+    _check_event_kinds(path, meta["event_counts"])
+    _check_second_friction(path, meta["scene"], "friction_force_second" in arrays)
+    _check_states(path, meta, [meta["scene"]], "displacements and velocities x and v")
+    # with substructures, whose degrees of freedom the document does not count, x sets them
     sizes = {"sample": None, "column": blades, "interface": interfaces}
-    words = {"column": "coordinate" if blades is None else "blade"}
+    words = {"column": "dof" if blades is None else "blade"}
     checked = _checked_arrays(path, arrays, _SIMULATION_ARRAYS[:1], sizes, words)
     n = len(checked["t"])
     if n < 1 or (n - 1) % meta["samples_per_period"]:
@@ -471,7 +518,7 @@ def load_arrays(path: str | Path) -> SimulationArrays:
 def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
     """(blades, contacts) listed in a saved scene document (an interface's contacts are
     one, or the points of its patch); blades is None where a node is a substructure (the
-    state is then by coordinate, which the scene counts)."""
+    state is then by degree of freedom, which the scene counts)."""
     counts = []
     for key in ("blades", "interfaces"):
         entries = document.get(key)
@@ -485,6 +532,21 @@ def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
     return counts[0], counts[1]
 
 
+def _check_second_friction(path: Path, document: dict, held: bool) -> None:
+    """Refuse a file that holds ``friction_force_second`` where its scene has no elastic
+    contact (an interface with a ``tangential_stiffness``), or lacks it where it has one:
+    the friction along t₂ would read as 0 N or as whatever the array holds."""
+    elastic = any(isinstance(entry, dict) and "tangential_stiffness" in entry
+                  for entry in document["interfaces"])
+    if elastic and not held:
+        raise ResultsError(f"{path}: has no array 'friction_force_second', which a run of a "
+                           "scene with elastic contacts (tangential_stiffness) records")
+    if held and not elastic:
+        raise ResultsError(f"{path}: holds an array 'friction_force_second', which only a "
+                           "run of a scene with elastic contacts (tangential_stiffness) "
+                           "records, and its scene has none")
+
+
 def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation:
     """Read a file written by ``save_simulation`` back into an equal ``Simulation``.
 
@@ -495,9 +557,9 @@ def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulatio
     """
     data = load_arrays(path)
     scene = _scene(data.path, data.document, laws).scene
-    columns = scene.arrays.n_blades  # blades, or with substructures coordinates
+    columns = scene.arrays.n_blades  # blades, or with substructures degrees of freedom
     if columns != data.x.shape[1] or len(scene.contacts) != data.normal_force.shape[1]:
-        what = "coordinates" if scene.arrays.is_structure else "blades"
+        what = "degrees of freedom" if scene.arrays.is_structure else "blades"
         raise ResultsError(f"{path}: its arrays are for {data.x.shape[1]} {what} and "
                            f"{data.normal_force.shape[1]} interfaces; its scene has "
                            f"{columns} and {len(scene.contacts)}")
@@ -550,7 +612,12 @@ def _own_law_names(document) -> list[str]:
 
 
 def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefile.RunSettings:
-    """The run settings saved with a simulation or a branch (the defaults if none were)."""
+    """The run settings saved with a simulation or a branch (the defaults if none were).
+
+    A simulation saved without them gets the defaults fitted to it: its own periods, and
+    the transient ``transient_for`` them (``TRANSIENT``, or half a shorter run), so that
+    what reads its steady response after the transient has periods left to read.
+    """
     path = Path(path)
     meta = _load_npz(path)[0]
     if meta.get("kind") == "branch":
@@ -558,7 +625,10 @@ def load_run_settings(path: str | Path, *, laws: scenefile.Laws = ()) -> scenefi
         scenes = meta["scenes"]
         return _scene(path, scenes if isinstance(scenes, dict) else scenes[0], laws).run
     data = load_arrays(path)
-    return _scene(data.path, data.document, laws).run
+    run = _scene(data.path, data.document, laws).run
+    if "run" in data.document:
+        return run
+    return dataclasses.replace(run, periods=data.periods, transient=transient_for(data.periods))
 
 
 # ---- a sweep, point by point --------------------------------------------------------------
@@ -581,9 +651,9 @@ _FAILURE_HEADER = (
     _Field("message", "text", lambda v: isinstance(v, str)),
 )
 _POINT, _FAILED_POINT = "sweep point", "failed sweep point"
-#: The arrays of a sweep point: its Poincaré points (x, v), its final state by
-#: coordinate, and its peak per response (which the file does not count; files written
-#: before peaks were kept have none).
+#: The arrays of a sweep point: its Poincaré points (x, v), its final state (by blade, or
+#: by degree of freedom of a node), and its peak per response (which the file does not
+#: count; files written before peaks were kept have none).
 _POINT_ARRAYS = (
     _Array("poincare", ("recorded period", "phase coordinate")),
     _Array("final_x", ("coordinate",)),
@@ -642,7 +712,7 @@ def _read_point(path: Path) -> tuple[SweepPoint, str | None]:
 
 
 _MANIFEST_FIELDS = (
-    _Field("format", f"{FORMAT}", lambda v: v == FORMAT),
+    _Field("format", " or ".join(map(str, READABLE)), lambda v: v in READABLE),
     _Field("kind", "'sweep'", lambda v: v == "sweep"),
     _Field("parameter", "text", lambda v: isinstance(v, str)),
     _Field("values", "a list of numbers",
@@ -715,6 +785,12 @@ class SweepStore:
             else:
                 self._write_manifest(path)
             return
+        if found["format"] != FORMAT:
+            raise ResultsError(
+                f"{self.folder} holds a sweep written in results format {found['format']}; "
+                f"this shroudnet writes format {FORMAT} (states by the nodes' own degrees of "
+                "freedom) and adds no points to an older one: read it with "
+                "results.load_sweep, or save this sweep to another folder")
         if found != self.manifest:
             changed = sorted(k for k in set(found) | set(self.manifest)
                              if found.get(k) != self.manifest.get(k))
@@ -809,6 +885,10 @@ def load_sweep(folder: str | Path) -> Sweep:
             raise
         raise ResultsError(f"{error}; run the same sweep again with save_to={folder} to "
                            "write it again") from None
+    source = manifest["settings"].get("scenes")
+    document = source.get("document") if isinstance(source, dict) else None
+    _check_states(path, manifest, None if document is None else [document],
+                  "points' final states")
     count = len(manifest["values"])
     points = {}
     for index in range(count):
@@ -843,9 +923,7 @@ _BRANCH_HEADER = (
     _Field("kinds", "a list of bifurcation kinds",
            lambda v: isinstance(v, list) and all(isinstance(k, str) for k in v)),
     _Field("event_counts", "a list of tables of event counts by kind, one per orbit",
-           lambda v: isinstance(v, list) and all(
-               isinstance(c, dict) and all(isinstance(k, str) and _is_count(n)
-                                           for k, n in c.items()) for c in v)),
+           lambda v: isinstance(v, list) and all(_is_event_counts(c) for c in v)),
 )
 
 
@@ -884,6 +962,10 @@ def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
     Each orbit's scene is kept as the scene document of ``scene_at`` (a
     ``scenefile.SceneAt``) with the parameter's path, or else as one document per orbit.
     """
+    check_instance("results.save_branch", "branch", branch, Branch,
+                   expected="a shroudnet.Branch (what continuation returns)")
+    check_instance("results.save_branch", "scene_at", scene_at, scenefile.SceneAt,
+                   optional=True, expected="a scenefile.SceneAt or None")
     orbits = [*branch.orbits, *(b.orbit for b in branch.bifurcations)]
     values = [*branch.parameter, *(b.parameter for b in branch.bifurcations)]
     if isinstance(scene_at, scenefile.SceneAt):
@@ -934,9 +1016,14 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
     if len(meta["event_counts"]) != total:
         raise ResultsError(f"{path}: meta.event_counts has {len(meta['event_counts'])} "
                            f"tables for {total} orbits")
+    for k, counts in enumerate(meta["event_counts"]):
+        _check_event_kinds(path, counts, f"meta.event_counts[{k}]")
     sizes = {"orbit": total, "bifurcation": len(kinds), "bracket end": 2,
              "energy term": len(dataclasses.fields(EnergyPerCycle))}
     values = _checked_arrays(path, arrays, _BRANCH_ARRAYS[:1], sizes)["parameter"]
+    scenes = meta["scenes"]
+    _check_states(path, meta, [scenes] if isinstance(scenes, dict) else scenes,
+                  "orbits' initial states and monodromy matrices")
     if meta["parameter_path"] is not None:
         document = _scene(path, meta["scenes"], laws).document
         scene_at = scenefile.SceneAt(document, meta["parameter_path"], laws=laws)

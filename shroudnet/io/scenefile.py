@@ -171,8 +171,9 @@ import numpy as np
 import scipy.sparse
 
 import contact_laws
-from contact_laws import check_int, check_real
+from contact_laws import check_instance, check_int, check_real
 
+from .. import atomic
 from ..model import matrix_files as fe_files
 from ..model.beam import cantilever_beam
 from ..model.blade import Blade, ConstantFrequency, FrequencyTable, Southwell
@@ -1172,6 +1173,11 @@ def document(scene: Scene, run: RunSettings | None = None, *,
     document will be saved); any other substructure with its matrices, or its modal data,
     inline (a reduction's basis is not kept).
     """
+    check_instance("scenefile.document", "scene", scene, Scene, expected="a shroudnet.Scene")
+    check_instance("scenefile.document", "run", run, RunSettings, optional=True,
+                   expected="scenefile.RunSettings(...) or None")
+    check_instance("scenefile.document", "folder", folder, (str, os.PathLike), optional=True,
+                   expected="a folder (str or pathlib.Path) or None")
     group = scene.group
     result: dict[str, Any] = {"speed_rpm": float(scene.speed_rpm),
                               "excitation": _excitation_document(scene.excitation)}
@@ -1335,24 +1341,31 @@ def _run_document(run: RunSettings) -> dict:
             "blade": list(run.blade) if isinstance(run.blade, tuple) else run.blade}
 
 
-def save(path: str | Path | Scene, scene: Scene | str | Path,
+def save(path: str | Path | Scene | SceneFile, scene: Scene | SceneFile | str | Path,
          run: RunSettings | None = None) -> Path:
     """Write ``scene`` (and ``run``) as the scene file ``path`` (TOML), which ``load`` reads
     back into an equal scene; the matrix files it names are written relative to its folder
     (made if missing). The scene and the path may come in either order:
     ``save(scene, "group.toml")`` is ``save("group.toml", scene)``.
+
+    ``scene`` may also be what ``load`` returned (a ``SceneFile``): its scene is written,
+    with its run settings where its file had a ``[run]`` table (``run``, if given, takes
+    their place). The file is written whole or not at all (``atomic.write``): on a full
+    disc the file that was there is left as it was, and ``atomic.WriteError`` names it.
     """
-    if isinstance(path, Scene):
+    if isinstance(path, Scene | SceneFile):
         path, scene = scene, path
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scenefile.save needs a shroudnet.Scene, got {scene!r}")
-    if not isinstance(path, str | os.PathLike):
-        raise TypeError(f"scenefile.save needs a path (str or pathlib.Path), got {path!r}")
+    check_instance("scenefile.save", "scene", scene, (Scene, SceneFile),
+                   expected="a shroudnet.Scene (or the SceneFile that scenefile.load returns)")
+    check_instance("scenefile.save", "path", path, (str, os.PathLike),
+                   expected="a path (str or pathlib.Path)")
+    check_instance("scenefile.save", "run", run, RunSettings, optional=True,
+                   expected="scenefile.RunSettings(...) or None")
+    if isinstance(scene, SceneFile):
+        run = scene.run if run is None and "run" in scene.document else run
+        scene = scene.scene
     path = Path(path)
-    text = dumps(document(scene, run, folder=path.parent))
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return atomic.write_text(path, dumps(document(scene, run, folder=path.parent)))
 
 
 def dumps(document: dict) -> str:

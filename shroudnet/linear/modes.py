@@ -1,18 +1,38 @@
-"""The group's linear modes, in the two limits of its interfaces, and by nodal diameter.
+"""The group's linear modes, in three limits of its interfaces, and by nodal diameter.
 
 Before any nonlinear run a designer reads the natural frequencies of the group with its
-interfaces in the two limits the friction moves between:
+interfaces in the limits the friction and contact move between:
 
 - ``contacts="open"``: every interface carries nothing; the blades' own springs and the
-  couplings hold the group (``SceneArrays.stiffness_matrix``);
+  couplings hold the group (``SceneArrays.stiffness_matrix``). The lower bound.
 - ``contacts="stuck"``: every interface that can stick (an exact friction law and a face
   with a component along x, α < π/2) is stuck, as the loop's stick clusters are: its two
-  nodes move as one body, and a node stuck to a fixed node does not move. An interface
-  that cannot stick but is closed at rest (penetration −Δ sin α > 0, or a law that never
-  opens) slides freely and pushes by its normal law only: a spring of its contact
-  stiffness ∂N/∂δ sin²α along x, the law's gradient at the rest penetration. An elastic
-  contact (``Interface.tangential_stiffness`` k_t) is not a constraint: stuck, it is the
-  spring k_t cos²α along x beside its normal spring; rigid stick is only where k_t is None.
+  nodes move as one body, and a node stuck to a fixed node does not move. The normal
+  springs are those of the group at rest: an interface closed at rest (penetration
+  −Δ sin α > 0, or a law that never opens) pushes by its normal law, a spring of its
+  contact stiffness ∂N/∂δ sin²α along x (the law's gradient at the rest penetration)
+  where it cannot stick and slides; an interface open at rest (a gap, Δ > 0) adds no
+  normal spring, stuck or not. An elastic contact (``Interface.tangential_stiffness``
+  k_t) is not a constraint: stuck, it is the spring k_t cos²α along x beside its normal
+  spring (if closed at rest); rigid stick is only where k_t is None. So "stuck" is the
+  group at rest with its friction locked, not an upper bound: with gaps it leaves the
+  normal springs out.
+- ``contacts="closed"``: every interface closed, and stuck where it can stick: "stuck"
+  with the normal spring of every interface, open at rest or not. The upper bound of the
+  frequencies: the k-th closed frequency is at least the k-th stuck one, and that at least
+  the k-th open one (a spring ∂N/∂δ ≥ 0 or a constraint added never lowers the k-th
+  eigenvalue: Courant–Fischer).
+  An interface closed at rest is linearised at its rest penetration, as in "stuck"; one
+  open at rest at first touch, δ → 0⁺, read as the law's gradient at ``FIRST_TOUCH``,
+  which must agree with that at ``DEEPER`` to ``TOUCH_AGREEMENT``: a law linear where it
+  closes (``LinearSpring``, ``KelvinVoigt`` with its dashpot, ``Hertz`` and
+  ``HuntCrossley`` of exponent 1) gives its stiffness k; ``Hertz`` and ``HuntCrossley``
+  of exponent n > 1, whose ∂N/∂δ = k n δ^(n−1) is 0 at first touch and grows without
+  bound, have no linear closed limit there and are refused (preload the contact, Δ < 0,
+  to linearise it at its rest penetration). ``ConstantLoad`` never opens and its force
+  does not depend on δ: it adds no normal spring, its closed limit is its stuck one.
+  Between one-mass blades a rigidly stuck interface's nodes move as one body, so its
+  normal spring would change nothing and is not read (nor its law refused).
 
 The modes solve K φ = ω² M φ (``scipy.linalg.eigh``), mass-normalised (φᵀ M φ = 1). A
 prescribed-motion node is held where it is, as a fixed node: these are the modes about
@@ -21,13 +41,19 @@ its path.
 A ring of N identical sectors (``BladeGroup.ring``, ``BladeGroup.bladed_disc``, or
 ``sectors=N`` for a group whose nodes were added sector by sector) has modes that are
 travelling or standing waves round the ring: mode φ has nodal diameter ND when its
-sectors' amplitudes vary round the ring as cos(2π ND s/N + θ). ND is read from each
-shape by a discrete Fourier transform over the sectors (harmonics k and N − k are one
-ND), so that mistuned rings are labelled by their dominant diameter. An engine order l
-excites the diameter ND = min(l mod N, N − l mod N) only (``excited_diameter``).
+sectors' amplitudes vary round the ring as cos(2π ND s/N + θ), that is when it lies in
+the cyclic subspace of the harmonics k = ND and N − ND of the discrete Fourier transform
+over the sectors. Each eigenspace (eigenvalues ω² equal to ``EIGENSPACE``, relative) is
+projected onto these subspaces and its basis turned so that each mode lies in one of
+them (``cyclic_eigenspaces``): a tuned ring's eigenspace is invariant under the sector
+shift, so a degenerate family (N uncoupled blades: N modes at one frequency) gets every
+diameter exactly once, ND = 0 and N/2 one mode, the others two. A mode is labelled by
+the diameter holding most of its square, so that a mistuned ring's modes are labelled by
+their dominant diameter. An engine order l excites the diameter
+ND = min(l mod N, N − l mod N) only (``excited_diameter``).
 
-A group with substructures (DESIGN §7) is solved in the coordinates of its state
-(``SceneArrays.layout``: each node's modal coordinates, mass diag(m̃)), with the same two
+A group with substructures (DESIGN §7) is solved in the engine's coordinates
+(``SceneArrays.layout``: each node's modal coordinates, mass diag(m̃)), with the same
 limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, v_e = t_e·ẋ):
 
 - ``"open"``: K̃ x = ω² M̃ x, K̃ the nodes' stiffness with the couplings
@@ -35,15 +61,20 @@ limits written in the rows of its interfaces (n_e, t_e; δ_e = n_e·x − Δ_e, 
 - ``"stuck"``: every interface that can stick (an exact friction law, t_e ≠ 0) holds
   t_e·x = 0, a constraint, while its normal force still acts along n_e; so every interface
   closed at rest (−Δ_e > 0, or a law that never opens), stuck or sliding, adds the spring
-  ∂N/∂δ n_e n_eᵀ. The constraints G x = 0 (one row t_e per stuck interface) are eliminated
-  by an orthonormal basis T of the null space of G (redundant rows, as round an all-stuck
-  ring, are dropped by its rank), and Tᵀ K T z = ω² Tᵀ M T z is solved. For one-mass
-  blades (t_e ∥ n_e) this is the stick clusters above. An elastic contact adds, in place
-  of its constraint, the spring k_t (t₁t₁ᵀ + t₂t₂ᵀ) over its tangent directions.
+  ∂N/∂δ n_e n_eᵀ, and one open at rest adds nothing: stuck with a gap, its two points are
+  held along the face and free across it. The constraints G x = 0 (one row t_e per stuck
+  interface) are eliminated by an orthonormal basis T of the null space of G (redundant
+  rows, as round an all-stuck ring, are dropped by its rank), and Tᵀ K T z = ω² Tᵀ M T z
+  is solved. For one-mass blades (t_e ∥ n_e) this is the stick clusters above. An elastic
+  contact adds, in place of its constraint, the spring k_t (t₁t₁ᵀ + t₂t₂ᵀ) over its
+  tangent directions;
+- ``"closed"``: as "stuck", with the spring ∂N/∂δ n_e n_eᵀ of every interface (its law
+  read as above).
 
-``shapes`` stay by coordinate (mass-normalised: the kinetic energy is the physical one);
-``LinearModes.node_shapes`` and ``point_shapes`` read them in a node's own degrees of
-freedom q_i or as a point's displacement r_p. The nodal diameter of a ring of substructures
+``shapes`` are then taken to the nodes' own degrees of freedom q (``model.lowering.to_dofs``;
+mass-normalised with the nodes' mass matrices, the kinetic energy being the physical one);
+``LinearModes.node_shapes`` and ``point_shapes`` read them node by node or as a point's
+displacement r_p. The nodal diameter of a ring of substructures
 is read, as for blades, from the DFT over the sectors of each node's own degrees of freedom
 q_i (so that sectors whose coordinates differ, as mistuned ones do, are compared in the same
 physical terms).
@@ -62,9 +93,27 @@ from contact_laws import check_array, check_instance, check_int, check_sequence
 
 from ..checked_records import check_record
 from ..engine.clusters import cluster_labels
+from ..model.lowering import to_dofs
 from ..model.scene import Scene, edge_matrix
 
-CONTACTS = ("open", "stuck")
+CONTACTS = ("open", "stuck", "closed")
+
+#: Where the "closed" limit reads a contact open at rest (module docstring): the law's
+#: gradient at a penetration of ``FIRST_TOUCH`` [m], which must agree with that at
+#: ``DEEPER`` [m] to ``TOUCH_AGREEMENT`` (relative) for the law to be linear where it
+#: closes. A nanometre is below any gap or amplitude of a shroud and above the central
+#: differences' step (6e-12 m) of a law without an analytic gradient, so that they do
+#: not straddle δ = 0.
+FIRST_TOUCH = 1e-9
+DEEPER = 1e-8
+TOUCH_AGREEMENT = 1e-3
+
+#: Eigenvalues ω² that belong to one eigenspace: consecutive ones within ``EIGENSPACE`` of
+#: the larger (relative), or within ``EIGENSPACE_ROUNDING`` of the largest |ω²| (the
+#: rounding of a generalised symmetric eigensolver, which also gathers the rigid-body
+#: modes, ω² = 0 to within it).
+EIGENSPACE = 1e-8
+EIGENSPACE_ROUNDING = 1e3 * np.finfo(float).eps
 
 
 @dataclass(frozen=True, eq=False)
@@ -72,9 +121,11 @@ class LinearModes:
     """Natural frequencies and mode shapes of a scene's linearised group.
 
     ``frequencies`` [Hz] ascending; ``shapes`` one mass-normalised column per mode, rows
-    by blade position [1/√kg] (with substructures, by coordinate of the state: read them
-    with ``node_shapes`` or ``point_shapes``); ``nodal_diameters`` the ND of each mode for a
-    group of ``sectors`` identical sectors, else None; ``scene`` the scene they are of.
+    by blade position [1/√kg] (with substructures, by every node's own degrees of freedom
+    q, stacked in ``Scene.blades`` order as a state's displacements are: read them by
+    node with ``node_shapes`` or ``point_shapes``); ``nodal_diameters`` the ND of each
+    mode for a group of ``sectors`` identical sectors, else None; ``scene`` the scene they
+    are of.
     """
 
     frequencies: np.ndarray
@@ -113,9 +164,8 @@ class LinearModes:
         if self.nodal_diameters is None:
             raise ValueError("these modes are not sorted by nodal diameter: the group has "
                              "no sectors (give linear_modes(..., sectors=N))")
-        largest = int(self.nodal_diameters.max(initial=0))
         nodal_diameter = check_int("LinearModes.of_diameter", "nodal_diameter", nodal_diameter,
-                                   low=0, high=largest, high_label="N // 2")
+                                   low=0, high=self.sectors // 2, high_label="N // 2")
         return self.frequencies[self.nodal_diameters == nodal_diameter]
 
     def families(self) -> np.ndarray:
@@ -149,13 +199,22 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
     Parameters
     ----------
     scene : Scene
-    contacts : "open" or "stuck"
-        The limit of the interfaces (module docstring).
+    contacts : "open", "stuck" or "closed"
+        The limit of the interfaces (module docstring): "closed" is the upper bound,
+        "stuck" the group at rest with its friction locked.
     sectors : int, optional
         N, for a ring of N identical sectors whose nodes are numbered sector by sector
         (the node at position p in sector p // (nodes/N)); taken from the group where it
         was built as a ring or a bladed disc. With substructures, every sector must have
-        as many degrees of freedom.
+        as many degrees of freedom. The modes of each eigenspace are then turned so that
+        each lies in one nodal diameter's cyclic subspace (module docstring).
+
+    Raises
+    ------
+    ValueError
+        Bad arguments; "stuck" or "closed" where nothing can move; "closed" where an
+        interface open at rest has a law without a linear closed limit (module
+        docstring).
 
     Examples
     --------
@@ -181,15 +240,17 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
         if len(scene.blades) % sectors:
             raise ValueError(f"linear_modes: sectors = {sectors} does not divide the "
                              f"{len(scene.blades)} blades into equal sectors")
-    limit = interface_limit(a, contacts, "linear_modes")
+    limit = interface_limit(scene, contacts, "linear_modes")
     basis, stiffness = limit.basis, limit.stiffness
     mass = basis.T @ np.diag(a.mass) @ basis
     eigenvalues, vectors = scipy.linalg.eigh(basis.T @ stiffness @ basis, mass)
-    frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
     shapes = basis @ vectors
     diameters = None
     if sectors is not None:
-        diameters = nodal_diameters(_by_degree_of_freedom(scene, shapes, sectors), sectors)
+        eigenvalues, shapes, diameters = cyclic_eigenspaces(
+            eigenvalues, shapes, stiffness, _dof_matrix(scene, sectors), sectors)
+    shapes = to_dofs(a.layout, shapes, axis=0)
+    frequencies = np.sqrt(np.clip(eigenvalues, 0.0, None)) / (2.0 * np.pi)
     return LinearModes(frequencies=frequencies, shapes=shapes, nodal_diameters=diameters,
                        contacts=contacts, sectors=sectors, speed_rpm=scene.speed_rpm,
                        scene=scene)
@@ -199,30 +260,33 @@ def linear_modes(scene: Scene, contacts: str = "open", *,
 class Limit:
     """The group linearised with its interfaces in one limit: the state's displacements
     x = T z move as the stuck interfaces allow (``basis`` T), under the stiffness K [N/m]
-    and damping C [N·s/m] of the blades, couplings and interfaces closed at rest (each a
-    spring ∂N/∂δ and a dashpot ∂N/∂δ̇ along its normal, at its rest penetration)."""
+    and damping C [N·s/m] of the blades, couplings and interfaces the limit closes (each a
+    spring ∂N/∂δ and a dashpot ∂N/∂δ̇ along its normal: "stuck" those closed at rest, at
+    their rest penetration; "closed" every one, those open at rest at first touch)."""
 
     basis: np.ndarray
     stiffness: np.ndarray
     damping: np.ndarray
 
 
-def interface_limit(a, contacts: str, caller: str) -> Limit:
-    """The ``Limit`` of the scene arrays ``a`` with its interfaces ``contacts`` (module
+def interface_limit(scene: Scene, contacts: str, caller: str) -> Limit:
+    """The ``Limit`` of ``scene``'s group with its interfaces ``contacts`` (module
     docstring). Open, the interfaces add nothing. Raises a ValueError, naming ``caller``,
-    where nothing can move."""
+    where nothing can move, or where "closed" meets a law with no linear closed limit."""
+    a = scene.arrays
     stiffness, damping = a.stiffness_matrix(), a.damping_matrix()
+    closing = _NormalSprings(scene, closed=contacts == "closed", caller=caller)
     if a.is_structure:
         basis = np.eye(a.n_blades)
-        if contacts == "stuck":
-            basis, springs, dashpots = _structure_limit(a)
+        if contacts != "open":
+            basis, springs, dashpots = _structure_limit(a, closing)
             stiffness, damping = stiffness + springs, damping + dashpots
     else:
         stuck = np.zeros(a.n_interfaces, dtype=bool)
-        if contacts == "stuck":
+        if contacts != "open":
             elastic = np.isfinite(a.tangential_stiffness)
             stuck = a.can_stick & ~elastic
-            springs, dashpots = _sliding_contacts(a, ~stuck)
+            springs, dashpots = _sliding_contacts(a, ~stuck, closing)
             tangential = np.where(elastic, a.tangential_stiffness, 0.0) * a.cos_angle ** 2
             springs = springs + edge_matrix(np.zeros(a.n_blades), a.left, a.right, tangential)
             stiffness, damping = stiffness + springs, damping + dashpots
@@ -233,25 +297,51 @@ def interface_limit(a, contacts: str, caller: str) -> Limit:
     return Limit(basis=basis, stiffness=stiffness, damping=damping)
 
 
-def _rest_gradient(a, e, penetration) -> tuple[float, float]:
-    """(∂N/∂δ [N/m], ∂N/∂δ̇ [N·s/m]) of interface e at rest at ``penetration`` [m] if it is
-    closed there (or its law never opens), else (0, 0)."""
-    if penetration > 0.0 or not a.opens[e]:
-        return a.normal_laws[e].gradient(max(penetration, 0.0), 0.0)
-    return 0.0, 0.0
+@dataclass(frozen=True)
+class _NormalSprings:
+    """The normal spring of each interface in a limit (module docstring): "stuck" closes
+    those closed at rest, "closed" (``closed``) every one; a refusal names ``caller``."""
+
+    scene: Scene
+    closed: bool
+    caller: str
+
+    def gradient(self, e: int, penetration: float) -> tuple[float, float]:
+        """(∂N/∂δ [N/m], ∂N/∂δ̇ [N·s/m]) of interface e at rest at ``penetration`` [m]:
+        at it where the contact is closed there (or its law never opens); at first touch
+        where it is open at rest and the limit is "closed"; else (0, 0)."""
+        a = self.scene.arrays
+        law = a.normal_laws[e]
+        if penetration > 0.0 or not a.opens[e]:
+            return law.gradient(max(penetration, 0.0), 0.0)
+        if not self.closed:
+            return 0.0, 0.0
+        touch, deeper = law.gradient(FIRST_TOUCH, 0.0), law.gradient(DEEPER, 0.0)
+        if not abs(deeper[0] - touch[0]) <= TOUCH_AGREEMENT * abs(deeper[0]):
+            left, right, _ = self.scene.group.interfaces[e]
+            raise ValueError(
+                f"{self.caller}: contacts='closed' closes interface {e} ({left!r}, "
+                f"{right!r}), open at rest, at first touch, where the stiffness of its "
+                f"{type(law).__name__} law depends on the penetration (∂N/∂δ = "
+                f"{touch[0]:.6g} N/m at {FIRST_TOUCH:g} m, {deeper[0]:.6g} N/m at "
+                f"{DEEPER:g} m): a law that stiffens as it presses (Hertz or HuntCrossley "
+                "of exponent > 1) has no linear closed limit there; preload the contact "
+                "(gap < 0) to linearise it at its rest penetration, or take "
+                "contacts='stuck'")
+        return touch
 
 
-def _structure_limit(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _structure_limit(a, closing: _NormalSprings) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(T, springs, dashpots) of a scene with substructures, its interfaces stuck (module
     docstring): x = T z spans the motions the stuck interfaces allow (T orthonormal); each
-    interface closed at rest adds ∂N/∂δ n nᵀ and ∂N/∂δ̇ n nᵀ, and each elastic contact
+    interface ``closing`` closes adds ∂N/∂δ n nᵀ and ∂N/∂δ̇ n nᵀ, and each elastic contact
     k_t (t₁t₁ᵀ + t₂t₂ᵀ) in place of its constraint. A prescribed-motion coordinate is held
     (its columns of the rows dropped)."""
     n = a.n_blades
     springs, dashpots = np.zeros((n, n)), np.zeros((n, n))
     elastic = np.isfinite(a.tangential_stiffness)
     for e in range(a.n_interfaces):
-        spring, dashpot = _rest_gradient(a, e, -a.normal_gap[e])
+        spring, dashpot = closing.gradient(e, -a.normal_gap[e])
         normal = a.normal_rows[e, :n]
         springs += spring * np.outer(normal, normal)
         dashpots += dashpot * np.outer(normal, normal)
@@ -263,28 +353,28 @@ def _structure_limit(a) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return basis, springs, dashpots
 
 
-def _by_degree_of_freedom(scene: Scene, shapes: np.ndarray, sectors: int) -> np.ndarray:
-    """``shapes`` in the nodes' own degrees of freedom, nodes by position (a scene of blades:
-    ``shapes`` itself), checked to give every sector as many rows."""
-    if not scene.arrays.is_structure:
-        return shapes
-    rows = [scene.dof_rows(node) @ shapes for node in scene.blades]
-    per_sector = len(rows) // sectors
-    sizes = {sum(len(r) for r in rows[s * per_sector:(s + 1) * per_sector])
-             for s in range(sectors)}
+def _dof_matrix(scene: Scene, sectors: int) -> np.ndarray:
+    """D: the nodes' own degrees of freedom q = D x of the engine's coordinates x, nodes by
+    position (a scene of blades: the identity), checked to give every sector as many
+    rows."""
+    a = scene.arrays
+    if not a.is_structure:
+        return np.eye(a.n_blades)
+    per_sector = len(a.layout.sizes) // sectors
+    sizes = {sum(a.layout.sizes[s * per_sector:(s + 1) * per_sector]) for s in range(sectors)}
     if len(sizes) != 1:
         raise ValueError(f"linear_modes: the {sectors} sectors have different numbers of "
                          f"degrees of freedom ({sorted(sizes)}): they are not identical")
-    return np.vstack(rows)
+    return to_dofs(a.layout, np.eye(a.n_blades), axis=0)
 
 
-def _sliding_contacts(a, candidates) -> tuple[np.ndarray, np.ndarray]:
+def _sliding_contacts(a, candidates, closing: _NormalSprings) -> tuple[np.ndarray, np.ndarray]:
     """The spring ∂N/∂δ sin²α [N/m] and dashpot ∂N/∂δ̇ sin²α [N·s/m] along x of each
-    interface in ``candidates`` that is closed at rest, on the rows and columns of its
+    interface in ``candidates`` that ``closing`` closes, on the rows and columns of its
     nodes."""
     springs, dashpots = np.zeros(a.n_interfaces), np.zeros(a.n_interfaces)
     for e in np.flatnonzero(candidates):
-        spring, dashpot = _rest_gradient(a, e, -a.gap[e] * a.sin_angle[e])
+        spring, dashpot = closing.gradient(e, -a.gap[e] * a.sin_angle[e])
         springs[e], dashpots[e] = (value * a.sin_angle[e] ** 2 for value in (spring, dashpot))
     own = np.zeros(a.n_blades)
     return (edge_matrix(own, a.left, a.right, springs),
@@ -312,6 +402,64 @@ def nodal_diameters(shapes, sectors: int) -> np.ndarray:
     for k in range(sectors):
         folded[min(k, sectors - k)] += power[k]
     return np.argmax(folded, axis=0)
+
+
+def cyclic_eigenspaces(eigenvalues: np.ndarray, shapes: np.ndarray, stiffness: np.ndarray,
+                       dofs: np.ndarray, sectors: int
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(eigenvalues, shapes, nodal diameters) of the modes ``shapes`` (columns,
+    mass-normalised, of the ascending ``eigenvalues`` ω² [rad²/s²] of the stiffness
+    ``stiffness`` [N/m]), each eigenspace's basis turned so that each mode lies in one
+    diameter's cyclic subspace where the eigenspace allows it (module docstring).
+
+    ``dofs`` D (rows by position, sector-major, as many per sector) takes a shape to the
+    nodes' own degrees of freedom q = D φ, where the DFT over the sectors is taken. For an
+    eigenspace of several modes, Φ = shapes[:, cluster] and Q = D Φ: the operator
+    Σ_ND ND Qᵀ P_ND Q, P_ND the orthogonal projector on the harmonics ND and N − ND of
+    q, is diagonalised against Qᵀ Q (``scipy.linalg.eigh``); its eigenvectors R are the
+    combinations of Φ whose q are orthonormal, each of one diameter, where the eigenspace
+    is invariant under the sector shift (a tuned ring: P_ND Q = Q C_ND there, and the
+    eigenvalues are the diameters). Φ R is made mass-normalised again by the orthogonal
+    polar factor of R (Φ is), which keeps each diameter's columns within it, in
+    ascending diameter. An eigenspace gathered to the tolerance may join the exact
+    eigenspaces of neighbouring diameters, each of which its turned modes then are: where
+    their Rayleigh quotients φᵀ K φ spread beyond rounding (``EIGENSPACE_ROUNDING``),
+    they become the modes' eigenvalues and order them. Each mode is labelled by
+    ``nodal_diameters``. A single mode is left as it is.
+    """
+    eigenvalues, shapes = eigenvalues.copy(), shapes.copy()
+    rounding = EIGENSPACE_ROUNDING * np.abs(eigenvalues).max(initial=0.0)
+    if sectors > 1:
+        for cluster in _eigenspaces(eigenvalues):
+            if len(cluster) > 1:
+                q = dofs @ shapes[:, cluster]
+                _, turn = scipy.linalg.eigh(_diameter_operator(q, sectors), q.T @ q)
+                turned = shapes[:, cluster] @ scipy.linalg.polar(turn)[0]
+                rayleigh = np.einsum("ij,ij->j", turned, stiffness @ turned)
+                if np.ptp(rayleigh) > rounding:
+                    order = np.argsort(rayleigh, kind="stable")
+                    eigenvalues[cluster], turned = rayleigh[order], turned[:, order]
+                shapes[:, cluster] = turned
+    return eigenvalues, shapes, nodal_diameters(dofs @ shapes, sectors)
+
+
+def _eigenspaces(eigenvalues: np.ndarray) -> list[np.ndarray]:
+    """The indices of each run of ascending ``eigenvalues`` equal to ``EIGENSPACE``
+    (relative) or ``EIGENSPACE_ROUNDING`` of the largest."""
+    floor = EIGENSPACE_ROUNDING * np.abs(eigenvalues).max(initial=0.0)
+    gaps = np.diff(eigenvalues)
+    tolerance = EIGENSPACE * np.abs(eigenvalues[1:]) + floor
+    return np.split(np.arange(len(eigenvalues)), np.flatnonzero(gaps > tolerance) + 1)
+
+
+def _diameter_operator(q: np.ndarray, sectors: int) -> np.ndarray:
+    """Σ_ND ND Qᵀ P_ND Q for the columns Q of ``q`` (rows sector-major): with the unitary
+    DFT F_k = Σ_s Q_s e^{−2πi k s/N}/√N over the sectors s, Σ_k min(k, N − k) Re(F_kᴴ F_k)."""
+    grid = q.reshape(sectors, -1, q.shape[1])
+    harmonics = np.fft.fft(grid, axis=0) / np.sqrt(sectors)
+    k = np.arange(sectors)
+    weights = np.minimum(k, sectors - k).astype(float)
+    return np.einsum("k,kpi,kpj->ij", weights, harmonics.conj(), harmonics).real
 
 
 def excited_diameter(engine_order: int, sectors: int) -> int:

@@ -1,9 +1,11 @@
-"""The group's linear forced response in the two limits of its interfaces.
+"""The group's linear forced response in the limits of its interfaces.
 
 Every friction-damping plot is drawn between two linear curves: the response with the
-interfaces open (they carry nothing) and with them stuck (``linear.interface_limit``, the
-limits ``linear_modes`` takes). Between them the nonlinear response moves as the contacts
-slip, close and open.
+interfaces open (they carry nothing) and with them closed, normal springs included, and
+stuck where they can stick (``linear.interface_limit``, the limits ``linear_modes``
+takes). Between them the nonlinear response moves as the contacts slip, close and open.
+The third limit, "stuck", is the group at rest with its friction locked: an interface
+open at rest adds no normal spring there, so with gaps it is not the upper bound.
 
 The excitation's first harmonic drives the group: node coordinate i feels
 Q_i(t) = A_i sin(ω t + φ_i) (``SceneArrays.harmonic_amplitudes``, ``harmonic_phases``, row
@@ -13,10 +15,12 @@ steady response x(t) = Im(X e^{iωt}) solves
     Tᵀ (K − ω² M + iω C) T Z = Tᵀ F,   X = T Z,
 
 in the basis T of the limit (the identity when open; ``linear.Limit``). The stiffness is
-K(Ω) at the scene's speed, and stuck, K and C include the spring ∂N/∂δ and dashpot ∂N/∂δ̇
-of each interface closed at rest. The constant load q_0 and the harmonics n ≥ 2 are not
-part of it (each harmonic n would add its own response at n ω), and a scene with
-prescribed-motion nodes, whose motion is an excitation of its own, is refused.
+K(Ω) at the scene's speed; stuck, K and C include the spring ∂N/∂δ and dashpot ∂N/∂δ̇
+of each interface closed at rest, and closed, those of every interface (one open at rest
+taken at first touch; ``linear``'s docstring says which laws have none). The constant
+load q_0 and the harmonics n ≥ 2 are not part of it (each harmonic n would add its own
+response at n ω), and a scene with prescribed-motion nodes, whose motion is an
+excitation of its own, is refused.
 """
 
 from __future__ import annotations
@@ -28,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checked_records import check_record
+from ..model.lowering import to_dofs
 from ..model.scene import Scene
 from .modes import CONTACTS, interface_limit
 
@@ -42,8 +47,9 @@ class FrequencyResponse:
     """The complex steady response of a scene's group to its excitation's first harmonic.
 
     ``frequencies`` [Hz] are the excitation frequencies f; ``response[k]`` is X at
-    ``frequencies[k]`` by coordinate of the state (by blade without substructures) [m]:
-    coordinate i moves as Im(X_i e^{i 2π f t}), so |X_i| is its amplitude and arg X_i its
+    ``frequencies[k]`` by blade (with substructures, by every node's own degree of freedom,
+    stacked in ``Scene.blades`` order as a state's displacements are) [m]: degree of
+    freedom i moves as Im(X_i e^{i 2π f t}), so |X_i| is its amplitude and arg X_i its
     phase against the excitation's sine. Read it by node with ``dofs`` and by point with
     ``displacement`` and ``amplitude``.
     """
@@ -97,7 +103,7 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
                        contacts: str = "open") -> FrequencyResponse:
     """The linear steady response of ``scene``'s group to its excitation's first harmonic,
     at each excitation frequency in ``frequencies`` [Hz], with the interfaces ``contacts``
-    ("open" or "stuck"; module docstring).
+    ("open", "stuck" or "closed"; module docstring).
 
     Examples
     --------
@@ -126,7 +132,7 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
         raise ValueError("frequency_response: the excitation has no first harmonic "
                          "(Excitation.amplitudes[1] is 0 or absent): nothing drives the "
                          "response")
-    limit = interface_limit(a, contacts, "frequency_response")
+    limit = interface_limit(scene, contacts, "frequency_response")
     basis = limit.basis
     forcing = a.harmonic_amplitudes[1, :n] * np.exp(1j * a.harmonic_phases[1, :n])
     mass = basis.T @ np.diag(a.mass) @ basis
@@ -143,8 +149,8 @@ def frequency_response(scene: Scene, frequencies: Sequence[float],
                              "that nothing damps (K − ω²M + iωC is singular to within rounding); "
                              "give damping or leave this frequency out")
         response[k] = basis @ np.linalg.solve(dynamic, load)
-    return FrequencyResponse(frequencies=frequencies, response=response, contacts=contacts,
-                             scene=scene)
+    return FrequencyResponse(frequencies=frequencies, response=to_dofs(a.layout, response),
+                             contacts=contacts, scene=scene)
 
 
 #: The largest frequency [Hz] a response is computed at: (2π f)² times a mass stays far

@@ -102,6 +102,16 @@ class FrequencyTable:
 FrequencyModel = ConstantFrequency | Southwell | FrequencyTable
 
 
+def frequency_of(model: FrequencyModel, speed_rpm: float) -> float:
+    """f_d1 [Hz] of the frequency ``model`` at ``speed_rpm`` [rev/min]; inf where its
+    arithmetic overflows a float (Southwell's law squares the speed: beyond about 1e155
+    rpm), so that the caller refuses it by name."""
+    try:
+        return model.at(speed_rpm)
+    except OverflowError:
+        return math.inf
+
+
 @dataclass(frozen=True, kw_only=True)
 class Blade:
     """A blade reduced to its shroud: m ẍ + c ẋ + k(Ω) x = s Q(t) + interface forces.
@@ -152,7 +162,16 @@ class Blade:
         """k(Ω) [N/m] at the rotating speed ``speed_rpm`` [rev/min]."""
         if self.stiffness is not None:
             return float(self.stiffness)
-        return self.mass * (2.0 * math.pi * self.frequency.at(speed_rpm)) ** 2
+        try:
+            stiffness = self.mass * (2.0 * math.pi
+                                     * frequency_of(self.frequency, speed_rpm)) ** 2
+        except OverflowError:
+            stiffness = math.inf
+        if not math.isfinite(stiffness):
+            raise ValueError(f"Blade.stiffness_at: k(Ω) = m (2π f_d1(Ω))² overflows a float "
+                             f"at speed_rpm = {speed_rpm:g} ({self.frequency!r}); check the "
+                             "units of the speed (rev/min)")
+        return stiffness
 
     def frequency_at(self, speed_rpm: float) -> float:
         """The blade's own natural frequency sqrt(k/m)/2π [Hz] at ``speed_rpm``."""

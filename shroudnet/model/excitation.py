@@ -18,11 +18,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from contact_laws import check_array, check_int, check_real
+from contact_laws import check_array, check_instance, check_int, check_real
 
 #: Largest engine order accepted: l counts the vanes, struts or burners a blade passes per
 #: revolution, a few hundred at most in any turbomachine; beyond 1000 the excitation
@@ -54,14 +54,19 @@ class TravellingWave:
     ND ≥ N repeats the phases of ND mod N, so it is refused as a mistake. The range is
     checked when the number of blades is known (``phases``, or building a ``Scene``).
     For engine-order forcing of a tuned disc ND = l mod N: use ``EngineOrderWave()``.
+    ``engine_order_wave`` is the ``EngineOrderWave`` a ``Scene`` made this wave from (None
+    for a wave given as such): another group given the excitation takes that pattern again.
     """
 
     nodal_diameter: int
+    engine_order_wave: EngineOrderWave | None = field(default=None, compare=False,
+                                                      repr=False, kw_only=True)
 
     def __post_init__(self):
         object.__setattr__(self, "nodal_diameter",
                            check_int("TravellingWave", "nodal_diameter", self.nodal_diameter,
                                      low=0))
+        _check_source("TravellingWave", self.engine_order_wave)
 
     def phases(self, n_blades: int) -> np.ndarray:
         """φ_i = 2π ND i / N [rad] for the N = ``n_blades`` blades by position."""
@@ -87,7 +92,9 @@ class EngineOrderWave:
     Without ``blades_on_disc`` the group is taken for the whole disc (N = its number of
     blades, or of sectors); a ``Scene`` whose group is an open packet then says so once, as
     a warning. A ``Scene`` replaces this pattern by the phases it stands for, since only
-    then are l and the group both known.
+    then are l and the group both known; those phases remember this pattern
+    (``engine_order_wave``), so that the scene's excitation given to another group (a ring
+    grown by a blade) is the engine-order wave there too, not the phases of the first.
     """
 
     blades_on_disc: int | None = None
@@ -112,13 +119,14 @@ class EngineOrderWave:
         engine_order = check_int("EngineOrderWave.wave", "engine_order", engine_order, low=1)
         disc = n_blades if self.blades_on_disc is None else self.blades_on_disc
         if disc == n_blades:
-            return TravellingWave(self.nodal_diameter(n_blades, engine_order))
+            return TravellingWave(self.nodal_diameter(n_blades, engine_order),
+                                  engine_order_wave=self)
         if n_blades > disc:
             raise ValueError(f"EngineOrderWave.blades_on_disc = {disc} is fewer than the "
                              f"group's {n_blades} blades (or sectors): a packet must fit on "
                              "its disc")
         steps = (engine_order * np.arange(n_blades)) % disc
-        return ExplicitPhases(tuple(2.0 * math.pi * steps / disc))
+        return ExplicitPhases(tuple(2.0 * math.pi * steps / disc), engine_order_wave=self)
 
     def phases(self, n_blades: int, engine_order: int) -> np.ndarray:
         """φ_i = 2π l i / N [rad] for the blades by position (reduced by whole turns)."""
@@ -127,9 +135,11 @@ class EngineOrderWave:
 
 @dataclass(frozen=True)
 class ExplicitPhases:
-    """φ_i given one per blade [rad]."""
+    """φ_i given one per blade [rad]; ``engine_order_wave`` as for ``TravellingWave``."""
 
     values: tuple[float, ...]
+    engine_order_wave: EngineOrderWave | None = field(default=None, compare=False,
+                                                      repr=False, kw_only=True)
 
     def __post_init__(self):
         if isinstance(self.values, str) or getattr(self.values, "ndim", 1) == 0 \
@@ -140,6 +150,7 @@ class ExplicitPhases:
         values = tuple(check_real("ExplicitPhases", "values", v, unit="rad")
                        for v in self.values)
         object.__setattr__(self, "values", values)
+        _check_source("ExplicitPhases", self.engine_order_wave)
 
     def phases(self, n_blades: int) -> np.ndarray:
         """The given φ_i [rad]; raises unless there is one per blade."""
@@ -148,6 +159,12 @@ class ExplicitPhases:
             raise ValueError(f"ExplicitPhases has {len(self.values)} phases for "
                              f"{n_blades} blades")
         return np.array(self.values)
+
+
+def _check_source(owner: str, pattern: object) -> None:
+    """Refuse an ``engine_order_wave`` that is neither None nor an ``EngineOrderWave``."""
+    check_instance(owner, "engine_order_wave", pattern, EngineOrderWave, optional=True,
+                   expected="None or the EngineOrderWave(...) these phases stand for")
 
 
 PhasePattern = AntiPhase | TravellingWave | EngineOrderWave | ExplicitPhases

@@ -2,7 +2,7 @@
 
 Every moving node contributes coordinates: a ``Blade`` its displacement x (mass m); a
 ``Substructure`` its modal coordinates η at the scene's speed, q = Φ η with Φ the
-mass-normalised modes of K(Ω) φ = ω² M φ, so that every coordinate has mass 1 and the
+mass-normalised modes of K(Ω) φ = ω² M φ, each scaled by its ``static_scale``, so that the
 mass stays diagonal (``records.StructureScene``). Prescribed-motion nodes follow, one
 coordinate each. Each point of a node becomes a row block of the coordinates
 (r_p = Φ_p Φ η), and each edge the difference D = P_a − P_b of its two points' blocks:
@@ -25,12 +25,19 @@ shifted.
 
 The excitation Q_i(t) of node i acts on its coordinates along Φᵀ b_i (its load vector),
 scaled by its signed ``excitation_scale``.
+
+These coordinates are the engine's: every state that leaves it, or enters it, is in the
+nodes' own degrees of freedom q (a ``Blade``'s x, a substructure's q of
+``Substructure.matrices_at``; their velocities likewise), stacked node by node in
+``Scene.blades`` order, and crosses through ``to_dofs`` and ``from_dofs`` alone. A scene of
+``Blade``s has Φ = 1 everywhere: its coordinates are its dofs, and they cross unchanged.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.linalg
@@ -52,19 +59,28 @@ class Layout:
     freedom and points follow from them.
 
     ``nodes`` by position; ``offsets[i]`` the first coordinate of node i and
-    ``sizes[i]`` their number; ``bases[i]`` the n_i × n_i matrix Φ with q_i = Φ η_i (the
-    node's own degrees of freedom from its coordinates); ``points[i]`` maps each point name
-    to its d × n_i matrix in the coordinates (r_p = Φ_p Φ η_i)."""
+    ``sizes[i]`` their number (as many as its degrees of freedom: q_i sits at the same
+    place of the stacked dofs); ``bases[i]`` the n_i × n_i matrix Φ with q_i = Φ η_i (the
+    node's own degrees of freedom from its coordinates) and ``inverses[i]`` Φ⁻¹;
+    ``points[i]`` maps each point name to its d × n_i matrix Φ_p in the node's own degrees
+    of freedom (r_p = Φ_p q_i; in the coordinates, Φ_p Φ)."""
 
     nodes: tuple
     offsets: tuple[int, ...]
     sizes: tuple[int, ...]
     bases: tuple[np.ndarray, ...]
+    inverses: tuple[np.ndarray, ...]
     points: tuple[dict, ...]
 
     @property
     def n_coordinates(self) -> int:
         return int(sum(self.sizes))
+
+    @cached_property
+    def identity(self) -> bool:
+        """Whether every node's coordinates are its degrees of freedom (Φ = 1: ``Blade``s),
+        so that states cross ``to_dofs`` and ``from_dofs`` unchanged."""
+        return all(basis.shape == (1, 1) and basis[0, 0] == 1.0 for basis in self.bases)
 
     def position(self, node) -> int:
         if node not in self.nodes:
@@ -77,8 +93,8 @@ class Layout:
         return slice(self.offsets[i], self.offsets[i] + self.sizes[i])
 
     def point(self, node, point: str | None = None) -> np.ndarray:
-        """The d × n_i matrix of ``node``'s point (its only one when None) in its
-        coordinates."""
+        """The d × n_i matrix Φ_p of ``node``'s point (its only one when None) in its own
+        degrees of freedom."""
         points = self.points[self.position(node)]
         if point is None:
             if len(points) != 1:
@@ -131,14 +147,18 @@ def static_scale(squared) -> np.ndarray:
 
 
 def _node_model(body, speed_rpm):
-    """(mass vector, K̃, C̃, Φ, points in coordinates, load in coordinates) of a node."""
+    """(mass vector, K̃, C̃, Φ, Φ⁻¹, points in its degrees of freedom, load in
+    coordinates) of a node."""
     if isinstance(body, Blade):
         return (np.array([float(body.mass)]), np.array([[body.stiffness_at(speed_rpm)]]),
-                np.array([[float(body.damping)]]), np.eye(1), {BLADE_POINT: np.eye(1)},
-                np.ones(1))
+                np.array([[float(body.damping)]]), np.eye(1), np.eye(1),
+                {BLADE_POINT: np.eye(1)}, np.ones(1))
     matrices = body.matrices_at(speed_rpm)
     squared, shapes = scipy.linalg.eigh(matrices.stiffness, matrices.mass)
     scale = static_scale(squared)
+    # The modes are M-orthonormal, φᵀ M φ = I, so Φ⁻¹ = S⁻¹ φᵀ M: no solve with Φ, whose
+    # columns' scales S may span many decades.
+    inverse = (shapes.T @ matrices.mass) / scale[:, None]
     shapes = shapes * scale[None, :]
 
     def projected(matrix):
@@ -150,9 +170,44 @@ def _node_model(body, speed_rpm):
         value[np.abs(value) <= ROUNDING * np.abs(value).max(initial=0.0)] = 0.0
         return value
 
-    points = {name: np.atleast_2d(body.point(name)) @ shapes for name in body.points}
+    points = {name: np.atleast_2d(body.point(name)) for name in body.points}
     return (scale**2, projected(matrices.stiffness), projected(matrices.damping),
-            shapes, points, shapes.T @ body.load_vector)
+            shapes, inverse, points, shapes.T @ body.load_vector)
+
+
+def to_dofs(layout: Layout | None, values, axis: int = -1):
+    """The nodes' own degrees of freedom q_i = Φ η_i of the engine's coordinates η in
+    ``values``, along ``axis``: n entries (displacements, or velocities), or a whole state
+    (x, ẋ, then the elastic contacts' stretches u [m], which are alike in both and pass
+    as they are). With ``from_dofs``, the only door between the two: every state, tangent
+    or record that leaves the engine goes out through it. A scene without a ``layout``, or
+    whose every Φ is 1 (``Blade``s), gets ``values`` back as they are, at no cost."""
+    return _by_node(layout, values, axis, "bases")
+
+
+def from_dofs(layout: Layout | None, values, axis: int = -1):
+    """The engine's coordinates η_i = Φ⁻¹ q_i of the nodes' degrees of freedom in
+    ``values``: ``to_dofs`` the other way, for whatever enters the engine."""
+    return _by_node(layout, values, axis, "inverses")
+
+
+def _by_node(layout, values, axis, matrices):
+    """``values`` with each node's block of the displacements (and of the velocities of a
+    whole state) along ``axis`` multiplied by its matrix of ``layout.<matrices>``."""
+    if layout is None or layout.identity:
+        return values
+    moved = np.moveaxis(np.asarray(values), axis, -1)
+    n, length = layout.n_coordinates, moved.shape[-1]
+    if length != n and length < 2 * n:
+        raise ValueError(f"{length} values are neither the {n} coordinates nor a state "
+                         f"of 2 × {n} and more")
+    changed = moved.astype(np.result_type(moved, float), copy=True)
+    for start in ((0,) if length == n else (0, n)):
+        for offset, size, matrix in zip(layout.offsets, layout.sizes,
+                                        getattr(layout, matrices)):
+            block = slice(start + offset, start + offset + size)
+            changed[..., block] = moved[..., block] @ matrix.T
+    return np.moveaxis(changed, -1, axis)
 
 
 def lower(scene) -> dict:
@@ -166,7 +221,8 @@ def lower(scene) -> dict:
     n_free = int(offsets[-1])
     n = n_free + len(prescribed)
     layout = Layout(tuple(names), tuple(int(o) for o in offsets[:-1]), tuple(sizes),
-                    tuple(model[3] for model in models), tuple(model[4] for model in models))
+                    tuple(model[3] for model in models), tuple(model[4] for model in models),
+                    tuple(model[5] for model in models))
     position = {name: i for i, name in enumerate(names)}
     prescribed_column = {name: n_free + p for p, (name, _) in enumerate(prescribed)}
 
@@ -174,7 +230,7 @@ def lower(scene) -> dict:
         """The rows of a point in all the coordinates (d × n); None at a fixed node."""
         if node in position:
             i = position[node]
-            local = layout.point(node, point)
+            local = layout.point(node, point) @ layout.bases[i]
             rows = np.zeros((local.shape[0], n))
             rows[:, offsets[i]:offsets[i] + sizes[i]] = local
             return rows
@@ -238,7 +294,7 @@ def lower(scene) -> dict:
             normal_gap[c] = interface.gap
 
     bodies = [group.blade(name) for name in names]
-    load = np.concatenate([float(body.excitation_scale) * model[5]
+    load = np.concatenate([float(body.excitation_scale) * model[6]
                            for body, model in zip(bodies, models)])
     node_phases = scene.excitation.blade_phases(len(names)).astype(float)
     node_harmonics = scene.excitation.harmonic_phases(len(names)).astype(float)

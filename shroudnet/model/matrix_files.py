@@ -23,6 +23,9 @@ import numpy as np
 import scipy.io
 import scipy.sparse
 
+from contact_laws import check_array
+
+from ..machine import machine_memory
 from .substructure import Substructure, square_matrix
 
 #: The file kinds read, by extension.
@@ -127,30 +130,76 @@ def substructure_from_file(path, *, points, load=None, mass: str = "M", stiffnes
 
 
 def _read_npz(path: Path) -> dict[str, object]:
+    _check_not_empty(path)
+    if not zipfile.is_zipfile(path):  # what numpy.savez writes; else np.load guesses pickle
+        raise ValueError(f"{path.name!r} is not a .npz archive (numpy.savez writes a zip "
+                         f"archive of arrays): {path} holds something else")
     try:
         with np.load(path, allow_pickle=False) as archive:
             arrays = {name: archive[name] for name in archive.files}
-    except (ValueError, OSError, zipfile.BadZipFile) as error:
+    except (ValueError, OSError, EOFError, zipfile.BadZipFile) as error:
         raise ValueError(f"{path.name!r} is not a readable .npz of numeric arrays ({error})") \
             from None
     for name in [key[:-len("_rows")] for key in arrays if key.endswith("_rows")]:
         parts = [f"{name}{suffix}" for suffix in TRIPLET_SUFFIXES]
         if name in arrays or not all(part in arrays for part in parts):
             continue
-        rows, cols, values, shape = (arrays.pop(part) for part in parts)
-        shape = tuple(int(s) for s in np.ravel(shape))
-        if len(shape) != 2:
-            raise ValueError(f"{path.name!r}: {name}_shape must hold two sizes, got {shape}")
-        arrays[name] = scipy.sparse.coo_array((values, (rows, cols)), shape=shape).tocsr()
+        arrays[name] = _triplet_matrix(path, name, *(arrays.pop(part) for part in parts))
     return arrays
 
 
+def _triplet_matrix(path: Path, name: str, rows, cols, values, shape) -> scipy.sparse.csr_array:
+    """The sparse matrix ``name`` of the coordinate triplets ``rows``, ``cols``, ``values``
+    and its ``shape``, each array checked and named as ``FILE.name_rows``: the shape two
+    whole sizes ≥ 1 whose row index fits in this machine's memory; the indices whole
+    numbers (0-based) within it, one of each per value; the values finite real numbers.
+    """
+    owner = path.name
+    size = _whole(owner, f"{name}_shape", shape, 1, np.inf, "sizes")
+    if size.shape != (2,):
+        raise ValueError(f"{owner}.{name}_shape must hold two sizes (rows, columns), got "
+                         f"{np.ravel(shape).tolist()}")
+    memory, index = machine_memory(), 8 * (int(size[0]) + 1)
+    if memory is not None and index > memory:
+        raise ValueError(f"{owner}.{name}_shape = {size.tolist()}: a sparse matrix of "
+                         f"{size[0]:,} rows needs {index / 2**30:,.0f} GiB for its row index "
+                         f"alone, more than the {memory / 2**30:.3g} GiB of memory this "
+                         "machine has")
+    row = _whole(owner, f"{name}_rows", rows, 0, size[0] - 1, "0-based indices")
+    col = _whole(owner, f"{name}_cols", cols, 0, size[1] - 1, "0-based indices")
+    value = check_array(owner, f"{name}_values", values, shape=(None,))
+    for field, count in ((f"{name}_cols", len(col)), (f"{name}_values", len(value))):
+        if count != len(row):
+            raise ValueError(f"{owner}.{field} must hold one entry per row index of "
+                             f"{name}_rows ({len(row)}), got {count}")
+    return scipy.sparse.coo_array((value, (row, col)), shape=tuple(size)).tocsr()
+
+
+def _whole(owner: str, field: str, value, low: float, high: float, what: str) -> np.ndarray:
+    """``value`` as a 1-d int64 array of whole numbers in [``low``, ``high``] (an index
+    stored as a float is taken if it is whole), or ``check_array``'s error naming
+    ``owner.field``; a ValueError for a number with a fraction, which would be cut."""
+    array = check_array(owner, field, np.ravel(value) if np.ndim(value) == 0 else value,
+                        shape=(None,), low=low, high=high)
+    fraction = array != np.floor(array)
+    if fraction.any():
+        raise ValueError(f"{owner}.{field} must hold whole numbers ({what}), got "
+                         f"{array[fraction][0]:g} at position {int(np.argmax(fraction))}")
+    return array.astype(np.int64)
+
+
 def _read_mat(path: Path) -> dict[str, object]:
+    _check_not_empty(path)
     try:
         contents = scipy.io.loadmat(str(path))
     except NotImplementedError:
         raise ValueError(f"{path.name!r} is a MATLAB v7.3 (HDF5) file, which this reader "
                          "does not read: save it with save(..., '-v7')") from None
-    except ValueError as error:
+    except (ValueError, OSError, EOFError, scipy.io.matlab.MatReadError) as error:
         raise ValueError(f"{path.name!r} is not a readable .mat file ({error})") from None
     return {name: value for name, value in contents.items() if not name.startswith("__")}
+
+
+def _check_not_empty(path: Path) -> None:
+    if path.stat().st_size == 0:
+        raise ValueError(f"{path.name!r} is empty (0 bytes): {path} holds no matrices")

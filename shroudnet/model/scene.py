@@ -32,7 +32,10 @@ class SceneArrays:
     Blade arrays have length n_blades, interface arrays length n_interfaces: one entry per
     contact (``Scene.contacts``: an interface's, or each point pair's of a patch). ``left`` and
     ``right`` hold node positions: a blade's (0 … n_blades − 1), n_blades + p for the
-    prescribed-motion node ``motions[p]``, −1 for a fixed node (x ≡ 0).
+    prescribed-motion node ``motions[p]``, −1 for a fixed node (x ≡ 0). With substructures
+    (or elastic contacts) they are by the engine's coordinates (``model.lowering``), which
+    never reach a user: states are given and returned in the nodes' own degrees of
+    freedom (``model.lowering.to_dofs``).
     """
 
     mass: np.ndarray           # m_i [kg]
@@ -61,7 +64,7 @@ class SceneArrays:
     coupling_stiffness: np.ndarray  # k_c [N/m]
     coupling_damping: np.ndarray    # c_c [N·s/m]
     motions: tuple[Motion, ...] = ()  # the prescribed-motion nodes, by position − n_blades
-    # A scene with substructures (``structural``): its "blades" are coordinates, and these
+    # A scene with substructures (``model.lowering``): its "blades" are coordinates, and these
     # hold what per-blade arrays cannot (None for a scene of blades):
     normal_rows: np.ndarray | None = None   # n_e over all coordinates (prescribed last)
     tangent_rows: np.ndarray | None = None  # t_e (t₁ of a face with two directions)
@@ -239,17 +242,21 @@ class Scene:
         frozen.graph = nx.freeze(self.group.graph.copy())
         object.__setattr__(self, "group", frozen)
         n_blades = len(frozen.blades)
-        if isinstance(self.excitation.phases, EngineOrderWave):
+        pattern = self.excitation.phases
+        # the pattern given, or the one a scene made these phases from for its own group
+        pattern = getattr(pattern, "engine_order_wave", None) or pattern
+        if isinstance(pattern, EngineOrderWave):
             sectors = frozen.graph.graph.get("sectors", n_blades)
-            if self.excitation.phases.blades_on_disc is None and _open_packet(frozen):
+            if pattern.blades_on_disc is None and _open_packet(frozen):
                 warnings.warn(
                     f"EngineOrderWave() takes this packet's {n_blades} blades for a whole "
                     f"disc of {n_blades} (ND = l mod {n_blades}); a packet on a disc of N "
                     "blades needs EngineOrderWave(blades_on_disc=N)", stacklevel=3)
-            wave = self.excitation.phases.wave(sectors, self.excitation.engine_order)
+            wave = pattern.wave(sectors, self.excitation.engine_order)
             if sectors != n_blades:  # every node of a sector meets the pattern together
                 wave = ExplicitPhases(tuple(np.repeat(wave.phases(sectors),
-                                                      n_blades // sectors)))
+                                                      n_blades // sectors)),
+                                      engine_order_wave=pattern)
             object.__setattr__(self, "excitation",
                                dataclasses.replace(self.excitation, phases=wave))
         self.excitation.blade_phases(n_blades)  # raises if the count or the ND is wrong
@@ -259,7 +266,7 @@ class Scene:
                 body.matrices_at(self.speed_rpm)
             else:
                 body.stiffness_at(self.speed_rpm)
-        check_held(frozen, self.speed_rpm)
+        check_held(frozen, self.speed_rpm, self.excitation.amplitudes[0])
         check_user_laws(self)
 
     @property
@@ -348,7 +355,8 @@ class Scene:
 
     @cached_property
     def response_matrix(self) -> np.ndarray:
-        """R (n_responses × n_coordinates): the ``responses`` are R x."""
+        """R (n_responses × n_dofs): the ``responses`` are R q, q the nodes' own degrees
+        of freedom stacked in ``blades`` order (a state's displacements, ``dof_matrix``)."""
         a = self.arrays
         if not a.is_structure:
             return np.eye(a.n_blades)
@@ -378,8 +386,9 @@ class Scene:
                          f"or a position 0..{len(labels) - 1}")
 
     def response_of(self, values: np.ndarray, target) -> np.ndarray:
-        """``target``'s response (``response_position``) from state rows ``values`` (by
-        blade, or by coordinate): a column of them for blades, R_target · values else."""
+        """``target``'s response (``response_position``) from state rows ``values`` (the
+        nodes' own degrees of freedom, or their velocities): a column of them for blades,
+        R_target · values else."""
         i = self.response_position(target)
         if not self.arrays.is_structure:
             return values[..., i]
@@ -390,10 +399,11 @@ class Scene:
         return values if not self.arrays.is_structure else values @ self.response_matrix.T
 
     def point_rows(self, node: Hashable, point: str | None = None) -> np.ndarray:
-        """R (d × n_coordinates): the displacement r = R x [m] of ``node``'s ``point`` from
-        the state's displacements x (by coordinate; by blade without substructures). A
-        ``Blade``'s one point is its displacement (R = e_i); a substructure's point needs
-        its name unless it has one point only."""
+        """R (d × n_dofs): the displacement r = R q [m] of ``node``'s ``point`` from the
+        state's displacements q (the nodes' own degrees of freedom stacked in ``blades``
+        order: R holds the point's Φ_p in ``node``'s columns). A ``Blade``'s one point is
+        its displacement (R = e_i); a substructure's point needs its name unless it has
+        one point only."""
         a = self.arrays
         if not a.is_structure:
             rows = np.zeros((1, a.n_blades))
@@ -408,24 +418,26 @@ class Scene:
         return rows
 
     def dof_rows(self, node: Hashable) -> np.ndarray:
-        """T (n_i × n_coordinates): ``node``'s own degrees of freedom q_i = T x from the
-        state's displacements (for a ``Blade``, its x)."""
+        """T (n_i × n_dofs): ``node``'s own degrees of freedom q_i = T q from the state's
+        displacements q, which stack every node's in ``blades`` order (T picks ``node``'s;
+        for a ``Blade``, its x)."""
         a = self.arrays
         if not a.is_structure:
             return self.point_rows(node)
         rows = np.zeros((a.layout.sizes[a.layout.position(node)], a.n_blades))
-        rows[:, a.layout.coordinates(node)] = a.layout.bases[a.layout.position(node)]
+        rows[:, a.layout.coordinates(node)] = np.eye(rows.shape[0])
         return rows
 
     def dof_matrix(self) -> np.ndarray:
         """D: every node's own degrees of freedom, stacked in ``blades`` order, from the
-        state's displacements (q = D x; ``dof_rows`` of each node)."""
+        state's displacements (``dof_rows`` of each node): the identity, as every state a
+        run takes and gives holds them already."""
         return np.vstack([self.dof_rows(name) for name in self.blades])
 
     @cached_property
     def arrays(self) -> SceneArrays:
         """The scene lowered to flat arrays (computed once): by blade, or with
-        substructures or elastic contacts by coordinate (``structural``)."""
+        substructures or elastic contacts by coordinate (``model.lowering``)."""
         if self.group.has_substructures or any(
                 interface.elastic for _, _, interface in self.group.interfaces):
             return SceneArrays(**lower(self))
@@ -479,7 +491,7 @@ def _open_packet(group: BladeGroup) -> bool:
     return nx.is_forest(nx.Graph(group.graph.subgraph(blades)))
 
 
-def check_held(group: BladeGroup, speed_rpm: float) -> None:
+def check_held(group: BladeGroup, speed_rpm: float, mean_force: float = 0.0) -> None:
     """Raise unless every blade is held against rigid-body drift.
 
     A set of blades joined by interfaces and couplings is held when one of them has a
@@ -487,6 +499,10 @@ def check_held(group: BladeGroup, speed_rpm: float) -> None:
     prescribed-motion node.
     Blades with k = 0 are allowed where something holds them; a set that nothing holds
     would drift away under a mean force, and has no static equilibrium.
+
+    An interface whose contact opens holds one way only: it stops its left blade moving
+    +x and its right one moving −x (``check_one_sided``), and ``mean_force`` [N], the
+    excitation's q0, may press blades onto it.
     """
     moving = group.graph.subgraph(group.blades)
     for part in nx.connected_components(moving):
@@ -500,6 +516,103 @@ def check_held(group: BladeGroup, speed_rpm: float) -> None:
                 "none is joined to a fixed node, so they can drift away together as a rigid "
                 "body. Give one of them a stiffness, or connect one to a fixed node "
                 "(add_fixed) by a Coupling or an Interface.")
+    check_one_sided(group, speed_rpm, mean_force)
+
+
+def check_one_sided(group: BladeGroup, speed_rpm: float, mean_force: float) -> None:
+    """Raise where blades are held along x by contacts that open alone, all stopping them
+    the same way, and their mean force does not press them onto those contacts: after the
+    first impact they would drift away the other way for good.
+
+    Blades joined by couplings, or by contacts that never open (``ConstantLoad``), move
+    together as one part, held both ways if one of them has a spring to ground or one of
+    those edges reaches a fixed or prescribed node. A contact that opens, at a contact
+    angle α > 0, joining part P (its left end) to a node Q, stops P moving +x if Q cannot
+    move +x (a fixed or prescribed node, or a part held that way); as its right end, −x.
+    The directions spread from part to part until none is added. A part held one way
+    only is allowed where its mean force s q0 (summed over its blades) presses it that
+    way: a mass pressed onto a stop by a constant force, as a ball bounces on a table.
+    Parts with substructures, and interfaces given by directions, are taken as held, as
+    ``check_held`` takes them.
+    """
+    both, one_sided = _edges_by_hold(group)
+    parts = _parts(group, both)
+    held = {part: {1, -1} if _anchored(group, part, both, speed_rpm) else set()
+            for part in dict.fromkeys(parts[name] for name in group.blades)}  # in order
+    changed = True
+    while changed:
+        changed = False
+        for left, right in one_sided:
+            for end, other, direction in ((left, right, 1), (right, left, -1)):
+                part = parts.get(end)
+                if part is None or direction in held[part] or other in part:
+                    continue
+                if other not in parts or direction in held[parts[other]]:
+                    held[part].add(direction)
+                    changed = True
+    for part, directions in held.items():
+        bodies = [group.blade(name) for name in part]
+        pressing = mean_force * sum(body.excitation_scale for body in bodies)
+        if len(directions) == 2 or any(isinstance(b, Substructure) for b in bodies) or (
+                directions and pressing * next(iter(directions)) > 0.0):
+            continue
+        names = sorted(map(str, part))
+        crossing = [(left, right) for left, right in one_sided
+                    if (left in part) != (right in part)]
+        if directions:
+            way = "+x" if 1 in directions else "−x"
+            contacts = [(left, right) for left, right in crossing
+                        if (left in part) == (1 in directions)]  # those that stop it
+            raise ValueError(
+                f"Scene.group: blades {names} are held only by contacts that open, "
+                f"{contacts}, which stop them moving {way}: nothing holds them the other way "
+                "(no spring to ground, no Coupling, no contact on their other side) and "
+                f"their mean force, {pressing:g} N, does not press them onto those contacts, "
+                "so they would drift away after the first impact. Give one of them a "
+                "stiffness or a Coupling, a contact on its other side, or a mean force "
+                "(Excitation.amplitudes q0) that presses it onto the contact.")
+        raise ValueError(
+            f"Scene.group: blades {names} are held along x by no spring, no Coupling and "
+            f"no contact that can stop them (their contacts {crossing} are at a contact "
+            "angle of 0, or push on blades that nothing holds either): they can drift "
+            "away together. Give one of them a stiffness, or connect one to a fixed node "
+            "by a Coupling or an Interface at an angle above 0.")
+
+
+def _edges_by_hold(group: BladeGroup) -> tuple[list, list]:
+    """(the edges that hold both ways: couplings, contacts that never open, and interfaces
+    whose direction along x is not told here (given by directions, or at a substructure);
+    the contacts that hold one way: those that open, at a contact angle α > 0). A contact
+    that opens at α = 0 has no normal force along x and is in neither list."""
+    both = [(left, right) for left, right, _ in group.couplings]
+    one_sided = []
+    for left, right, interface in group.interfaces:
+        ends = [group.graph.nodes[node]["blade"] for node in (left, right)]
+        if interface.angle is None or any(isinstance(b, Substructure) for b in ends) \
+                or not type(interface.normal).opens:
+            both.append((left, right))
+        elif interface.angle > 0.0:
+            one_sided.append((left, right))
+    return both, one_sided
+
+
+def _parts(group: BladeGroup, both: list) -> dict:
+    """The part of each blade: the blades joined to it by edges that hold both ways."""
+    joined = nx.Graph()
+    joined.add_nodes_from(group.blades)
+    joined.add_edges_from(both)
+    parts = {}
+    for part in nx.connected_components(joined.subgraph(group.blades)):
+        parts.update(dict.fromkeys(part, frozenset(part)))
+    return parts
+
+
+def _anchored(group: BladeGroup, part: frozenset, both: list, speed_rpm: float) -> bool:
+    """Whether a part is held both ways: by a spring to ground, or by an edge that holds
+    both ways to a fixed or prescribed node."""
+    return any(_grounded(group.blade(name), speed_rpm) for name in part) or any(
+        group.graph.nodes[right if left in part else left]["blade"] is None
+        for left, right in both if (left in part) != (right in part))
 
 
 def _grounded(body, speed_rpm) -> bool:

@@ -28,9 +28,9 @@ import numpy as np
 import scipy.linalg
 import scipy.sparse
 
-from contact_laws import check_real
+from contact_laws import check_array, check_real
 
-from .blade import ConstantFrequency, FrequencyTable, Southwell
+from .blade import ConstantFrequency, FrequencyTable, Southwell, frequency_of
 
 #: Largest n for which ``matrices_at`` and ``modes_at`` build dense matrices.
 DENSE_LIMIT = 5000
@@ -473,12 +473,19 @@ class Substructure:
     def expand(self, q: np.ndarray) -> np.ndarray:
         """q_full = T q: the full model's degrees of freedom from those of a reduction.
 
-        ``q`` has n rows (a state, or one column per instant).
+        ``q`` has n rows (a state of n, or n × k: one column per instant); another length
+        is refused naming ``Substructure.expand.q``.
         """
         if self.basis is None:
             raise ValueError("Substructure.expand needs a basis: this substructure is not a "
                              "reduction (craig_bampton, modal_truncation)")
-        return self.basis @ np.asarray(q, dtype=float)
+        try:
+            columns = np.ndim(q) == 2
+        except ValueError:  # a ragged nesting, which check_array refuses
+            columns = False
+        q = check_array("Substructure.expand", "q", q,
+                        shape=(self.n_dofs, None) if columns else (self.n_dofs,))
+        return self.basis @ q
 
     def __repr__(self) -> str:
         extras = []
@@ -502,11 +509,15 @@ class Substructure:
             circular = self._modal_circular(speed_rpm)
             ratios = np.broadcast_to(np.asarray(self.damping_ratios or 0.0, dtype=float),
                                      (self.n_dofs,))
-            return Matrices(mass, np.diag(2.0 * ratios * masses * circular),
-                            np.diag(masses * circular**2))
+            with np.errstate(over="ignore"):
+                stiffness = np.diag(masses * circular**2)
+            _check_finite(stiffness, "m ω(Ω)² of its modes", speed_rpm)
+            return Matrices(mass, np.diag(2.0 * ratios * masses * circular), stiffness)
         stiffness = _dense(self.stiffness)
         if self.stiffness_speed is not None:
-            stiffness = stiffness + omega**2 * _dense(self.stiffness_speed)
+            with np.errstate(over="ignore", invalid="ignore"):
+                stiffness = stiffness + np.float64(omega) ** 2 * _dense(self.stiffness_speed)
+            _check_finite(stiffness, "K₀ + Ω² K₁", speed_rpm)
         if self.damping is not None:
             damping = _dense(self.damping)
         elif self.damping_ratios is None or not np.any(self.damping_ratios):
@@ -548,8 +559,16 @@ class Substructure:
         return 2.0 * math.pi * speed / 60.0
 
     def _modal_circular(self, speed_rpm: float) -> np.ndarray:
-        return np.array([2.0 * math.pi * model.at(speed_rpm)
+        """ω [rad/s] of each mode at ``speed_rpm``; inf where its model overflows."""
+        return np.array([2.0 * math.pi * frequency_of(model, speed_rpm)
                          for model in self.modal_frequencies])
+
+
+def _check_finite(stiffness: np.ndarray, what: str, speed_rpm: float) -> None:
+    """Refuse a stiffness matrix K(Ω) that overflows a float at ``speed_rpm``."""
+    if not np.isfinite(stiffness).all():
+        raise ValueError(f"Substructure.matrices_at: K(Ω) = {what} overflows a float at "
+                         f"speed_rpm = {speed_rpm:g}; check the units of the speed (rev/min)")
 
 
 def _eigen(mass: np.ndarray, stiffness: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -32,12 +32,11 @@ million blades takes a minute and gigabytes of its own.
 
 from __future__ import annotations
 
-import functools
-import os
-from pathlib import Path
 from typing import NamedTuple
 
 from contact_laws import check_int
+
+from ..machine import machine_memory
 
 #: Bytes of a float64.
 WORD = 8
@@ -95,26 +94,6 @@ def scene_footprint(scene, samples: int, event_capacity: int, *,
     return run_footprint(nodes, a.n_interfaces, samples, event_capacity,
                          square=max(nodes, a.n_interfaces) if a.is_structure else nodes,
                          tangent_columns=tangent_columns)
-
-
-@functools.cache
-def machine_memory() -> int | None:
-    """Bytes of memory this machine has (``os.sysconf``: physical pages × page size),
-    lowered to a cgroup v2 limit where one is set; None where neither can be read. Read
-    once: every run checks against it."""
-    found = []
-    try:
-        found.append(os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
-    except (AttributeError, OSError, ValueError):
-        pass
-    try:
-        limit = Path("/sys/fs/cgroup/memory.max").read_text().strip()
-        if limit != "max":
-            found.append(int(limit))
-    except (OSError, ValueError):
-        pass
-    found = [size for size in found if size > 0]
-    return min(found) if found else None
 
 
 def check_footprint(scene, samples: int, event_capacity: int, *,

@@ -18,8 +18,8 @@ from ..model.scene import Scene
 #: The default width of the time bracket of each located switch, in excitation periods,
 #: of every entry point that locates switches (``simulate``, ``monodromy``, ``lyapunov``,
 #: ``periodic_orbit``, ``continuation``, a scene file's ``[run]``). Its error on the
-#: results is 0.3–6 times this (README, "What accuracy costs"): below the integrators'
-#: own at their default tolerances.
+#: results is 0.3–6 times this (docs/guide/simulating.md, "What accuracy costs"): below
+#: the integrators' own at their default tolerances.
 EVENT_TOLERANCE = 1e-10
 #: The smallest event tolerance [periods]: ten times the resolution of a float, below which
 #: a switch's time bracket cannot shrink, and its location would never end.
@@ -43,16 +43,33 @@ def check_event_tolerance(owner: str, value: object) -> float:
 TRANSIENT = 300
 
 
+def transient_for(periods: int) -> int:
+    """The transient [periods] to leave out of a run of ``periods`` periods that was given
+    none (a run saved without its settings): ``TRANSIENT`` where the run is longer, else
+    half of it, so that the steady response read after it has periods in it."""
+    return TRANSIENT if periods > TRANSIENT else periods // 2
+
+
+#: The most steps per excitation period of a method on a grid: a step of 10⁻⁶ periods.
+#: Finer steps buy nothing: the classical Runge–Kutta step's truncation error (h⁴, 10⁻²⁴
+#: of a period's motion) is then far below the rounding its steps add up, and the
+#: exponential step is exact at any size. They only cost time: at a microsecond a step, a
+#: second a period (10¹² steps a period would take 220 days for one).
+MOST_STEPS_PER_PERIOD = 10**6
+
+
 @dataclass(frozen=True, kw_only=True)
 class _OnGrid:
-    """A method whose steps lie on the grid t0 + k T_e / ``steps_per_period`` (≥ 8)."""
+    """A method whose steps lie on the grid t0 + k T_e / ``steps_per_period`` (in [8,
+    ``MOST_STEPS_PER_PERIOD``])."""
 
     steps_per_period: int
 
     def __post_init__(self):
         object.__setattr__(self, "steps_per_period",
                            check_int(type(self).__name__, "steps_per_period",
-                                     self.steps_per_period, low=8))
+                                     self.steps_per_period, low=8,
+                                     high=MOST_STEPS_PER_PERIOD))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -64,7 +81,7 @@ class FixedStep(_OnGrid):
     Parameters
     ----------
     steps_per_period : int
-        Steps per excitation period T_e, ≥ 8.
+        Steps per excitation period T_e, in [8, ``MOST_STEPS_PER_PERIOD`` = 10⁶].
     """
 
     steps_per_period: int = 1000
@@ -136,9 +153,10 @@ class Exponential(_OnGrid):
     Parameters
     ----------
     steps_per_period : int
-        Steps per excitation period T_e, ≥ 8; each step is checked for switches at its
-        ends and quarters. The default, 400, finds a stick of 11 µs in a period of 4 ms
-        that 128 step over (``tests/test_exponential.py``).
+        Steps per excitation period T_e, in [8, ``MOST_STEPS_PER_PERIOD`` = 10⁶]; each
+        step is checked for switches at its ends and quarters. The default, 400, finds a
+        stick of 11 µs in a period of 4 ms that 128 step over
+        (``tests/test_exponential.py``).
     """
 
     steps_per_period: int = 400
@@ -157,7 +175,7 @@ class Accuracy:
     becomes ``Adaptive(rtol=target/100)`` (whose atol is rtol·x_s, x_s the static
     deflection under the whole excitation) and an event tolerance of at most
     target/100 periods. The factor 100 comes from the work–precision study
-    (``studies.precision``, README "What accuracy costs"): on the paper's group the
+    (``studies.precision``, docs/guide/simulating.md): on the paper's group the
     error of the adaptive integrator is 7–16 times its rtol, and that of the event
     location 0.3–6 times its tolerance. In chaos no single trajectory converges; E_ρ and
     the attractor's bounds then converge to the sampling error of the record instead.

@@ -3,11 +3,13 @@
 A float holds magnitudes up to about 1.8e308, and the integrators take at least
 ``SMALLEST_STEP`` of an excitation period a step. A scene can be valid field by field and
 still not be runnable: a coupling of 1e300 N/m makes a natural frequency whose stable step
-is far below the smallest step; a speed of 1e-300 rpm makes an excitation period of 1e301 s
-in which no blade motion can be followed; an initial velocity of 1e300 m/s has a kinetic
-energy no float holds. ``check_scales`` finds these from the scene's arrays and names the
-quantity, where the run would otherwise stop much later with an unrelated message (a
-non-finite state blamed on a contact law) or finish with a NaN in its energy ledger.
+is far below the smallest step, and so does a tangential stiffness of 1e300 N/m; a speed of
+1e-300 rpm makes an excitation period of 1e301 s in which no blade motion can be followed,
+and one of 1e300 rpm a period whose smallest step is no normal float; an initial velocity
+of 1e300 m/s has a kinetic energy no float holds. ``check_scales`` finds these from the
+scene's arrays and names the quantity, where the run would otherwise stop much later with
+an unrelated message (a non-finite state blamed on a contact law) or finish with a NaN in
+its energy ledger.
 """
 
 from __future__ import annotations
@@ -29,6 +31,10 @@ STABLE_STEP = 2.8
 #: whose energy exceeds the square root of the largest float (1.3e154) overflow. Any real
 #: blade group is below 1e10 J by far.
 LARGEST_ENERGY = 1e150
+
+#: The smallest normal float: below it a float loses digits (subnormal numbers), and a
+#: step or a time of that size cannot be told from its neighbours.
+SMALLEST_NORMAL = float(np.finfo(float).tiny)
 
 #: The most blades for which the fixed step is checked against the exact largest natural
 #: frequency (one symmetric eigenvalue problem of that size); a larger scene, or one with
@@ -60,10 +66,12 @@ def check_scales(scene, periods: int, method, initial) -> None:
 def scale_limits(scene, periods: int, method, initial) -> None:
     """Refuse, before any work, a run whose numbers a float cannot carry.
 
-    Checks, in this order: the stiffness and damping matrices are finite; the largest
+    Checks, in this order: the smallest step of the excitation period is a normal float
+    (``SMALLEST_NORMAL``); the stiffness and damping matrices are finite; the largest
     natural frequency ω_max = √(max eig M⁻¹K) and the fastest damping rate max eig M⁻¹C
     allow a stable step no shorter than the smallest step (``SMALLEST_STEP`` excitation
-    periods; with ``FixedStep``, the fixed step); the initial state's energy, the energy
+    periods; with ``FixedStep``, the fixed step), and so does each contact's stiffness
+    (``_check_contacts``); the initial state's energy, the energy
     the excitation can put into the blades (q²/k) and the prescribed motions' (m v²) stay
     below ``LARGEST_ENERGY``. ``initial`` is (x0, v0) by blade position, already checked
     finite. Raises ``SimulationError`` naming the quantity and its value: the scene is
@@ -77,6 +85,13 @@ def scale_limits(scene, periods: int, method, initial) -> None:
     stiffness, damping = a.stiffness_matrix(), a.damping_matrix()
     where = (f"at speed_rpm = {scene.speed_rpm:g} (excitation period T_e = {period:g} s, "
              f"engine order {scene.excitation.engine_order})")
+    if SMALLEST_STEP * period < SMALLEST_NORMAL:
+        raise SimulationError(
+            f"Scene.speed_rpm = {scene.speed_rpm:g} rpm makes an excitation period T_e = "
+            f"{period:.3g} s (engine order {scene.excitation.engine_order}), whose smallest "
+            f"step, {SMALLEST_STEP:g} T_e = {SMALLEST_STEP * period:.3g} s, is below the "
+            f"smallest normal float, {SMALLEST_NORMAL:.3g}: no step of a run could be told "
+            "from the next. Check the units of the speed (rev/min).")
     for name, matrix, unit in (("stiffness", stiffness, "N/m"),
                                ("damping", damping, "N·s/m")):
         if not np.isfinite(matrix).all():
@@ -116,6 +131,7 @@ def scale_limits(scene, periods: int, method, initial) -> None:
             f"whose stable step ({STABLE_STEP / rate:.3g} s) is below {which} = "
             f"{smallest:.3g} s {where}: the run cannot follow the motion. Check the units "
             "of the damping, mass and speed.")
+    _check_contacts(scene, mass, where)
     x0, v0 = initial
     with np.errstate(over="ignore", invalid="ignore"):
         kinetic = 0.5 * np.sum(mass * v0 * v0)
@@ -130,6 +146,57 @@ def scale_limits(scene, periods: int, method, initial) -> None:
     _check_motions(scene, mass, stiffness, periods * period)
 
 
+def _check_contacts(scene, mass, where) -> None:
+    """The stiffest contact: each interface's tangential stiffness k_t (an elastic
+    contact), and its normal law's ∂N/∂δ where that is one number (a law of constant
+    slopes), on the masses the contact joins. A contact of stiffness k along the row g of
+    the free coordinates (its normal, or a tangent) adds k g gᵀ to the stiffness: the
+    natural frequency of that rank-one term, ω² = k gᵀ M⁻¹ g, must allow a stable step no
+    shorter than the smallest step any method takes (a contact is closed only at times, so
+    a fixed step is not held to it here: the run tells if it is too long)."""
+    a = scene.arrays
+    n = a.n_blades
+    smallest = SMALLEST_STEP * scene.excitation_period
+    normal = _normal_rows(a)[:, :n]
+    tangents = [a.slip_rows(direction)[:, :n] for direction in (1, 2)]
+    for e, (left, right, interface) in enumerate(scene.group.interfaces):
+        law = a.normal_laws[e]
+        stiffnesses = []
+        if type(law).opens and type(law).constant_slopes:
+            stiffnesses.append((f"its normal law's stiffness ∂N/∂δ ({type(law).__name__})",
+                                abs(float(law.gradient(1.0, 0.0)[0])), [normal[e]]))
+        if interface.elastic:
+            stiffnesses.append(("its tangential_stiffness", interface.tangential_stiffness,
+                                [rows[e] for rows in tangents]))
+        for what, value, rows in stiffnesses:
+            with np.errstate(over="ignore", invalid="ignore"):
+                squared = max(value * float(np.sum(row * row / mass)) for row in rows)
+            omega = math.sqrt(squared) if squared < math.inf else math.inf
+            if omega * smallest > STABLE_STEP:
+                raise SimulationError(
+                    f"interface {e} ({left!r}, {right!r}): {what}, {value:g} N/m, on the "
+                    f"masses it joins makes a natural frequency of up to {omega:.3g} rad/s, "
+                    f"whose stable step ({STABLE_STEP / omega:.3g} s) is below the smallest "
+                    f"step of any method, {SMALLEST_STEP:g} excitation periods = "
+                    f"{smallest:.3g} s {where}: no run can follow the contact. Check the "
+                    "units of the stiffness and the masses.")
+
+
+def _normal_rows(a) -> np.ndarray:
+    """Each interface's penetration per unit coordinate (interfaces × coordinates and
+    prescribed nodes): n_e over the coordinates with substructures, else sin α at its
+    left blade and −sin α at its right one (a fixed node has no column)."""
+    if a.is_structure:
+        return a.normal_rows
+    rows = np.zeros((a.n_interfaces, a.n_blades + a.n_prescribed))
+    for e, (i, j) in enumerate(zip(a.left, a.right)):
+        if i >= 0:
+            rows[e, i] += a.sin_angle[e]
+        if j >= 0:
+            rows[e, j] -= a.sin_angle[e]
+    return rows
+
+
 def _check_forcing(scene, mass, stiffness) -> None:
     """The energy the excitation's amplitudes put into a blade, q² / (k + m ω_e²)."""
     a = scene.arrays
@@ -137,7 +204,7 @@ def _check_forcing(scene, mass, stiffness) -> None:
     if load.size == 0 or not load.any():
         return
     with np.errstate(over="ignore", invalid="ignore"):
-        resistance = np.diag(stiffness) + mass * a.excitation_frequency ** 2
+        resistance = np.diag(stiffness) + mass * np.float64(a.excitation_frequency) ** 2
         energy = load * load / resistance
     worst = int(np.nanargmax(np.where(np.isnan(energy), np.inf, energy)))
     if not energy[worst] <= LARGEST_ENERGY:

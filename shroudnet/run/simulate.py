@@ -15,6 +15,7 @@ from ..engine.controller import SMALLEST_STEP, first_step, smallest_step
 from ..engine.dynamics import interface_kinematics
 from ..engine.generate import compiled, kernel_scene, load_kernel
 from ..engine.records import Controls, Run, allocate, finish, new_propagation
+from ..model.lowering import from_dofs, to_dofs
 from ..model.motion import motion_span
 from ..model.scene import Scene, edge_matrix
 from .footprint import check_footprint
@@ -53,8 +54,9 @@ def simulate(scene: Scene, periods: int, *,
         The integrator and its accuracy knobs, or the accuracy asked for. The default,
         ``Adaptive()`` (rtol = 1e-8), keeps Poincaré points and E_ρ of the paper's group
         to about 1e-7 at a quarter of the cost of ``FixedStep(steps_per_period=1000)``,
-        which reaches 1e-9 (README, "What accuracy costs"). ``Exponential()`` carries the
-        motion between switches exactly, for scenes whose phases are linear.
+        which reaches 1e-9 (docs/guide/simulating.md, "What accuracy costs").
+        ``Exponential()`` carries the motion between switches exactly, for scenes whose
+        phases are linear.
     samples_per_period : int
         Output samples per period; with ``FixedStep`` or ``Exponential`` it must divide the
         steps per period.
@@ -65,11 +67,14 @@ def simulate(scene: Scene, periods: int, *,
     zeno : ZenoGuard
         When to stop a run whose switches pile up.
     initial : (x0, v0) or (x0, v0, u0), optional
-        Initial displacements [m] and velocities [m/s] by blade position; default at rest.
-        With elastic contacts, u0 gives their springs' stretches [m] (two each, as
-        ``Simulation.stretches``; relaxed where not given): a closed face whose stretch
-        holds its force at the friction limit or beyond starts slipping, its stretch put
-        on the limit; an open face's is relaxed.
+        Initial displacements [m] and velocities [m/s] by blade position: with
+        substructures, every node's own degrees of freedom q (of
+        ``Substructure.matrices_at``, in its units) and their rates, stacked in
+        ``Scene.blades`` order (``Simulation.x`` and ``Simulation.state`` give them so);
+        default at rest. With elastic contacts, u0 gives their springs' stretches [m] (two
+        each, as ``Simulation.stretches``; relaxed where not given): a closed face whose
+        stretch holds its force at the friction limit or beyond starts slipping, its
+        stretch put on the limit; an open face's is relaxed.
     event_capacity : int
         Most events kept in the log, ≥ 0 (counts stay exact beyond it).
 
@@ -90,9 +95,10 @@ def simulate(scene: Scene, periods: int, *,
         A run never returns a non-finite value: one found in the record or the energy ledger
         at the end raises this, naming the quantity.
     """
+    check_instance("simulate", "scene", scene, Scene, expected="a shroudnet.Scene")
     done = integrate(scene, periods, method=method, samples_per_period=samples_per_period,
-                     event_tolerance=event_tolerance, zeno=zeno, initial=initial,
-                     event_capacity=event_capacity)
+                     event_tolerance=event_tolerance, zeno=zeno,
+                     initial=start_coordinates(scene, initial), event_capacity=event_capacity)
     run, method = done.run, done.method
     out = run.output
     events = EventLog(time=run.events.time, interface=run.events.interface,
@@ -105,7 +111,9 @@ def simulate(scene: Scene, periods: int, *,
     with np.errstate(over="ignore", invalid="ignore"):
         ledger = _ledger(scene, out.t, out.x, out.v, out.modes, out.energy, done.stretches)
     check_finished(out, ledger)
-    return Simulation(scene=scene, settings=settings, t=out.t, x=out.x, v=out.v,
+    layout = scene.arrays.layout
+    return Simulation(scene=scene, settings=settings, t=out.t, x=to_dofs(layout, out.x),
+                      v=to_dofs(layout, out.v),
                       normal_force=out.normal, friction_force=out.friction, modes=out.modes,
                       events=events, energy=EnergyLedger(**ledger), work=out.energy,
                       samples_per_period=samples_per_period, steps=int(run.steps),
@@ -149,7 +157,9 @@ def integrate(scene: Scene, periods: int, *,
               zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
               tangent: np.ndarray | None = None,
               orthonormalise: bool = False, until: float | None = None) -> Integration:
-    """``simulate``'s checks and run, returning the kernel's raw record.
+    """``simulate``'s checks and run, returning the kernel's raw record: the engine's own,
+    whose ``initial``, record and tangent are by its coordinates (``model.lowering``), not the
+    nodes' degrees of freedom that ``simulate`` takes and gives.
 
     With ``tangent`` (2 n_blades × k; with elastic contacts, its rows δx and δẋ may be
     followed by the stretches' δu, 0 where they are not), the run integrates those k
@@ -202,6 +212,38 @@ def integrate(scene: Scene, periods: int, *,
                                      stretch_rows if len(stretch_rows) else None)
 
     kernel = load_kernel(scene, tangent=tangent is not None, method=_KERNEL_METHODS[type(method)])
+    controls, method, zeno_window = run_controls(
+        scene, periods, method, samples_per_period, event_tolerance, zeno, event_capacity,
+        orthonormalise=orthonormalise, until=until)
+    propagation = new_propagation(arrays, scene.arrays, controls.step) \
+        if isinstance(method, Exponential) else None
+    state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
+                                                      flow=tangent is not None,
+                                                      propagation=propagation)
+    arguments = (state, arrays, work, switching, events, controls, output)
+    driver, compile_seconds = compiled(kernel.run, arguments)
+    run = finish(driver(*arguments), output, events, state.tangent)
+    stretches = run.output.x[:, n:len(x0) - len(x_p)]
+    run = _blades_only(run, n, scene.arrays.n_stretches)
+    status = Status(run.status)
+    if status != Status.FINISHED:
+        raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
+                                            zeno.events, zeno_window,
+                                            isinstance(method, FixedStep)))
+    return Integration(run=run, method=method, event_tolerance=event_tolerance,
+                       zeno_window=zeno_window, compile_seconds=compile_seconds,
+                       stretches=stretches)
+
+
+def run_controls(scene: Scene, periods: int, method: FixedStep | Adaptive | Exponential,
+                 samples_per_period: int, event_tolerance: float, zeno: ZenoGuard,
+                 event_capacity: int, *, orthonormalise: bool = False,
+                 until: float | None = None) -> tuple[Controls, object, float]:
+    """The ``records.Controls`` of a run of ``scene`` over ``periods`` (arguments checked
+    as ``integrate`` checks them), the method as recorded (the default atol filled in) and
+    the Zeno window [periods]."""
+    period = scene.excitation_period
+    on_grid = isinstance(method, FixedStep | Exponential)
     zeno_window = zeno.window_at(event_tolerance)
     n_samples = periods * samples_per_period + 1
     sample_step = period / samples_per_period
@@ -228,23 +270,7 @@ def integrate(scene: Scene, periods: int, *,
         zeno_window=zeno_window * period, event_capacity=event_capacity,
         orthonormalise=orthonormalise,
         exponentials=not orthonormalise and scene.arrays.linear_phases)
-    propagation = new_propagation(arrays, scene.arrays, step) \
-        if isinstance(method, Exponential) else None
-    state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
-                                                      flow=tangent is not None,
-                                                      propagation=propagation)
-    arguments = (state, arrays, work, switching, events, controls, output)
-    driver, compile_seconds = compiled(kernel.run, arguments)
-    run = finish(driver(*arguments), output, events, state.tangent)
-    stretches = run.output.x[:, n:len(x0) - len(x_p)]
-    run = _blades_only(run, n, scene.arrays.n_stretches)
-    status = Status(run.status)
-    if status != Status.FINISHED:
-        raise SimulationError(_stop_message(scene, status, run.time, run.interface, period,
-                                            zeno.events, zeno_window))
-    return Integration(run=run, method=method, event_tolerance=event_tolerance,
-                       zeno_window=zeno_window, compile_seconds=compile_seconds,
-                       stretches=stretches)
+    return controls, method, zeno_window
 
 
 #: The kernel of each method (``engine.generate.METHODS``).
@@ -398,13 +424,28 @@ def _check_memory(scene, periods, samples_per_period, event_capacity):
                          "the last state of the one before (initial=).")
 
 
+def start_coordinates(scene: Scene, initial, owner: str = "simulate",
+                      field: str = "initial") -> tuple | None:
+    """``initial`` as a user gives it (None, (q0, q̇0) or (q0, q̇0, u0): the nodes' own
+    degrees of freedom, ``simulate``), checked as ``owner.field``, and as the engine takes
+    it: (η0, η̇0[, u0]) by its coordinates (``model.lowering.from_dofs``); None for rest."""
+    if initial is None:
+        return None
+    initial, stretches = split_stretches(scene, initial, owner, field)
+    x0, v0 = initial_state(initial, scene.arrays.n_blades, owner, field)
+    layout = scene.arrays.layout
+    return (from_dofs(layout, x0), from_dofs(layout, v0)) + (
+        () if stretches is None else (stretches,))
+
+
 def split_stretches(scene: Scene, initial, owner: str = "simulate",
                     field: str = "initial") -> tuple[object, np.ndarray | None]:
     """(x0, v0) of ``initial`` and the stretches u0 its third member gives the sliders of a
     scene with elastic contacts (2 per elastic contact [m], as ``Simulation.stretches``),
     or None where it has none: relaxed sliders."""
     count = scene.arrays.n_stretches
-    if count == 0 or not isinstance(initial, tuple | list) or len(initial) != 3:
+    if count == 0 or not isinstance(initial, tuple | list | np.ndarray) \
+            or getattr(initial, "ndim", 1) == 0 or len(initial) != 3:
         return initial, None
     try:
         stretches = check_array(owner, f"{field} u0", initial[2], shape=(count,))
@@ -418,14 +459,15 @@ def split_stretches(scene: Scene, initial, owner: str = "simulate",
 def initial_state(initial, n: int, owner: str = "simulate",
                   field: str = "initial") -> tuple[np.ndarray, np.ndarray]:
     """(x0, v0) from ``initial``: None (rest) or a pair of sequences of ``n`` finite numbers
-    [m, m/s]; anything else raises naming ``owner.field``."""
+    [m, m/s] (a 2 × n array as the same nested list); anything else raises naming
+    ``owner.field``."""
     if initial is None:
         return np.zeros(n), np.zeros(n)
     pair = (f"{owner}.{field} must be (x0, v0), a pair of {n} displacements [m] and {n} "
             "velocities [m/s], or None for rest")
-    if not isinstance(initial, tuple | list | np.ndarray):
+    if not isinstance(initial, tuple | list | np.ndarray) or getattr(initial, "ndim", 1) == 0:
         raise TypeError(f"{pair}; got {type(initial).__name__} {initial!r:.200}")
-    if isinstance(initial, np.ndarray) or len(initial) != 2:
+    if len(initial) != 2:
         raise ValueError(f"{pair}; got {type(initial).__name__} {initial!r:.200}")
     state = []
     for name, values in zip(("x0", "v0"), initial):
@@ -460,13 +502,14 @@ def check_finished(out, ledger: dict) -> None:
                 "masses, stiffnesses, forces and initial state")
 
 
-def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window):
+def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window,
+                  fixed_step=False):
     where = ""
     if interface >= 0:
         where = f" on {scene.contacts[interface]}"
     when = f"at t = {t:.9g} s (period {t / period:.6f})"
     return status.message(when, where, zeno_events=zeno_events, zeno_window=zeno_window,
-                          smallest_step=SMALLEST_STEP)
+                          smallest_step=SMALLEST_STEP, fixed_step=fixed_step)
 
 
 #: Nodes and weights of 16-point Gauss–Legendre quadrature on [−1, 1] (computing them

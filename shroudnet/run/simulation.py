@@ -12,6 +12,7 @@ import numpy as np
 from contact_laws import check_int
 
 from ..checked_records import check_record
+from ..model.lowering import from_dofs
 from ..model.scene import Scene
 from .classification import Classification
 from .methods import SimulationSettings
@@ -71,8 +72,11 @@ class EnergyLedger:
 class Simulation:
     """A trajectory of a scene, sampled uniformly with a sample at every t = k T_e.
 
-    Arrays have one row per sample: ``x``, ``v`` by blade position (n_t × n_blades),
-    ``normal_force``, ``friction_force`` and ``modes`` by interface (n_t × n_interfaces);
+    Arrays have one row per sample: ``x`` [m], ``v`` [m/s] by blade position (n_t ×
+    n_blades); with substructures, every node's own degrees of freedom q (of
+    ``Substructure.matrices_at``, in its units) and their rates, stacked in
+    ``Scene.blades`` order (n_t × n_dofs; ``dofs`` picks a node's); ``normal_force``,
+    ``friction_force`` and ``modes`` by interface (n_t × n_interfaces);
     ``friction_force`` is along the tangent t (t₁ of a face's plane), and
     ``friction_force_second`` along t₂ where the scene has elastic contacts (0 on
     interfaces with one direction; None without elastic contacts).
@@ -152,16 +156,16 @@ class Simulation:
         direction, whose area is the energy friction takes along it
         (``analysis.hysteresis_loop``)."""
         row = self._slip_row(interface, "Simulation.slip_displacement", direction)
-        return np.concatenate([self.x, self.scene.arrays.prescribed_state(self.t)[0]],
-                              axis=1) @ row
+        return np.concatenate([from_dofs(self.scene.arrays.layout, self.x),
+                               self.scene.arrays.prescribed_state(self.t)[0]], axis=1) @ row
 
     def slip_velocity(self, interface) -> np.ndarray:
         """The slip velocity u̇_t [m/s] of the interface (or contact) ``interface`` at every
         sample: t·(ṙ_a − ṙ_b) (blades: (ẋ_i − ẋ_j) cos α), prescribed nodes moving as
         they do."""
         row = self._slip_row(interface, "Simulation.slip_velocity")
-        return np.concatenate([self.v, self.scene.arrays.prescribed_state(self.t)[1]],
-                              axis=1) @ row
+        return np.concatenate([from_dofs(self.scene.arrays.layout, self.v),
+                               self.scene.arrays.prescribed_state(self.t)[1]], axis=1) @ row
 
     def checked_interface(self, interface, caller: str) -> int:
         """``interface`` as a contact's column (``Scene.contact_position``: an interface's
@@ -170,6 +174,8 @@ class Simulation:
         return self.scene.contact_position(interface, caller)
 
     def _slip_row(self, interface, caller: str, direction: int = 1) -> np.ndarray:
+        """The interface's row of ``SceneArrays.slip_rows``: by the engine's coordinates
+        (then the prescribed nodes), which ``from_dofs`` gives the samples in."""
         direction = check_int(caller, "direction", direction, low=1, most=2)
         return self.scene.arrays.slip_rows(direction)[self.checked_interface(interface,
                                                                              caller)]
@@ -188,6 +194,17 @@ class Simulation:
                            self.friction_force_second[:, elastic] / stiffness[elastic])
         return values
 
+    def state(self, sample: int = -1) -> tuple[np.ndarray, ...]:
+        """The whole state at sample ``sample`` (a row index; −1, the default, is the
+        last), as ``initial`` takes it: (x, ẋ) [m, m/s], and with elastic contacts their
+        springs' stretches u [m] (``stretches``). A run from the state at a sample
+        t = k T_e (every ``samples_per_period``-th) goes on as this one went on from
+        there: the excitation is the same at t = 0."""
+        sample = check_int("Simulation.state", "sample", sample, low=-len(self.t),
+                           high=len(self.t) - 1)
+        stretches = (self.stretches[sample],) if self.scene.arrays.n_stretches else ()
+        return (self.x[sample].copy(), self.v[sample].copy()) + stretches
+
     def friction_along(self, interface, direction: int = 1) -> np.ndarray:
         """The friction force [N] of the interface (or contact) ``interface`` along its
         tangent t₁ (``direction`` 1: ``friction_force``) or t₂ (2: 0 where the interface
@@ -203,12 +220,17 @@ class Simulation:
 
 
 def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:
-    """The rows of ``sim`` from t = skip·T_e on: what is left after ``skip`` transient periods.
+    """The rows of ``sim`` from t = skip·T_e on: what is left after ``skip`` transient periods
+    (``skip`` checked by ``steady_skip``). Every reading of a steady response takes ``skip``
+    through here."""
+    return slice(steady_skip(sim, skip, owner) * sim.samples_per_period, None)
 
-    ``skip`` is a whole number of periods (an int, a numpy integer or a float of integral
-    value) in [0, periods): at least one whole period is left, so that each reading of it
-    (Poincaré points, E_ρ, the spectrum, the friction loss per cycle, the classification)
-    has something to read. Every reading of a steady response takes ``skip`` through here.
+
+def steady_skip(sim: Simulation, skip: int, owner: str) -> int:
+    """``skip`` as an int: a whole number of periods (an int, a numpy integer or a float of
+    integral value) in [0, periods), so that at least one whole period is left for each
+    reading of it (Poincaré points, E_ρ, the spectrum, the friction loss per cycle, the
+    classification) to read.
 
     Raises
     ------
@@ -225,7 +247,7 @@ def steady_rows(sim: Simulation, skip: int, owner: str) -> slice:
         raise ValueError(f"{owner}.skip must be a whole number of periods in "
                          f"[0, {sim.periods}) (the run's {sim.periods} periods, at least one "
                          f"left to read), got {skip}")
-    return slice(skip * sim.samples_per_period, None)
+    return skip
 
 
 @dataclass(frozen=True)
@@ -234,7 +256,9 @@ class SweepPoint:
 
     A *failed* point (``error`` set: the message of the ``SimulationError`` that stopped
     its simulation) has no Poincaré points (shape (0, 2)), NaN for E_ρ and the friction
-    loss, the classification label "failed" and an empty final state.
+    loss, the classification label "failed" and an empty final state. The final state is
+    in the coordinates of ``Simulation.x`` (with substructures, the nodes' own degrees of
+    freedom), as ``sweep``'s ``initial`` takes it.
     """
 
     value: float
@@ -344,3 +368,35 @@ class Sweep:
         values = np.concatenate([np.full(len(p.poincare), p.value) for p in self.points])
         section = np.concatenate([p.poincare[:, coordinate] for p in self.points])
         return values, section
+
+
+@dataclass(frozen=True)
+class SweepMap:
+    """A two-parameter map: at each value of the first parameter (``first``), a sweep of
+    the second (``second``), one ``Sweep`` of ``rows`` each, whose points' ``value`` is
+    the second parameter's. ``parameters`` names the two; a failed point keeps its place
+    as a gap."""
+
+    parameters: tuple[str, str]
+    first: np.ndarray
+    second: np.ndarray
+    rows: tuple[Sweep, ...]
+
+    def __post_init__(self):
+        check_record(self)
+
+    @property
+    def labels(self) -> np.ndarray:
+        """Each point's classification label (first × second; "failed" where it failed)."""
+        return np.array([row.labels for row in self.rows], dtype=object).reshape(
+            len(self.first), len(self.second))
+
+    def grid(self, reading: str) -> np.ndarray:
+        """A number of every point (first × second) by the name of its ``SweepPoint``
+        field: "energy_density" or "friction_loss_per_cycle" (NaN where a point failed)."""
+        if reading not in ("energy_density", "friction_loss_per_cycle"):
+            raise ValueError(f"SweepMap.grid.reading must be 'energy_density' or "
+                             f"'friction_loss_per_cycle', got {reading!r}")
+        return np.array([[getattr(point, reading) for point in row.points]
+                         for row in self.rows], dtype=float).reshape(
+            len(self.first), len(self.second))

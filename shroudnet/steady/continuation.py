@@ -1,9 +1,10 @@
 """Families of periodic orbits in one parameter: pseudo-arclength continuation.
 
 The unknowns are u = (y, p): the orbit's start y = (x, ẋ) at t = 0 mod T_e (with
-elastic contacts, their springs' stretches too: ``stability.state_parts``) and the
-parameter p. Each step predicts along the branch's tangent τ (the kernel of
-[M − I, ∂φ/∂p], DESIGN §6) and corrects by Newton on
+elastic contacts, their springs' stretches too: ``stability.state_parts``; with
+substructures, by the engine's coordinates, while the orbits of the ``Branch`` hold their
+nodes' own degrees of freedom) and the parameter p. Each step predicts along the branch's
+tangent τ (the kernel of [M − I, ∂φ/∂p], DESIGN §6) and corrects by Newton on
 
     φ(y, p) − y = 0,    τ · (u − u_predicted) = 0,
 
@@ -39,11 +40,13 @@ from contact_laws import check_callable, check_calls_with, check_instance, check
 from ..analysis.stability import TANGENT_METHOD, state_parts, stroboscopic_step
 from ..checked_records import check_record
 from ..linear.response import frequency_response
+from ..model.lowering import from_dofs
 from ..model.scene import Scene
 from ..run.methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
 from ..run.simulate import MAX_PERIODS, integrate
 from ..run.simulation import SimulationError
 from .cyclic import CyclicSymmetry, cyclic_symmetry, reduced_step, whole_period
+from .harmonic.orbit import HarmonicOrbit
 from .orbits import (
     ORBIT_TOLERANCE,
     SMALLEST_TOLERANCE,
@@ -56,7 +59,7 @@ from .orbits import (
     state_weights,
     symmetry_of,
 )
-from .parametric import checked_scene_at
+from .parametric import checked_scene_at, same_scene
 from .vertex import parabola_vertex
 
 #: Bifurcation kinds.
@@ -103,19 +106,43 @@ JUMP = 1e-3
 @dataclass(frozen=True)
 class FrequencyShift:
     """A branch's resonance against the linear limits it lies between [Hz]: ``peak``, the
-    excitation frequency where its amplitude is largest; ``open`` and ``stuck``, where the
-    linear responses with the interfaces open and stuck peak. Friction and contact move
-    the resonance by ``peak − open`` from the open blades', a fraction ``stiffening`` of
-    the way to the stuck one."""
+    excitation frequency where its amplitude is largest; ``open``, ``stuck`` and
+    ``closed``, where the linear responses with the interfaces in those limits peak
+    (``linear_modes``' docstring): open is the lower bound, closed (every interface
+    closed, and stuck where it can stick) the upper one, and stuck the group at rest with
+    its friction locked, the normal springs of interfaces open at rest left out. Friction
+    and contact move the resonance by ``peak − open`` from the open blades', a fraction
+    ``stiffening`` of the way to the closed one.
+
+    ``at_end`` is True where the largest amplitude is at the first or the last point of
+    the branch: the branch has no maximum inside it, so ``peak`` is where the branch was
+    started or stopped, not a resonance (which lies beyond it, or nowhere); ``str`` says
+    so.
+    """
 
     peak: float
     open: float
     stuck: float
+    closed: float
+    at_end: bool
 
     @property
     def stiffening(self) -> float:
-        """(peak − open)/(stuck − open): 0 at the open resonance, 1 at the stuck one."""
-        return (self.peak - self.open) / (self.stuck - self.open)
+        """(peak − open)/(closed − open): 0 at the open resonance, 1 at the closed one;
+        NaN where the two coincide (nothing the interfaces do moves the resonance)."""
+        if self.closed == self.open:
+            return math.nan
+        return (self.peak - self.open) / (self.closed - self.open)
+
+    def __str__(self) -> str:
+        text = (f"resonance at {self.peak:.2f} Hz; the linear limits' at {self.open:.2f} Hz "
+                f"(open), {self.stuck:.2f} Hz (stuck) and {self.closed:.2f} Hz (closed)")
+        if self.closed != self.open:
+            text += f": {self.stiffening:.0%} of the way from open to closed"
+        if self.at_end:
+            text += ("; the branch's largest amplitude is at its end, not a maximum inside "
+                     "it: the resonance lies beyond the branch, if anywhere")
+        return text
 
 
 #: Frequencies at which ``Branch.frequency_shift`` evaluates each linear limit.
@@ -145,11 +172,13 @@ class Bifurcation:
     real multiplier that leaves the unit circle through +1 without a fold of the
     symmetric branch is a "symmetry-breaking" bifurcation: its eigenvector is a wave of
     another diameter (``wave_number``), the motion a standing or localised one beyond.
+    On a branch of harmonic-balance orbits (``harmonic_continuation``) the orbit is a
+    ``HarmonicOrbit`` and the multiplier one of Hill's.
     """
 
     kind: str
     parameter: float
-    orbit: PeriodicOrbit
+    orbit: PeriodicOrbit | HarmonicOrbit
     multiplier: complex
     index: int
     bracket: tuple[float, float]
@@ -229,20 +258,23 @@ class Branch:
 
     def frequency_shift(self, blade) -> FrequencyShift:
         """Where the branch peaks against the linear limits (``FrequencyShift``): the
-        excitation frequency 1/T_e of the orbit of largest ``amplitude(blade)``, and
-        those at which ``frequency_response`` of that orbit's scene (at its speed) peaks
-        for ``blade`` with the interfaces open and stuck, each sought over a half to twice
-        the branch's (a grid of ``SHIFT_POINTS``, refined by a parabola)."""
-        top = int(np.argmax(self.amplitude(blade)))
+        excitation frequency 1/T_e of the orbit of largest ``amplitude(blade)`` (flagged
+        ``at_end`` where that orbit is the branch's first or last), and those at which
+        ``frequency_response`` of that orbit's scene (at its speed) peaks for ``blade``
+        with the interfaces open, stuck and closed, each sought over a half to twice the
+        branch's (a grid of ``SHIFT_POINTS``, refined by a parabola). A ValueError where
+        the closed limit is not linear (a Hertz contact open at rest: ``linear``)."""
+        amplitude = self.amplitude(blade)
+        top = int(np.argmax(amplitude))
         scene = self.orbits[top].scene
-        peak = 1.0 / scene.excitation_period
+        peak = float(1.0 / scene.excitation_period)
         grid = np.linspace(0.5 * peak, 2.0 * peak, SHIFT_POINTS)
-        limits = []
-        for contacts in ("open", "stuck"):
+        limits = {}
+        for contacts in ("open", "stuck", "closed"):
             found = frequency_response(scene, grid, contacts)
-            limits.append(_parabola_top(grid, np.abs(scene.response_of(found.response,
-                                                                         blade))))
-        return FrequencyShift(peak=peak, open=limits[0], stuck=limits[1])
+            limits[contacts] = _parabola_top(grid, np.abs(scene.response_of(found.response,
+                                                                             blade)))
+        return FrequencyShift(peak=peak, **limits, at_end=top in (0, len(amplitude) - 1))
 
     def harmonics(self, blade, order: int = 5) -> tuple[np.ndarray, np.ndarray]:
         """(amplitudes A_n [m], phases φ_n [rad]) of ``blade`` along the branch, one row
@@ -291,8 +323,9 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         The parameter range; the branch starts at ``start`` (or at ``from_bifurcation``).
     periods : int
         k ≥ 1: orbits of period k T_e.
-    guess : (x0, v0), optional
-        Near the orbit at ``start``; default the state after ``transient`` periods.
+    guess : (x0, v0) or (x0, v0, u0), optional
+        Near the orbit at ``start``, as ``periodic_orbit`` takes it (with substructures,
+        the nodes' own degrees of freedom); default the state after ``transient`` periods.
     step, max_step : float, optional
         The first and the largest arclength step, in the scaled units: about the
         fraction of [start, stop] a step crosses where the orbit changes little. Default
@@ -361,6 +394,8 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
             raise
         raise type(error)(f"continuation: scene_at refused the range start = {start:g} … "
                           f"stop = {stop:g}: {error}") from error
+    if from_bifurcation is not None:
+        _check_born_here(from_bifurcation, scene_at, start, stop)
     cyclic = None if from_bifurcation is not None and symmetry is None else symmetry_of(
         scene_at(start), periods, symmetry, "continuation")
     if cyclic is not None and from_bifurcation is not None:
@@ -377,8 +412,9 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
                                transient=transient, tolerance=tolerance,
                                event_tolerance=event_tolerance,
                                symmetry="none" if cyclic is None else "cyclic")
-        solver.weights = state_weights(first.scene, first.state)
-        point = solver.point(first.state, start, periods)
+        y = from_dofs(first.scene.arrays.layout, first.state)
+        solver.weights = state_weights(first.scene, y)
+        point = solver.point(y, start, periods)
         direction = np.zeros(len(point.u))
         direction[-1] = math.copysign(1.0, stop - start)
     elif from_bifurcation.kind == "period-doubling":
@@ -389,6 +425,21 @@ def continuation(scene_at: Callable[[float], Scene], start: float, stop: float, 
         periods = point.periods
     point = point.with_tangent(solver.tangent(point, direction))
     return solver.follow(point, step, max_step, max_points, parameter, progress)
+
+
+def _check_born_here(bifurcation: Bifurcation, scene_at, start: float, stop: float) -> None:
+    """Refuse a ``from_bifurcation`` whose branch cannot start here: its parameter outside
+    [start, stop], or its orbit an orbit of another scene than ``scene_at`` gives there."""
+    where = bifurcation.parameter
+    if not min(start, stop) <= where <= max(start, stop):
+        raise ValueError(f"continuation.from_bifurcation lies at {where:g}, outside the "
+                         f"range start = {start:g} … stop = {stop:g}: the branch born there "
+                         "starts at its parameter, so the range must hold it")
+    if not same_scene(bifurcation.orbit.scene,
+                      checked_scene_at("continuation", scene_at, where, where)):
+        raise ValueError(f"continuation.from_bifurcation is a bifurcation of another scene: "
+                         f"its orbit's scene is not scene_at({where:g}); give a bifurcation of "
+                         "a branch of this scene_at")
 
 
 @dataclass(frozen=True)
@@ -715,13 +766,15 @@ class Solver:
         ``DOUBLED_OFFSET`` along the eigenvector of its orbit's multiplier nearest
         ``multiplier``, and the direction away from it."""
         orbit = bifurcation.orbit
-        self.weights = state_weights(orbit.scene, orbit.state)
+        layout = orbit.scene.arrays.layout  # the orbit's state and monodromy are by dofs
+        state = from_dofs(layout, orbit.state)
+        self.weights = state_weights(orbit.scene, state)
         values, vectors = np.linalg.eig(orbit.monodromy)
         k = np.argmin(np.abs(values - multiplier))
         w = self.weights
-        away = np.append(w * np.real(vectors[:, k]), 0.0)
+        away = np.append(w * from_dofs(layout, np.real(vectors[:, k])), 0.0)
         away /= np.linalg.norm(away)
-        base = np.append(w * orbit.state, bifurcation.parameter / self.span)
+        base = np.append(w * state, bifurcation.parameter / self.span)
         size = DOUBLED_OFFSET
         point, _ = self.correct(base + size * away, away, away @ base + size, periods,
                                 reach=1.0)

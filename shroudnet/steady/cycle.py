@@ -32,6 +32,7 @@ import numpy as np
 
 from contact_laws import check_int
 
+from ..model.lowering import from_dofs
 from .vertex import parabola_vertex
 
 
@@ -80,11 +81,17 @@ def kinetic_peak(scene, run, state_at=None) -> float:
     """T_max = max ½ ẋᵀ M ẋ [J] over the run's samples of a whole orbit (the last one, the
     first again, left out): the largest sample's time refined by the parabola through it
     and its neighbours (wrapping round); with ``state_at`` (time [s] → the orbit's exact
-    (x, ẋ) there), the vertex of the parabola through the exact kinetic energies at that
-    time and a tenth of a sample spacing either side (exact to third order in the time's
-    error), else the sampled parabola's."""
+    (x, ẋ) there, as ``run`` holds them), the vertex of the parabola through the exact
+    kinetic energies at that time and a tenth of a sample spacing either side (exact to
+    third order in the time's error), else the sampled parabola's. M is diagonal in the
+    engine's coordinates, which ``from_dofs`` takes the velocities to."""
     mass = scene.arrays.mass[:run.v.shape[1]]
-    kinetic = 0.5 * np.einsum("ij,j,ij->i", run.v[:-1], mass, run.v[:-1])
+
+    def energies(v):
+        v = from_dofs(scene.arrays.layout, v)
+        return 0.5 * np.einsum("...j,j,...j->...", v, mass, v)
+
+    kinetic = energies(run.v[:-1])
     k = int(np.argmax(kinetic))
     shift, top = parabola_vertex(kinetic[k - 1], kinetic[k], kinetic[(k + 1) % len(kinetic)])
     if state_at is None:
@@ -93,7 +100,7 @@ def kinetic_peak(scene, run, state_at=None) -> float:
     time, width = run.t[k] + shift * spacing, 0.1 * spacing
     if time - width <= 0.0:
         time += run.t[-1] - run.t[0]  # the same instant one orbit on
-    near = [0.5 * float(v @ (mass * v)) for _, v in
+    near = [float(energies(v)) for _, v in
             (state_at(time + offset) for offset in (-width, 0.0, width))]
     if near[0] - 2.0 * near[1] + near[2] >= 0.0:
         return max(near)

@@ -45,8 +45,9 @@ class Extremes:
 def orbit_extremes(scene, t, x, v, switches, state, *, responses=None) -> Extremes:
     """The ``Extremes`` of an orbit from its samples ``t``, ``x``, ``ẋ`` over one whole
     orbit (first and last samples one orbit apart) and the times of its ``switches`` [s],
-    each extremum refined on the orbit's exact states, ``state`` (time [s] → (x, ẋ):
-    ``state_at``, the orbit run again to that time; module docstring); of the responses
+    each extremum refined on the orbit's exact states, ``state`` (time [s] → (x, ẋ) as
+    ``x`` and ``v`` hold them: the orbit run again to that time; module docstring); of
+    the responses
     whose positions ``responses`` lists (default: all of them)."""
     rows = scene.response_matrix
     if responses is not None:
@@ -179,7 +180,8 @@ ROOT_STEPS = 40
 
 
 def state_at(scene, initial, time, method, event_tolerance):
-    """(x, ẋ) of the orbit at ``time`` [s], by running it again from its start."""
+    """(x, ẋ) of the orbit at ``time`` [s], by running it again from its start ``initial``:
+    both by the engine's coordinates (``integrate``'s)."""
     if time <= 0.0:
         return initial[:2]
     periods = max(1, int(np.ceil(time / scene.excitation_period - 1e-12)))

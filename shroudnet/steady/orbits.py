@@ -18,6 +18,7 @@ from ..analysis.readings import hysteresis_loop
 from ..analysis.stability import (
     TANGENT_METHOD,
     StroboscopicStep,
+    jacobian_in_dofs,
     state_parts,
     state_size,
     stroboscopic_step,
@@ -25,9 +26,10 @@ from ..analysis.stability import (
 from ..checked_records import check_record
 from ..engine.codes import EventKind
 from ..linear.modes import nodal_diameters
+from ..model.lowering import from_dofs, to_dofs
 from ..model.scene import Scene
 from ..run.methods import EVENT_TOLERANCE, Accuracy, Adaptive, check_event_tolerance
-from ..run.simulate import MAX_PERIODS, initial_state, simulate, split_stretches
+from ..run.simulate import MAX_PERIODS, simulate, start_coordinates
 from ..run.simulation import EventLog, Simulation, SimulationError
 from .cycle import (
     EnergyPerCycle,
@@ -69,11 +71,16 @@ UNIT_CIRCLE = 1.0 + 1e-7
 class PeriodicOrbit:
     """A periodic orbit of a forced scene, of ``periods`` excitation periods.
 
-    ``initial``: (x0 [m], ẋ0 [m/s]) at t = 0 mod T_e, by blade position, and with elastic
-    contacts their springs' stretches u0 [m] (``Simulation.stretches``). ``multipliers``:
-    the Floquet multipliers (eigenvalues of ``monodromy``), complex, by descending modulus;
-    a stick phase gives zeros. ``residual``: max |φ(y) − y| over ``scale``, the state scale
-    [m] (velocities count divided by l Ω). ``events``: the switches over one orbit, in
+    ``initial``: (x0 [m], ẋ0 [m/s]) at t = 0 mod T_e, by blade position (with
+    substructures, every node's own degrees of freedom q and their rates, stacked in
+    ``Scene.blades`` order: the orbit's first sample, ``Simulation.state(0)``), and with
+    elastic contacts their springs' stretches u0 [m] (``Simulation.stretches``).
+    ``monodromy``: ∂φ/∂y at ``state``, rows and columns as ``state``'s (``monodromy``).
+    ``multipliers``: the Floquet multipliers (eigenvalues of ``monodromy``), complex, by
+    descending modulus; a stick phase gives zeros. ``residual``: max |φ(y) − y| over
+    ``scale``, the state scale Newton weighs by (velocities count divided by l Ω): [m] for
+    blades; with substructures, of their modal coordinates (``model.lowering``), each of
+    which a static load moves alike. ``events``: the switches over one orbit, in
     order. Per response (``Scene.responses``: a blade's x, or a component of a point):
     ``maximum`` and ``minimum`` [m], its extremes over the orbit, located where its
     velocity crosses zero to the integrator's accuracy (``extremes``), not at samples;
@@ -206,14 +213,21 @@ class PeriodicOrbit:
 
     def friction_losses(self, samples_per_period: int = 100) -> np.ndarray:
         """The energy [J] each contact's friction takes per excitation period (one per
-        interface, or per point pair of a patch: ``Scene.contacts``): the area of its
-        hysteresis loop (``analysis.hysteresis_loop``) over the orbit, from the samples
-        (0 where a contact has no friction)."""
+        interface, or per point pair of a patch: ``Scene.contacts``): the sum of the areas
+        of its hysteresis loops (``analysis.hysteresis_loop``) over the orbit along every
+        tangent direction it slides in (t₁, and t₂ of a face that slides in its plane),
+        from the samples (0 where a contact has no friction). Summed over the contacts, it
+        is the friction loss per cycle of ``energy_per_cycle`` to the samples' trapezoidal
+        error (falling as their spacing squared), less the kinetic energy lost where a
+        slipping contact sticks rigidly, which loops do not hold."""
         run = self.simulation(samples_per_period)
-        return np.array([hysteresis_loop(run, (contact.interface, contact.contact),
-                                         0).area_per_cycle() if law is not None else 0.0
-                         for contact, law in zip(self.scene.contacts,
-                                                 self.scene.arrays.friction_laws)])
+        planar = np.any(self.scene.arrays.slip_rows(2) != 0.0, axis=1)
+        return np.array([sum(hysteresis_loop(run, (contact.interface, contact.contact), 0,
+                                             direction).area_per_cycle()
+                             for direction in ((1, 2) if planar[e] else (1,)))
+                         if law is not None else 0.0
+                         for e, (contact, law) in enumerate(zip(
+                             self.scene.contacts, self.scene.arrays.friction_laws))])
 
 
 #: The smallest residual Newton is asked for, relative to the state scale: a few times the
@@ -245,16 +259,19 @@ def periodic_orbit(scene: Scene, periods: int = 1, guess=None, *,
     periods : int
         k ≥ 1: the orbit's period is k T_e.
     guess : (x0, v0) or (x0, v0, u0), optional
-        A start near the orbit [m, m/s], with elastic contacts' stretches u0 [m] (relaxed
-        where not given). Default: the state after ``transient`` periods from rest. With
-        elastic contacts the state Newton solves for holds their stretches too.
+        A start near the orbit [m, m/s] by blade position (with substructures, the nodes'
+        own degrees of freedom, as ``simulate`` takes them), with elastic contacts'
+        stretches u0 [m] (relaxed where not given). Default: the state after
+        ``transient`` periods from rest. With elastic contacts the state Newton solves for
+        holds their stretches too.
     method : Adaptive or Accuracy
         The accuracy of the map; the orbit is as good as the map.
     transient : int
         Periods run from rest for the default guess, ≥ 0.
     tolerance : float
         The residual max |φ(y) − y| / scale to reach, in [1e-14, 1e-3]. The scale is the
-        largest of the guess's max |x|, its max |ẋ| / (l Ω) and the static deflection.
+        largest of the guess's max |x|, its max |ẋ| / (l Ω) and the static deflection
+        (with substructures, in their modal coordinates: ``PeriodicOrbit.scale``).
     event_tolerance : float
         As ``simulate``.
     samples_per_period : int
@@ -349,20 +366,20 @@ STARTS = 4
 
 
 def start_states(scene, periods, guess, transient, method, event_tolerance) -> list:
-    """Where Newton starts: ``guess`` (checked); or the ``STARTS`` stroboscopic states of
-    the second half of a ``transient`` from rest that come closest to themselves after
-    ``periods`` periods (near-returns lie near an orbit), closest first."""
+    """Where Newton starts, by the engine's coordinates: ``guess`` (checked); or the
+    ``STARTS`` stroboscopic states of the second half of a ``transient`` from rest that
+    come closest to themselves after ``periods`` periods (near-returns lie near an orbit),
+    closest first."""
     n = scene.arrays.n_blades
     sliders = state_size(scene) - 2 * n
     if guess is not None:
-        guess, stretches = split_stretches(scene, guess, "periodic_orbit", "guess")
-        return [np.concatenate(initial_state(guess, n, "periodic_orbit", "guess")
-                               + (np.zeros(sliders) if stretches is None else stretches,))]
+        start = start_coordinates(scene, guess, "periodic_orbit", "guess")
+        return [np.concatenate(start if len(start) == 3 else start + (np.zeros(sliders),))]
     if transient == 0:
         return [np.zeros(2 * n + sliders)]
     run = simulate(scene, transient + periods, method=method, samples_per_period=1,
                    event_tolerance=event_tolerance, event_capacity=0)
-    states = np.hstack([run.x, run.v, run.stretches])
+    states = from_dofs(scene.arrays.layout, np.hstack([run.x, run.v, run.stretches]))
     weights = state_weights(scene, states[-1])
     half = transient // 2
     returns = np.abs(weights * (states[half + periods:] - states[half:-periods])).max(axis=1)
@@ -441,21 +458,29 @@ def least_squares(matrix, right):
 
 def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event_tolerance,
              samples_per_period, history, cyclic=None) -> PeriodicOrbit:
-    """The ``PeriodicOrbit`` through y, whose map was ``step``: its multipliers, and what
-    one sampled run of the orbit shows. On a symmetric orbit (``cyclic``), every sector
-    repeats the first one's motion a sector-passing time later: the first sector's
-    extremes are every sector's."""
+    """The ``PeriodicOrbit`` through y, whose map was ``step`` (both by the engine's
+    coordinates; the orbit's ``initial`` and ``monodromy`` by the nodes' degrees of
+    freedom): its multipliers, and what one sampled run of the orbit shows. On a
+    symmetric orbit (``cyclic``), every sector repeats the first one's motion a
+    sector-passing time later: the first sector's extremes are every sector's."""
     multipliers = np.linalg.eigvals(step.jacobian).astype(complex)
     multipliers = multipliers[np.argsort(-np.abs(multipliers), kind="stable")]
-    initial = tuple(part.copy() for part in state_parts(scene, y))
+    layout = scene.arrays.layout
+    start = state_parts(scene, y)
+    initial = tuple(np.array(part) for part in state_parts(scene, to_dofs(layout, y)))
     run = simulate(scene, periods, method=method, samples_per_period=samples_per_period,
                    event_tolerance=event_tolerance, initial=initial)
     if cyclic is None:
-        def state(time):
-            return state_at(scene, initial, time, run.settings.method, event_tolerance)
+        def exact(time):
+            return state_at(scene, start, time, run.settings.method, event_tolerance)
     else:
-        state = state_on_orbit(cyclic, scene, initial, method=run.settings.method,
+        exact = state_on_orbit(cyclic, scene, start, method=run.settings.method,
                                event_tolerance=event_tolerance)
+
+    def state(time):
+        """(x, ẋ) of the orbit at ``time`` [s], as ``run`` holds them."""
+        return tuple(to_dofs(layout, part) for part in exact(time))
+
     found = orbit_extremes(scene, run.t, run.x, run.v, run.events.time, state,
                            responses=None if cyclic is None else first_sector(cyclic))
     maximum, minimum = found.maximum, found.minimum
@@ -463,7 +488,8 @@ def orbit_at(scene, periods, y, step, residual, scale, iterations, method, event
         maximum, minimum = np.tile(maximum, cyclic.sectors), np.tile(minimum, cyclic.sectors)
     responses = scene.responses_of(run.x[:-1])
     return PeriodicOrbit(scene=scene, initial=initial, periods=periods,
-                         multipliers=multipliers, monodromy=step.jacobian,
+                         multipliers=multipliers,
+                         monodromy=jacobian_in_dofs(scene, step.jacobian),
                          residual=float(residual), scale=float(scale),
                          iterations=iterations, events=run.events,
                          peak=np.maximum(np.abs(maximum), np.abs(minimum)),

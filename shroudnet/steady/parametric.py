@@ -7,7 +7,7 @@ silently; both studies refuse it before any work.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import fields
+from dataclasses import fields, is_dataclass
 
 import numpy as np
 
@@ -16,9 +16,22 @@ from ..model.scene import Scene
 
 def same_scene(a: Scene, b: Scene) -> bool:
     """Whether two scenes are the same to the dynamics: every array of ``Scene.arrays``
-    equal (names and labels aside)."""
-    return all(np.array_equal(getattr(a.arrays, f.name), getattr(b.arrays, f.name))
-               for f in fields(a.arrays))
+    equal (names and labels aside), the layout of substructures' coordinates included."""
+    return _equal(a.arrays, b.arrays)
+
+
+def _equal(a, b) -> bool:
+    """Whether two of ``SceneArrays``' values are equal: arrays element by element, records
+    without an equality of their own (``Layout``) field by field, tuples and dicts item by
+    item, anything else by its ``==``."""
+    if is_dataclass(a) and not a.__dataclass_params__.eq:
+        return type(a) is type(b) and all(_equal(getattr(a, f.name), getattr(b, f.name))
+                                          for f in fields(a))
+    if isinstance(a, tuple) and isinstance(b, tuple):
+        return len(a) == len(b) and all(_equal(x, y) for x, y in zip(a, b))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_equal(a[k], b[k]) for k in a)
+    return np.array_equal(a, b)
 
 
 def checked_scene_at(owner: str, scene_at: Callable[[float], Scene], value: float,

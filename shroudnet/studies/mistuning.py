@@ -201,41 +201,17 @@ def mistuning_study(scene: Scene, *, spread: float, samples: int,
                     samples_per_period: int = 100, method=Adaptive(),
                     workers: int | None = None, executor=None,
                     progress=None) -> MistuningStudy:
-    """A Monte Carlo of the forced response over random mistuning patterns.
-
-    Every sample, and the tuned group, runs at every speed of ``speeds_rpm`` (one
-    ``sweep``, on every core or on ``executor``, a dask cluster included); a point keeps
-    the peak |x| of each node (of a substructure, the largest over its points' components)
-    over ``record`` periods after ``transient`` ones, sampled ``samples_per_period`` times a
-    period.
+    """A Monte Carlo of the forced response over random mistuning patterns: the
+    computation behind ``shroudnet.mistuning_study`` (``front.studies.mistuning_study``,
+    where every argument is documented), with its progress given as an object.
 
     Parameters
     ----------
-    scene : Scene
-        The tuned group; its speed is replaced by each of ``speeds_rpm``.
-    spread : float
-        The standard deviation of the blade frequency deviation ε, 0 ≤ spread < 0.3 [-].
-    samples : int
-        Number of random patterns, ≥ 1.
-    speeds_rpm : sequence of float
-        The speeds [rev/min] the peak is sought over: the resonance to study.
-    blades : sequence of node names, optional
-        The nodes that are mistuned and whose amplitudes count; default every node, or
-        every node whose name starts with "blade" in a group built by
-        ``BladeGroup.bladed_disc``.
-    patterns : array (samples × sectors), optional
-        Given deviations ε instead of random ones (then ``spread`` is only reported).
-    seed : int
-        Of the random generator: the same seed gives the same patterns.
-
     progress : ProgressCallback or None
         Handed to the study's ``sweep``: ``progress(done, total)`` after each run (a
-        ``ProgressReporter`` hears the notices too); ``shroudnet.mistuning_study`` builds a
-        terminal display from ``progress="auto"``.
+        ``ProgressReporter`` hears the notices too); None or False reports nothing.
 
-    Returns
-    -------
-    MistuningStudy
+    The other arguments are ``shroudnet.mistuning_study``'s.
     """
     check_instance("mistuning_study", "scene", scene, Scene, expected="a shroudnet.Scene")
     spread = check_real("mistuning_study", "spread", spread, low=0.0, high=0.3)

@@ -45,9 +45,11 @@ from ..run.classification import REPEAT_TOLERANCE
 from ..run.methods import TRANSIENT, Accuracy, Adaptive, Exponential, FixedStep
 from ..run.reporting import ProgressReporter, SweepWarning
 from ..run.simulate import simulate
+from ..run.batch import check_batch_scene, check_device
 from ..run.simulation import SimulationError, Sweep, SweepFailure, SweepPoint
 from ..steady.extremes import sampled_peaks
 from ..steady.parametric import checked_scene_at
+from .gpu import points_on_gpu
 
 
 class PointStore(Protocol):
@@ -104,7 +106,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
           continuation: bool = False, initial=None, tolerance: float = REPEAT_TOLERANCE,
           lyapunov: bool = False, workers: int | None = None, executor=None,
           progress: ProgressCallback | None = None, store: StoreOpener | None = None,
-          retry_failed: bool = False) -> Sweep:
+          retry_failed: bool = False, order_by=None) -> Sweep:
     """The steady response of ``scene_at(value)`` for each value, in the order given: the
     computation behind ``shroudnet.sweep`` (``front.studies.sweep``, where every argument
     is documented), with its display and its store given as objects.
@@ -118,10 +120,15 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     store : StoreOpener or None
         Keep each point in the store that ``store(manifest, notice=...)`` opens, and resume
         from the points it holds; None keeps nothing.
+    order_by : array (values × parameters), optional
+        With ``executor="cuda"``, the parameters each value stands for, by which the runs
+        are ordered on the GPU (``gpu.warp_order``; default the values themselves): a
+        map sweeps an index into its grid, whose two parameters are what neighbours in a
+        warp should share.
 
     The other arguments are ``shroudnet.sweep``'s.
     """
-    values = _checked_values(values)
+    values = checked_values(values)
     transient = check_int("sweep", "transient", transient, low=0, unit="periods")
     record = check_int("sweep", "record", record, low=3, unit="periods")
     samples_per_period = check_int("sweep", "samples_per_period", samples_per_period, low=1)
@@ -130,11 +137,14 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     _check_arguments(scene_at, parameter, method, samples_per_period, workers, executor,
                      store, continuation=continuation, lyapunov=lyapunov,
                      retry_failed=retry_failed)
-    executor = None if executor is None else _as_executor(executor)
+    on_gpu = _on_gpu_asked(executor, method, lyapunov)
+    executor = None if executor is None or on_gpu else _as_executor(executor)
     report = _reporter(progress)
     first = checked_scene_at("sweep", _named(scene_at, parameter), values[0],
                              max(values, key=lambda value: abs(value - values[0])))
     _check_for(first, blade, initial)
+    if on_gpu:
+        check_batch_scene("sweep", first)
     blade = int(blade) if isinstance(blade, np.integer) else blade  # kept as JSON
     if executor is None and not continuation:
         workers = min(default_workers() if workers is None else workers, len(values))
@@ -148,7 +158,7 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
                 "samples_per_period": samples_per_period, "continuation": continuation,
                 "tolerance": tolerance, **({"lyapunov": True} if lyapunov else {}),
                 "initial": _listed(initial),
-                "scenes": _source(scene_at)}
+                "scenes": _source(scene_at), **({"executor": "cuda"} if on_gpu else {})}
     points: list[SweepPoint | None] = [None] * len(values)
     kept = None
     if store is not None:
@@ -168,7 +178,12 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
 
     if report is not None:
         report(len(values) - len(todo), len(values))
-    if todo and serial:
+    if todo and on_gpu:
+        where = np.asarray(values if order_by is None else order_by, dtype=float)
+        _on_gpu(scene_at, [(values[index],) for index in todo],
+                [values[index] for index in todo], where.reshape(len(values), -1)[todo],
+                first, todo, initial, options, workers, pickled, finished)
+    elif todo and serial:
         _one_by_one(scene_at, values, todo, points, initial, options, parameter, finished,
                     chain=continuation)
     elif todo and executor is not None:
@@ -181,17 +196,18 @@ def sweep(scene_at: Callable[[float], Scene], values: Sequence[float], *,
     return Sweep(parameter=parameter, blade=blade, points=tuple(points), settings=settings)
 
 
-def _checked_values(values) -> list[float]:
+def checked_values(values, owner: str = "sweep", field: str = "values") -> list[float]:
     """``values`` as a list of floats: a sequence of finite real numbers (a list, a tuple,
-    a range, a 1-d array; numpy's numbers as Python's), at least one."""
+    a range, a 1-d array; numpy's numbers as Python's), at least one; errors name
+    ``owner.field``."""
     if (isinstance(values, str | bytes | Mapping | Set) or not isinstance(values, Iterable)
             or (isinstance(values, np.ndarray) and values.ndim != 1)):
-        raise TypeError(f"sweep.values must be a sequence of numbers (a list, a tuple or a "
+        raise TypeError(f"{owner}.{field} must be a sequence of numbers (a list, a tuple or a "
                         f"1-d array), got {type(values).__name__} {reprlib.repr(values)}")
-    checked = [check_real("sweep", f"values[{index}]", value)
+    checked = [check_real(owner, f"{field}[{index}]", value)
                for index, value in enumerate(values)]
     if not checked:
-        raise ValueError(f"sweep.values must be a sequence of at least one number (a list, a "
+        raise ValueError(f"{owner}.{field} must be a sequence of at least one number (a list, a "
                          f"tuple or a 1-d array), got an empty {type(values).__name__} "
                          f"{reprlib.repr(values)}")
     return checked
@@ -217,7 +233,7 @@ def _check_arguments(scene_at, parameter, method, samples_per_period, workers, e
         raise ValueError(f"sweep.samples_per_period must divide {type(method).__name__}."
                          f"steps_per_period = {method.steps_per_period}, got "
                          f"{samples_per_period}")
-    if executor is not None and workers is not None:
+    if executor is not None and not _is_cuda(executor) and workers is not None:
         raise ValueError("sweep: give workers (a pool of our own) or executor, not both")
     if flags["continuation"] and (executor is not None or (workers or 1) > 1):
         raise ValueError("sweep: continuation chains each point from the previous one and "
@@ -462,6 +478,59 @@ def _naming(parameter, value):
     except Exception as error:
         error.add_note(f"in the sweep point {parameter} = {value:g}")
         raise
+
+
+#: The executor that runs a sweep's points on a GPU, one thread each.
+CUDA = "cuda"
+
+
+def _is_cuda(executor) -> bool:
+    return isinstance(executor, str) and executor == CUDA
+
+
+def _on_gpu_asked(executor, method, lyapunov) -> bool:
+    """Whether ``executor`` asks for the GPU; then the method must be a ``FixedStep``, no
+    Lyapunov exponent is asked for and a GPU must be there (``run.batch.NoDevice`` says
+    what is missing, in one line, before any work)."""
+    if not _is_cuda(executor):
+        if isinstance(executor, str):
+            raise ValueError(f"sweep.executor must be a concurrent.futures.Executor, a "
+                             f"dask.distributed.Client or 'cuda', got {executor!r}")
+        return False
+    if not isinstance(method, FixedStep):
+        raise ValueError(f"sweep: executor='cuda' runs the fixed-step method; give "
+                         f"method=FixedStep(...), not {method!r}")
+    if lyapunov:
+        raise ValueError("sweep: executor='cuda' classifies by the Poincaré points and the "
+                         "0–1 test; λ_max (lyapunov=True) is computed on the CPU only")
+    check_device("sweep")
+    return True
+
+
+def _on_gpu(scene_at, values, labels, coordinates, first, todo, initial, options, workers,
+            pickled, finished) -> None:
+    """The points ``todo`` (parameters ``values``, ``SweepPoint.value`` ``labels``,
+    ordered by ``coordinates``) in one batch on the GPU, their scenes prepared and their
+    points classified on ``workers`` processes where there are many; each goes to
+    ``finished(index, point)``."""
+    arguments = dict(first=first, response=first.response_position(options["blade"]),
+                     transient=options["transient"], record=options["record"],
+                     method=options["method"],
+                     samples_per_period=options["samples_per_period"],
+                     tolerance=options["tolerance"], initial=initial)
+    if workers > 1 and len(todo) > GPU_SERIAL_POINTS:
+        with _own_pool(workers) as pool:
+            points = points_on_gpu(scene_at, values, labels, coordinates, pool=pool,
+                                   pickled=pickled, **arguments)
+    else:
+        points = points_on_gpu(scene_at, values, labels, coordinates, **arguments)
+    for index, point in zip(todo, points):
+        finished(index, point)
+
+
+#: The most points of a GPU sweep whose scenes are made in this process (more go to a
+#: pool of worker processes: a scene costs about 2 ms of Python to make).
+GPU_SERIAL_POINTS = 1024
 
 
 def _as_executor(executor) -> Executor:

@@ -1,0 +1,22 @@
+"""Harmonic balance with alternating frequency–time contact forces, condensed onto the
+contacts (DESIGN §8): a module per job —
+
+- ``fourier``: the truncated series and the time samples they are read at;
+- ``model``: what harmonic balance needs of a scene, the contacts in coordinates of
+  their own;
+- ``condensation``: the structure's dynamic compliance at the contacts, per harmonic;
+- ``hysteresis``: elastic contacts' sliders marched over a period;
+- ``aft``: the contacts' forces in time and their exact Jacobian;
+- ``newton``: Newton's method with a line search;
+- ``balance``: ``harmonic_balance``, a scene's orbit as a ``HarmonicOrbit`` (``orbit``);
+- ``hill``: stability by Hill's method;
+- ``continuation``: ``harmonic_continuation``, branches in a parameter with their folds;
+- ``certificate``: ``certify``, the exact orbit by shooting from a series, and its error.
+
+Not yet here: a tuned ring or disc solved on one sector with the harmonics' inter-sector
+phase lag (it needs the sector frames of the model), and continuation in the excitation
+frequency at a fixed speed (it needs an excitation whose frequency is not the speed's):
+both enter through ``model.harmonic_model`` (the sector's rows and the lag per harmonic
+in ``condensation``; the fundamental ω there), the rest unchanged. Importing this
+package imports nothing: ``shroudnet`` exports its public names.
+"""
