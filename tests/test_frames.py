@@ -8,6 +8,7 @@ import dataclasses
 import math
 
 import numpy as np
+import scipy.linalg
 import pytest
 
 import shroudnet as sn
@@ -91,10 +92,10 @@ def test_the_reference_reads_the_frames_on_its_own():
     """The reference (``references.structures``) turns each blade's points and each
     interface's directions into the group's frame over the physical degrees of freedom;
     the lowering takes each difference in its left blade's frame over modal coordinates:
-    the two contacts' rows meet through q = D x."""
+    the two contacts' rows meet through q = Φ η, node by node."""
     scene = scene_of(sn.BladeGroup.ring(3, BLADE, FACE, points=(LEFT, RIGHT)))
     problem = structure_from_substructures(scene)
-    dofs = scene.dof_matrix()
+    dofs = scene.dof_matrix() @ scipy.linalg.block_diag(*scene.arrays.layout.bases)
     n = scene.arrays.n_blades
     for c, contact in enumerate(problem.contacts):
         for theirs, ours in ((contact.normal_row, scene.arrays.normal_rows[c, :n]),
