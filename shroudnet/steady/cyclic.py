@@ -9,7 +9,9 @@ coupling onto itself, and the engine-order forcing, φ_{P(p)} = φ_p + 2πl/N, o
 one sector-passing time Δ = l T_e/N later: S Q(t) = Q(t + Δ). Substructures in frames of
 their own (sector s turned by 2πs/N, ``BladeGroup.add_blade``) have identical matrices
 and points, so S moves each sector's coordinates to the next one's unchanged: a contact's
-rows, in its left node's frame, are its twin's one sector on (DESIGN §8). A tuned disc's
+rows, in its left node's frame, are its twin's one sector on (DESIGN §8). Their one Φ
+(q_i = Φ η_i, ``model.lowering.to_dofs``) commutes with S, so S is the same permutation
+of the nodes' own degrees of freedom q, in which every state a user gives or gets is. A tuned disc's
 steady state shares that symmetry, y(t + Δ) = S y(t), and, reduced modulo T_e, the
 smallest shift is
 
