@@ -466,9 +466,10 @@ def faced_group(*, blades: int = 6, face_points: int = 9, components: int = 3,
     about the radial one; with three components they slide in their plane (``tangents``
     2, elastic stick: ``tangential_stiffness`` is needed) or along its in-plane direction
     of the tangential–axial plane alone (``tangents`` 1, the radial sliding free), with
-    one along the tangential direction alone (the angle form, its angle π/2 − ``face``). ``gap`` [m] (negative: a preload),
-    ``friction``; engine order ``engine_order`` at ``q1`` [N] on the load points, at the
-    frequency l Ω or at ``frequency`` [Hz] (``Excitation.frequency``)."""
+    one along the tangential direction alone (the angle form, its angle π/2 − ``face``).
+    ``gap`` [m] (negative: a preload), ``friction``; engine order ``engine_order`` at
+    ``q1`` [N] on the load points, at the frequency l Ω or at ``frequency`` [Hz]
+    (``Excitation.frequency``)."""
     count = check_int("faced_group", "face_points", face_points, low=1, most=MAX_NODES)
     blade = faced_blade(face_points=count, components=components, damping_ratio=damping_ratio)
     normal = check_real("faced_group", "contact_stiffness", contact_stiffness, low=0.0,

@@ -132,7 +132,8 @@ def test_a_patch_is_a_contact_per_point_pair_with_the_interfaces_laws():
     with pytest.raises(ValueError, match=r"interface 0 is a patch of 3 contacts; name one as "
                                          r"\(0, k\), k in 0..2"):
         scene.contact_position(0)
-    with pytest.raises(ValueError, match=r"Scene.contact_position.contact must be an int >= 0 and <= 2, got 3"):
+    with pytest.raises(ValueError, match=r"Scene.contact_position.contact must be an int >= 0 "
+                                         r"and <= 2, got 3"):
         scene.contact_position((0, 3))
     with pytest.raises(TypeError, match=r"Scene.contact_position.interface must be an int"):
         scene.contact_position("0")

@@ -658,7 +658,6 @@ def check_user_laws(scene: Scene) -> None:
     Raises ``ValueError`` naming the interface, the law, the point and the value.
     """
     group = scene.group
-    excitation = scene.excitation
     deflection = scene.arrays.static_deflection
     length = max([abs(interface.gap) for _, _, interface in group.interfaces] + [deflection])
     if not length > 0.0:

@@ -149,10 +149,10 @@ class Simulation:
     def slip_displacement(self, interface, direction: int = 1) -> np.ndarray:
         """The tangential relative displacement u_t [m] of the interface at position
         ``interface`` (0-based, or (interface, k) for a patch's k-th contact:
-        ``Scene.contact_position``; its column of ``friction_force``) at every sample: the integral of
-        its slip velocity, t·(r_a − r_b) (blades: (x_i − x_j) cos α); with ``direction``
-        2, t₂·(r_a − r_b) in a face's plane. Against ``friction_force[:, interface]`` (or
-        ``friction_force_second``) it draws the interface's hysteresis loop in that
+        ``Scene.contact_position``; its column of ``friction_force``) at every sample: the
+        integral of its slip velocity, t·(r_a − r_b) (blades: (x_i − x_j) cos α); with
+        ``direction`` 2, t₂·(r_a − r_b) in a face's plane. Against its column of
+        ``friction_force`` (or ``friction_force_second``) it draws the interface's hysteresis loop in that
         direction, whose area is the energy friction takes along it
         (``analysis.hysteresis_loop``)."""
         row = self._slip_row(interface, "Simulation.slip_displacement", direction)
