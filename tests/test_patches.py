@@ -193,6 +193,7 @@ def nearest_gap(some, others):
     return np.abs(some[:, None] - others[None, :]).min(axis=1).max()
 
 
+@pytest.mark.slow  # 20-30 s each on two busy cores: two orbits with their monodromies
 @pytest.mark.parametrize("stick", ["rigid", "elastic"])
 def test_a_patch_of_coincident_pairs_is_one_pair_of_k_times_the_stiffnesses(stick):
     """Three coincident pairs of a third of the stiffnesses each against one pair: the
@@ -267,6 +268,7 @@ def faced_beam():
                         points=points, load="load")
 
 
+@pytest.mark.slow  # 20-30 s on two busy cores: the solve_ivp reference at rtol 1e-12
 def test_a_patch_of_four_pairs_on_two_beams_matches_the_independent_reference():
     """Two unreduced beams whose shroud faces meet at four point pairs across a gap, a
     quarter of the contact stiffness each: over one period of the orbit, every switch of
