@@ -26,7 +26,7 @@ def main():
     print(f"f_d1(Ω) = sqrt({model.f0:.2f}² + {model.coefficient} (Ω/60)²) Hz")
     for rpm in (5030.0, 6000.0, 6487.5):
         print(f"  {rpm:7.1f} rpm: f_d1 = {model.at(rpm):7.2f} Hz, "
-              f"f_e = {scene.excitation.frequency(rpm):7.2f} Hz")
+              f"f_e = {scene.excitation.frequency_at(rpm):7.2f} Hz")
     a = scene.arrays
     print(f"k = {a.stiffness[0]:.4g} N/m, k_c = γ1 k = {a.normal_laws[0].stiffness:.4g} N/m, "
           f"T_e = {scene.excitation_period * 1e3:.4f} ms")

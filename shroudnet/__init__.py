@@ -35,6 +35,7 @@ shrouded group blades with rubbing and impact*.
 from . import scenes as scenes
 from .analysis.readings import Campbell as Campbell
 from .analysis.readings import HysteresisLoop as HysteresisLoop
+from .analysis.readings import PatchHistory as PatchHistory
 from .analysis.readings import Spectrum as Spectrum
 from .analysis.readings import amplitude_spectrum as amplitude_spectrum
 from .analysis.readings import campbell as campbell
@@ -42,6 +43,7 @@ from .analysis.readings import classify as classify
 from .analysis.readings import classify_section as classify_section
 from .analysis.readings import friction_loss_per_cycle as friction_loss_per_cycle
 from .analysis.readings import hysteresis_loop as hysteresis_loop
+from .analysis.readings import patch_history as patch_history
 from .analysis.readings import spectrum as spectrum
 from .analysis.readings import zero_one_test as zero_one_test
 from .analysis.stability import LyapunovExponents as LyapunovExponents
@@ -124,6 +126,8 @@ __all__ = [
     "HysteresisLoop",
     "friction_loss_per_cycle",
     "hysteresis_loop",
+    "PatchHistory",
+    "patch_history",
     "spectrum",
     "zero_one_test",
     "cantilever_beam",

@@ -15,6 +15,7 @@ from contact_laws import (
     LinearSpring,
     NormalLaw,
     Stribeck,
+    check_choice,
     check_int,
     check_real,
 )
@@ -376,6 +377,128 @@ def beam_pair(*, elements: int = 2, gap: float = -2e-6, face: float = 0.5,
     return Scene(group=group, speed_rpm=speed_rpm,
                  excitation=Excitation(engine_order=2, amplitudes=(0.0, q1),
                                        phases=AntiPhase()))
+
+
+#: ``faced_blade``'s modes: each one's frequency at rest [Hz] and Southwell coefficient,
+#: modal mass [kg], and the rigid motion of its shroud per unit modal coordinate, a
+#: translation (radial, tangential, axial) [m] and a rotation about those axes [rad]:
+#: first flap, edgewise, shroud twist (about the radial axis) and second flap.
+FACED_MODES = (
+    ((180.0, 3.0), 0.06, (0.0, 0.4, 1.0), (8.0, 0.0, 0.0)),
+    ((450.0, 1.5), 0.05, (0.1, 1.0, -0.3), (-20.0, 0.0, 4.0)),
+    ((700.0, 1.0), 0.03, (0.0, 0.15, 0.1), (150.0, 0.0, 0.0)),
+    ((1050.0, 2.0), 0.04, (0.05, -0.2, 0.6), (40.0, 6.0, 0.0)),
+)
+#: Half the shroud's pitch [m] (tangential: where its left and right faces are), and the
+#: half-extents [m] of a face, radial and axial.
+FACE_PITCH, FACE_HEIGHT, FACE_WIDTH = 4e-3, 2e-3, 6e-3
+
+
+def face_point_names(side: str, count: int) -> list[str]:
+    """The names of ``faced_blade``'s ``count`` points on its ``side`` ("L" or "R")
+    face: "L0" … in the order of ``faced_blade``'s grid."""
+    side = check_choice("face_point_names", "side", side, ("L", "R"))
+    count = check_int("face_point_names", "count", count, low=1, most=MAX_NODES)
+    return [f"{side}{k}" for k in range(count)]
+
+
+@_named_arguments
+def faced_blade(*, face_points: int = 9, components: int = 3,
+                damping_ratio: float = 0.02) -> Substructure:
+    """A blade of four modes, as an FE modal analysis prints them, whose shroud has a left
+    and a right face meshed with ``face_points`` points each (a square grid: 1, 4, 9,
+    16, …), named "L0" … and "R0" … (``face_point_names``): first flap (180 Hz at rest),
+    edgewise (450 Hz), shroud twist (700 Hz) and second flap (1050 Hz), each stiffening by
+    Southwell's law (``FACED_MODES``), ``damping_ratio`` in every mode.
+
+    The shroud moves rigidly in each mode: a point p of it moves u + θ × p. The faces lie
+    at tangential ∓``FACE_PITCH``, their grids spanning ±``FACE_HEIGHT`` radially and
+    ±``FACE_WIDTH`` axially, so that the twist opens one end of a face while it closes the
+    other. Components are (radial, tangential, axial): the third along the disc's axis,
+    as ``BladeGroup.ring`` turns sectors; with ``components`` 1, each point is its
+    tangential displacement alone. The excitation acts at the point "load" (one
+    component)."""
+    count = check_int("faced_blade", "face_points", face_points, low=1, most=MAX_NODES)
+    side = math.isqrt(count)
+    if side * side != count:
+        raise ValueError(f"faced_blade.face_points must be a square (1, 4, 9, 16, …), a "
+                         f"grid of points on each face, got {count}")
+    components = check_int("faced_blade", "components", components, low=1, high=3)
+    if components == 2:
+        raise ValueError("faced_blade.components must be 1 or 3, got 2")
+    grid = [(0.0, 0.0)] if side == 1 else [
+        (FACE_HEIGHT * (2.0 * i / (side - 1) - 1.0), FACE_WIDTH * (2.0 * j / (side - 1) - 1.0))
+        for i in range(side) for j in range(side)]
+    points = {}
+    for name, tangential in (("L", -FACE_PITCH), ("R", FACE_PITCH)):
+        for k, (radial, axial) in enumerate(grid):
+            place = (radial, tangential, axial)
+            shapes = [[u[c] + _cross(theta, place)[c] for *_, u, theta in FACED_MODES]
+                      for c in range(3)]
+            points[f"{name}{k}"] = shapes if components == 3 else [shapes[1]]
+    points["load"] = [[0.7, 0.4, 0.2, 0.3]]
+    return Substructure.modal(
+        frequencies=[Southwell(f0=f0, coefficient=b) for (f0, b), *_ in FACED_MODES],
+        damping_ratios=damping_ratio, masses=[mass for _, mass, *_ in FACED_MODES],
+        shapes=points, load="load")
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+@_named_arguments
+def faced_group(*, blades: int = 6, face_points: int = 9, components: int = 3,
+                shape: str = "chain", speed_rpm: float = 2900.0, gap: float = -2e-6,
+                face: float = 0.6, contact_stiffness: float = 1e5,
+                tangential_stiffness: float | None = 3e5,
+                friction: FrictionLaw = Coulomb(mu=0.3), q1: float = 1.0,
+                engine_order: int = 4, blades_on_disc: int = 36,
+                damping_ratio: float = 0.02, frequency: float | None = None,
+                tangents: int = 2) -> Scene:
+    """``blades`` ``faced_blade``s face to face, as a packet (``shape`` "chain") on a disc
+    of ``blades_on_disc`` or a whole ring ("ring"), each blade in its own sector frame,
+    turned by 2π/N from the last (``BladeGroup.ring``, ``chain``): blade s's right face
+    meets blade s + 1's left face point to point, a patch of ``face_points`` contacts that
+    share the interface's stiffnesses (``contact_stiffness`` and, unless None for rigid
+    stick, ``tangential_stiffness`` [N/m] in all), so that refining the patch keeps the
+    face's total. The faces are inclined at ``face`` [rad] to the tangential direction
+    about the radial one; with three components they slide in their plane (``tangents``
+    2, elastic stick: ``tangential_stiffness`` is needed) or along its in-plane direction
+    of the tangential–axial plane alone (``tangents`` 1, the radial sliding free), with
+    one along the tangential direction alone (the angle form, its angle π/2 − ``face``).
+    ``gap`` [m] (negative: a preload), ``friction``; engine order ``engine_order`` at
+    ``q1`` [N] on the load points, at the frequency l Ω or at ``frequency`` [Hz]
+    (``Excitation.frequency``)."""
+    count = check_int("faced_group", "face_points", face_points, low=1, most=MAX_NODES)
+    blade = faced_blade(face_points=count, components=components, damping_ratio=damping_ratio)
+    normal = check_real("faced_group", "contact_stiffness", contact_stiffness, low=0.0,
+                        low_open=True, unit="N/m") / count
+    tangential = None if tangential_stiffness is None else check_real(
+        "faced_group", "tangential_stiffness", tangential_stiffness, low=0.0, low_open=True,
+        unit="N/m") / count
+    tangents = check_int("faced_group", "tangents", tangents, low=1, high=2)
+    if components == 3:
+        plane = ((0.0, -math.sin(face), math.cos(face)), (1.0, 0.0, 0.0))[:tangents]
+        shroud = Interface(gap=gap, normal=LinearSpring(stiffness=normal), friction=friction,
+                           normal_direction=(0.0, math.cos(face), math.sin(face)),
+                           tangent_directions=plane, tangential_stiffness=tangential)
+    else:
+        shroud = Interface(gap=gap, angle=math.pi / 2 - face, normal=LinearSpring(
+            stiffness=normal), friction=friction, tangential_stiffness=tangential)
+    faces = (face_point_names("L", count), face_point_names("R", count))
+    shape = check_choice("faced_group", "shape", shape, ("chain", "ring"))
+    blades = check_int("faced_group", "blades", blades, low=1 if shape == "chain" else 3,
+                       most=MAX_NODES)
+    if shape == "ring":
+        group = BladeGroup.ring(blades, blade, shroud, points=faces)
+        phases = EngineOrderWave()
+    else:
+        group = BladeGroup.chain(blades, blade, shroud, points=faces,
+                                 blades_on_disc=blades_on_disc)
+        phases = EngineOrderWave(blades_on_disc)
+    return Scene(group=group, speed_rpm=speed_rpm, excitation=Excitation(
+        engine_order=engine_order, amplitudes=(0.0, q1), phases=phases, frequency=frequency))
 
 
 @_named_arguments

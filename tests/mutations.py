@@ -131,6 +131,19 @@ ONE_COLUMN = ("tests/test_elastic_tangent.py::"
               "test_one_tangent_column_passes_faces_that_open_while_they_slip")
 #: Harmonic balance against closed forms, exact orbits and differences of its own forces.
 HARMONIC = "tests/test_harmonic_balance.py"
+#: Patches: four pairs on two beams against the independent reference, and coincident
+#: pairs against one of their summed stiffnesses.
+PATCH_REFERENCE = ("tests/test_patches.py::"
+                   "test_a_patch_of_four_pairs_on_two_beams_matches_the_independent_reference")
+PATCHES = "tests/test_patches.py"
+#: Sector frames against the same ring turned by hand, and the reference's own reading.
+FRAMES = "tests/test_frames.py"
+#: Cyclic symmetry of FE sectors against the full shooting (3-D elastic faces: stretches).
+CYCLIC_SECTORS = ("tests/test_cyclic_sectors.py::"
+                  "test_the_symmetric_orbit_of_a_ring_of_fe_sectors_is_the_full_shootings")
+#: Excitation at a frequency of its own against the linear oscillator's closed form.
+FREQUENCY = ("tests/test_frequency_excitation.py::"
+             "test_a_linear_oscillator_forced_apart_from_the_speed_meets_its_closed_form")
 
 
 #: Matrix-free shooting: GMRES and Arnoldi on matrices of known spectrum, Krylov against
@@ -457,13 +470,13 @@ MUTATIONS = (
              "add up to over a period",
              ("tests/test_cyclic.py",)),
     Mutation("cyclic-shift-backwards", "orbits",
-             "run.output.v[-1]]),\n                           -symmetry.steps)",
-             "run.output.v[-1]]),\n                           symmetry.steps)",
+             "                                            done.stretches[-1]]), -symmetry.steps)",
+             "                                            done.stretches[-1]]), symmetry.steps)",
              "the reduced map shifts the state one way and its Jacobian the other",
              ("tests/test_cyclic.py",)),
     Mutation("repeating-velocities-misread", "orbits",
-             "return np.asarray(y)[np.r_[0:m, n:n + m]]",
-             "return np.asarray(y)[np.r_[0:m, m:2 * m]]",
+             "np.concatenate([np.arange(m), n + np.arange(m), 2 * n + stretches])",
+             "np.concatenate([np.arange(m), m + np.arange(m), 2 * n + stretches])",
              "Newton's map on the repeating states reads the second sector's displacements "
              "for the first one's velocities",
              ("tests/test_cyclic.py",)),
@@ -479,8 +492,8 @@ MUTATIONS = (
              "to stand for the others'",
              ("tests/test_cyclic.py",)),
     Mutation("orbit-state-unshifted", "orbits",
-             "symmetry.shifted(np.concatenate([x, v]), turns * symmetry.steps)",
-             "symmetry.shifted(np.concatenate([x, v]), 0)",
+             "index = symmetry.positions(turns * symmetry.steps)",
+             "index = symmetry.positions(0)",
              "the symmetric orbit's state at t = iτ + s is taken as its state at s, not "
              "moved on i sectors",
              ("tests/test_cyclic.py",)),
@@ -582,6 +595,47 @@ MUTATIONS = (
              "tangential = np.where(elastic, a.tangential_stiffness, 0.0) * a.cos_angle",
              "a blade pair's elastic contact pushes along x by k_t cos α: the tangential "
              "spring is projected once, not twice", (ELASTIC,)),
+    # ---- patches, frames, FE sectors, frequency excitation ----------------------------
+    Mutation("patch-pairs-all-first", "model",
+             "    return tuple(zip(*(point if isinstance(point, tuple) else (point,) * size\n",
+             "    return tuple(zip(*(point[:1] * size if isinstance(point, tuple)\n"
+             "                       else (point,) * size\n",
+             "every pair of a patch is lowered from its first pair's points",
+             (PATCH_REFERENCE,)),
+    Mutation("patch-stiffness-of-the-first-contact-only", "model",
+             "    laws_of = [interfaces[contact.interface][2] for contact in contacts]",
+             "    laws_of = [interfaces[contact.interface][2] for contact in contacts]\n"
+             "    contacts = [c for c in contacts if c.contact == 0] + [c for c in contacts\n"
+             "                                                         if c.contact != 0]",
+             "a patch's contacts are lowered out of their order: the rows of one pair go "
+             "with the laws and readings of another", (PATCHES,)),
+    Mutation("patch-reader-first-contact", "model",
+             "        return first + check_int(owner, \"contact\", k, low=0, high=pairs - 1)",
+             "        return first + 0 * check_int(owner, \"contact\", k, low=0, high=pairs - 1)",
+             "a reader given (interface, k) reads the patch's first contact whatever k",
+             (PATCHES,)),
+    Mutation("ring-faces-swapped", "model",
+             "        edges = [(at[s][1], at[(s + 1) % len(at)][0]) for s in range(len(pairs))]",
+             "        edges = [(at[s][0], at[(s + 1) % len(at)][1]) for s in range(len(pairs))]",
+             "the builders join a blade's left face to the next blade's right face",
+             (FRAMES,)),
+    Mutation("frame-turned-forward", "model",
+             "    return turn[0].T @ turn[1]", "    return turn[0] @ turn[1]",
+             "the right node's points are turned by Q_a Q_b, not into the left node's frame "
+             "by Q_aᵀ Q_b", (FRAMES,)),
+    Mutation("sector-stretches-not-moved", "orbits",
+             "            stretches = self.stretch_image[stretches]",
+             "            stretches = stretches",
+             "the symmetry moves each sector's coordinates, but leaves the elastic "
+             "contacts' stretches where they were", (CYCLIC_SECTORS,)),
+    Mutation("sector-frame-turned-twice", "model",
+             "                    sector_frame(2.0 * math.pi * s / turns, components), body)",
+             "                    sector_frame(4.0 * math.pi * s / turns, components), body)",
+             "the ring turns sector s by 4πs/N", (FRAMES,)),
+    Mutation("frequency-ignored-by-the-forcing", "model",
+             "            return 2.0 * math.pi * self.excitation.frequency\n",
+             "            return self.excitation.engine_order * self.omega\n",
+             "the forcing keeps l Ω while the period is 1/f", (FREQUENCY,)),
     Mutation("elastic-contact-stuck-rigidly", "linear",
              "    constraints = a.tangent_rows[a.can_stick & ~elastic, :n]",
              "    constraints = a.tangent_rows[a.can_stick, :n]",

@@ -256,7 +256,7 @@ def test_what_the_loop_does_not_take_with_elastic_contacts_is_refused_by_name():
         friction=ExponentialFriction(mu_static=0.3, mu_kinetic=0.2, beta=1.0),
         tangential_stiffness=1e6))
     speeds = sn.Scene(group=group, excitation=pair(None).excitation, speed_rpm=6000.0)
-    with pytest.raises(ValueError, match=r"interface \('a', 'g'\).*Coulomb"):
+    with pytest.raises(ValueError, match=r"interface 0 \('a', 'g'\).*Coulomb"):
         sn.simulate(speeds, 1)
 
 

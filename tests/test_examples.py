@@ -242,6 +242,24 @@ def check_fe_packet_elastic(example, result, arguments):
     assert all(loop.area_per_cycle() > 0.0 for loop in result.loops.values())
 
 
+def check_fe_packet_patches(example, result, arguments):
+    """At the fixed speed the frequency l Ω/60 = 200 Hz forces the packet exactly as the
+    speed-locked excitation does there, so the two responses meet at (3000 rpm, 200 Hz),
+    to what their stepped transients leave; the patch's map is of its finest patch, every
+    pair open, stuck or slipping at each sample, and its normal loads share the face's."""
+    speeds, band = list(result.speeds), list(result.frequencies)
+    finest = max(arguments["points"])
+    locked = result.in_speed[finest][speeds.index(example.FIXED_SPEED)]
+    forced = result.in_frequency[band.index(example.ENGINE_ORDER * example.FIXED_SPEED / 60.0)]
+    assert forced == pytest.approx(locked, rel=0.05)
+    for amplitude in result.in_speed.values():
+        assert np.all(np.isfinite(amplitude)) and np.all(amplitude > 0.0)
+    assert result.patch.contacts == finest
+    assert np.allclose(sum(result.patch.fractions().values()), 1.0, rtol=0.0, atol=1e-12)
+    shares = result.patch.load_shares()
+    assert shares.sum() == pytest.approx(1.0, rel=1e-12) and np.all(shares >= 0.0)
+
+
 def check_fe_packet(example, result, arguments):
     """With the shrouds open the blades are apart, and engine order 4 meets the first flap
     mode f = √(180² + 3 (Ω/60)²) Hz (Southwell, ``scenes.modal_blade``) where
@@ -403,6 +421,10 @@ EXAMPLES = {
                           check_fe_packet_elastic),
     "harmonic_balance_packet": ({"speeds": 3}, ["harmonic_balance_packet.png"],
                                 check_harmonic_balance_packet),
+    "fe_packet_patches": ({"points": (1, 4), "speeds": 3, "frequencies": 3, "transient": 30,
+                           "record": 2, "samples": 40},
+                          ["fe_packet_patches_map.png", "fe_packet_patches_response.png",
+                           "fe_packet_patches_convergence.png"], check_fe_packet_patches),
     "fig21_23_energy_density": ({"points": 3, "transient": 20, "record": 5},
                                 ["fig21_energy_density_gamma1.png",
                                  "fig22_energy_density_gap.png",
@@ -411,8 +433,9 @@ EXAMPLES = {
 
 
 #: Examples that take over 10 s even at a test's size: the 24-sector disc's branch, and
-#: the exact orbits of the elastic packet that certify its harmonic balance (some 15 s).
-SLOW_EXAMPLES = {"bladed_disc", "harmonic_balance_packet"}
+#: the exact orbits of the elastic packet that certify its harmonic balance (some 15 s),
+#: the packet with patches (some 17 s: three responses stepped over 32 periods a point).
+SLOW_EXAMPLES = {"bladed_disc", "harmonic_balance_packet", "fe_packet_patches"}
 
 
 @pytest.mark.parametrize("name", [pytest.param(name, marks=pytest.mark.slow)

@@ -362,7 +362,8 @@ BAD_KEYS = [
     ("paper", "blades.0.name", [1], "blades[0].name", r"must be a node name"),
     ("paper", "interfaces.0", "blade1-blade2", "interfaces", r"must be a list of tables"),
     ("paper", "interfaces.0.left", 1.5, "interfaces[0].left",
-     r"must be a node name \(text or integer\) or \[node, point name\]"),
+     r"must be a node name \(text or integer\), \[node, point name\] or \[node, \[point "
+     r"name, …\]\] \(a patch\)"),
     ("paper", "interfaces.0.gap", [2e-5], "interfaces[0].gap", r"must be a number"),
     ("paper", "interfaces.0.angle", "steep", "interfaces[0].angle", r"must be a number"),
     ("paper", "interfaces.0.normal", 5, "interfaces[0].normal", r"must be a table"),

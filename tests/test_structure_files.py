@@ -262,8 +262,8 @@ BROKEN = [
      r"blades\[1\]\.frequency: unknown key; allowed keys of a node given by file: "
      r"damping_ratios, excitation_scale, file, load, names, points, reduce"),
     ("an end without its point", 'left = ["blade1", "shroud"]', 'left = ["blade1"]',
-     r"interfaces\[0\]\.left: must be a node name \(text or integer\) or \[node, point "
-     r"name\], got \['blade1'\]"),
+     r"interfaces\[0\]\.left: must be a node name \(text or integer\), \[node, point "
+     r"name\] or \[node, \[point name, …\]\] \(a patch\), got \['blade1'\]"),
     ("text in a point", "load = [0.0, 0.5, 1.0]", 'load = [0.0, "half", 1.0]',
      r"blades\[0\]\.points\.load: must be a d × n matrix \[\[…\], …\] or a vector \[m\], "
      r"got \[0\.0, 'half', 1\.0\]"),

@@ -23,6 +23,7 @@ from contact_laws import (
 )
 
 from ..checked_records import check_record
+from ..engine.codes import Mode
 from ..run.classification import (
     CHAOTIC,
     QUASI_PERIODIC,
@@ -308,7 +309,8 @@ class HysteresisLoop:
     ``slip`` [m] is u_t (``Simulation.slip_displacement``), ``force`` [N] the friction
     force f, positive where it holds back a positive slip (while stuck, the static
     friction), at the samples from ``skip`` periods on; ``cycles`` is how many periods
-    they span, ``interface`` the interface's position. Friction takes the power f u̇_t, so
+    they span, ``interface`` the contact's column (``Scene.contacts``: the interface's
+    position where no interface is a patch). Friction takes the power f u̇_t, so
     the loop's area ∮ f du_t is the energy it dissipates.
     """
 
@@ -329,9 +331,10 @@ class HysteresisLoop:
         return float(np.sum(0.5 * (self.force[1:] + self.force[:-1]) * du) / self.cycles)
 
 
-def hysteresis_loop(sim: Simulation, interface: int, skip: int,
+def hysteresis_loop(sim: Simulation, interface, skip: int,
                     direction: int = 1) -> HysteresisLoop:
-    """The hysteresis loop of interface ``interface`` (its position, 0-based) over the
+    """The hysteresis loop of interface ``interface`` (its position, 0-based, or
+    (interface, k) for a patch's k-th contact: ``Scene.contact_position``) over the
     periods of ``sim`` after ``skip`` (as ``steady_rows`` takes it): its friction force
     against its tangential relative displacement along t₁ (``direction`` 1) or, on a face
     that slides in its plane, t₂ (2). Over steady cycles of an elastic contact the two
@@ -339,17 +342,76 @@ def hysteresis_loop(sim: Simulation, interface: int, skip: int,
     spring's ½k_t|u|² coming back to itself."""
     check_instance("hysteresis_loop", "sim", sim, Simulation,
                    expected="a shroudnet.Simulation")
-    interface = sim.checked_interface(interface, "hysteresis_loop")
+    column = sim.checked_interface(interface, "hysteresis_loop")
     direction = check_int("hysteresis_loop", "direction", direction, low=1, most=2)
-    if direction == 2 and not np.any(sim.scene.arrays.slip_rows(2)[interface]):
-        raise ValueError(f"hysteresis_loop.direction = 2: interface {interface} slides along "
-                         "one direction; a face that slides in its plane takes "
-                         "Interface(tangent_directions=(t1, t2), ...)")
+    if direction == 2 and not np.any(sim.scene.arrays.slip_rows(2)[column]):
+        raise ValueError(f"hysteresis_loop.direction = 2: {sim.scene.contacts[column]} "
+                         "slides along one direction; a face that slides in its plane "
+                         "takes Interface(tangent_directions=(t1, t2), ...)")
     skip = steady_skip(sim, skip, "hysteresis_loop")
     rows = steady_rows(sim, skip, "hysteresis_loop")
     slip = sim.slip_displacement(interface, direction)[rows]
     return HysteresisLoop(slip=slip, force=sim.friction_along(interface, direction)[rows],
-                          cycles=sim.periods - skip, interface=interface)
+                          cycles=sim.periods - skip, interface=column)
+
+
+@dataclass(frozen=True, eq=False)
+class PatchHistory:
+    """The contacts of one interface over time: a patch's contact-state map and its
+    normal-load distribution.
+
+    ``time`` [s] (n_t samples, from ``skip`` periods on); per contact of the interface
+    (columns, in the order of its point pairs): ``modes`` (``Mode`` values: open, stuck,
+    slipping either way), ``normal`` [N] its normal force N_k and ``friction`` [N] its
+    friction force along t₁; ``interface`` the interface's position, ``period`` T_e [s].
+    """
+
+    interface: int
+    time: np.ndarray
+    modes: np.ndarray
+    normal: np.ndarray
+    friction: np.ndarray
+    period: float
+
+    def __post_init__(self):
+        check_record(self)
+
+    @property
+    def contacts(self) -> int:
+        """k, the point pairs of the interface."""
+        return self.modes.shape[1]
+
+    def fractions(self) -> dict[str, np.ndarray]:
+        """Per contact, the share of the samples it spends "open", "stuck" and
+        "slipping" (either way): three arrays of k values that add up to 1."""
+        open_ = self.modes == Mode.OPEN
+        stuck = self.modes == Mode.STICK
+        return {"open": open_.mean(axis=0), "stuck": stuck.mean(axis=0),
+                "slipping": (~open_ & ~stuck).mean(axis=0)}
+
+    def load_shares(self) -> np.ndarray:
+        """Per contact, its share of the interface's normal load over the samples:
+        ∫ N_k dt / Σ_j ∫ N_j dt (k values adding up to 1; zeros where the interface never
+        closes)."""
+        loads = np.trapezoid(self.normal, self.time, axis=0) if len(self.time) > 1 \
+            else self.normal.sum(axis=0)
+        total = loads.sum()
+        return loads / total if total > 0.0 else np.zeros_like(loads)
+
+
+def patch_history(sim: Simulation, interface: int, skip: int = 0) -> PatchHistory:
+    """The ``PatchHistory`` of interface ``interface`` (its position, 0-based; a patch of
+    k point pairs, or an interface of one) over the samples of ``sim`` from ``skip``
+    periods on (as ``steady_rows`` takes it)."""
+    check_instance("patch_history", "sim", sim, Simulation,
+                   expected="a shroudnet.Simulation")
+    first = sim.scene.contact_position((interface, 0), "patch_history")
+    columns = slice(first, first + sim.scene.contacts[first].pairs)
+    rows = steady_rows(sim, skip, "patch_history")
+    return PatchHistory(interface=sim.scene.contacts[first].interface, time=sim.t[rows],
+                        modes=sim.modes[rows, columns], normal=sim.normal_force[rows, columns],
+                        friction=sim.friction_force[rows, columns],
+                        period=sim.scene.excitation_period)
 
 
 @dataclass(frozen=True)

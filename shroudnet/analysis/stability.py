@@ -126,11 +126,10 @@ class StroboscopicStep:
 
     def singular_reason(self, what: str) -> str:
         """Why ``what`` is not defined at this start."""
-        left, right, _ = self.scene.group.interfaces[self.singular_interface]
         t = self.singular_time
         return (f"{what} is not defined: at t = {t:.9g} s (period "
-                f"{t / self.scene.excitation_period:.6f}) interface "
-                f"{self.singular_interface} ({left!r}, {right!r}) switches grazing its "
+                f"{t / self.scene.excitation_period:.6f}) "
+                f"{self.scene.contacts[self.singular_interface]} switches grazing its "
                 f"switching surface, or together with another interface, and the "
                 f"trajectory does not depend differentiably on its start there "
                 f"({self.singular} such switches). Move the start or the parameter "

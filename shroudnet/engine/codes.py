@@ -94,7 +94,10 @@ _MESSAGES = {
     Status.INCONSISTENT: (
         "no consistent set of stick and slip modes {when}{where}: the interface needs more "
         "static friction than μ_s N to stick, yet slipping either way would reverse at once. "
-        "Its friction law's kinetic coefficient near zero slip, μ(0⁺), must not exceed μ_s."),
+        "Its friction law's kinetic coefficient near zero slip, μ(0⁺), must not exceed μ_s; "
+        "and where its slip is held by other stuck contacts (the pairs of a patch that "
+        "slide alike: rigid stick shares their static friction by least norm, whatever "
+        "their limits), give the interface a tangential_stiffness= (elastic stick)."),
     Status.NO_PROGRESS: (
         "no progress {when}{where}: {max_idle} switches in a row changed no mode, so the "
         "event guards and the stick and slip rule disagree there. The laws cannot cause this "

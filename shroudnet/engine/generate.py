@@ -175,9 +175,8 @@ def _check_slider_laws(scene: Scene) -> None:
     for e in a.elastic_interfaces:
         law = a.normal_laws[e]
         if not type(law).constant_slopes:
-            left, right, _ = scene.group.interfaces[e]
             raise ValueError(
-                f"interface ({left!r}, {right!r}): the tangent flow (periodic orbits, "
+                f"{scene.contacts[e]}: the tangent flow (periodic orbits, "
                 "monodromy, Lyapunov exponents) of an elastic contact takes a normal law of "
                 f"constant slopes, LinearSpring or ConstantLoad, not {type(law).__name__}")
 
@@ -306,9 +305,8 @@ def _lowered(scene: Scene, shared: bool = True) -> KernelScene | StructureScene:
     a = scene.arrays
     for e in a.elastic_interfaces:
         if type(a.friction_laws[e]) is not Coulomb:
-            left, right, _ = scene.group.interfaces[e]
             raise ValueError(
-                f"interface ({left!r}, {right!r}): an elastic contact "
+                f"{scene.contacts[e]}: an elastic contact "
                 "(Interface.tangential_stiffness) slips at the one coefficient of Coulomb "
                 f"friction; give friction=Coulomb(mu=...), not {a.friction_laws[e]!r}")
     normal_classes, friction_classes = _law_classes(a, shared)

@@ -200,7 +200,8 @@ def _parser() -> argparse.ArgumentParser:
     sweep_.add_argument("--param", required=True, metavar="PATH",
                         help="the number to sweep, as a dotted path into the file: "
                         "speed_rpm, excitation.amplitudes.1, interfaces.0.normal.stiffness, "
-                        "group.interface.gap, ...")
+                        "group.interface.gap, excitation.frequency (a frequency sweep at "
+                        "the file's speed: give [excitation] frequency = f), ...")
     sweep_.add_argument("--values", required=True, nargs="+", metavar="VALUE",
                         help="the values: numbers, or START:STOP:COUNT for COUNT evenly "
                         "spaced ones; negative ones too (--values -1e-5:2e-5:4)")
@@ -422,7 +423,7 @@ def _run(args) -> int:
               if any(scene.excitation.amplitudes) else
               f"no excitation (periods of {scene.excitation_period:g} s)")
     print(f"scene    {args.scene}: {_nodes(scene)}, {len(group.fixed)} fixed nodes"
-          f"{prescribed}, {len(group.interfaces)} interfaces; {scene.speed_rpm:g} rpm, "
+          f"{prescribed}, {_interfaces(scene)}; {scene.speed_rpm:g} rpm, "
           f"{forced}")
     print(f"method   {settings.method}, {periods} periods, event tolerance "
           f"{settings.event_tolerance:g} periods")
@@ -580,6 +581,13 @@ def _scene_numbers(document: dict) -> str:
 
 def _share(part: float, whole: float) -> str:
     return f"{abs(part) / abs(whole):.1e} of the excitation work" if whole else "no excitation"
+
+
+def _interfaces(scene) -> str:
+    """"n interfaces", and their contacts where patches make more."""
+    interfaces, contacts = len(scene.group.interfaces), len(scene.contacts)
+    return f"{interfaces} interfaces" + (f" ({contacts} contacts)" if contacts > interfaces
+                                         else "")
 
 
 def _beside(stem: Path, suffix: str) -> Path:

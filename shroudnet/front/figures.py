@@ -27,10 +27,10 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter
 
-from contact_laws import check_instance, check_sequence
+from contact_laws import check_choice, check_instance, check_sequence
 
 from .. import atomic
-from ..analysis.readings import Campbell, HysteresisLoop, classify, spectrum
+from ..analysis.readings import Campbell, HysteresisLoop, PatchHistory, classify, spectrum
 from ..engine.codes import Mode
 from ..linear.modes import GroupCampbell, LinearModes, excited_diameter
 from ..run.simulation import Simulation
@@ -68,8 +68,8 @@ def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: 
     shown = slice(None, shown_periods * sim.samples_per_period + 1)
     label = sim.scene.responses[sim.scene.response_position(blade)]
     node = label[0] if sim.scene.arrays.is_structure else label
-    own = np.array([e for e, (left, right, _) in enumerate(sim.scene.group.interfaces)
-                    if node in (left, right)], dtype=int)
+    own = np.array([e for e, contact in enumerate(sim.scene.contacts)
+                    if node in (contact.left, contact.right)], dtype=int)
     given = axes
     figure, axes = _mosaic(given, "response_panel", (11, 8),
                            [["history", "history"], ["phase", "spectrum"],
@@ -90,9 +90,10 @@ def response_panel(sim: Simulation, blade: Hashable | int, skip: int, *, title: 
     for name, forces, label in (("impact", sim.normal_force, "N [N]"),
                                 ("friction", sim.friction_force, "f [N]")):
         for e in own:
-            left, right, _ = sim.scene.group.interfaces[e]
+            contact = sim.scene.contacts[e]
+            which = f" ({contact.contact})" if contact.pairs > 1 else ""
             axes[name].plot(t[shown] * 1e3, forces[rows][shown, e], lw=0.8,
-                            label=f"{left}–{right}")
+                            label=f"{contact.left}–{contact.right}{which}")
         axes[name].set(xlabel="t [ms]", ylabel=label, title=f"{name} force")
         if len(own):
             axes[name].legend(loc="upper right", fontsize="small")
@@ -507,18 +508,22 @@ def mistuning_histogram(study: MistuningStudy, *,
     return _drawn(figure, ax)
 
 
-def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
+def stick_slip_cycle(sim: Simulation, interface=0, skip: int = 0, *,
                      shown_periods: int = 10, title: str = "",
                      axes: Sequence[Axes] | None = None) -> Figure | Sequence[Axes]:
     """A friction interface's stick–slip motion after ``skip`` periods: its blade's
     displacement with the stuck phases shaded, the phase portrait with stuck and slipping
     samples apart, and the friction coefficient f/N the interface carried against its slip
-    velocity, over its law's μ(|v|) sgn v.
+    velocity, over its law's μ(|v|) sgn v. ``interface`` is an interface's position, or
+    (interface, k) for a patch's k-th contact (``Scene.contact_position``).
 
     Three panels, on ``axes`` in that order when given (the title then heads the first),
     else on a new figure, which is returned.
     """
-    left, right, face = sim.scene.group.interfaces[interface]
+    column = sim.checked_interface(interface, "stick_slip_cycle")
+    contact = sim.scene.contacts[column]
+    left, right = contact.left, contact.right
+    face = sim.scene.group.interfaces[contact.interface][2]
     blade = left if left in sim.scene.blades else right
     rows = slice(skip * sim.samples_per_period, None)
     t = sim.t[rows]
@@ -529,8 +534,8 @@ def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
     else:
         i = sim.scene.blade_position(blade)
         x, v = sim.x[rows, i], sim.v[rows, i]
-    stuck = sim.modes[rows, interface] == Mode.STICK
-    normal, friction = sim.normal_force[rows, interface], sim.friction_force[rows, interface]
+    stuck = sim.modes[rows, column] == Mode.STICK
+    normal, friction = sim.normal_force[rows, column], sim.friction_force[rows, column]
     a = sim.scene.arrays
     u_rate = sim.slip_velocity(interface)[rows]
     given = axes
@@ -558,8 +563,8 @@ def stick_slip_cycle(sim: Simulation, interface: int = 0, skip: int = 0, *,
         law = face.friction
         axes["law"].plot(speeds, [law(abs(s)) * np.sign(s) for s in speeds], lw=0.8,
                          color="k", label="μ(|v|) sgn v")
-        axes["law"].axhline(a.static_mu[interface], color="0.5", lw=0.6, ls=":")
-        axes["law"].axhline(-a.static_mu[interface], color="0.5", lw=0.6, ls=":")
+        axes["law"].axhline(a.static_mu[column], color="0.5", lw=0.6, ls=":")
+        axes["law"].axhline(-a.static_mu[column], color="0.5", lw=0.6, ls=":")
     axes["law"].set(xlabel="slip velocity v [m/s]", ylabel="f / N",
                     title=f"friction on {left}–{right}")
     axes["law"].legend(loc="lower right", fontsize="small")
@@ -581,6 +586,43 @@ def hysteresis_loops(loops: Mapping[str, HysteresisLoop], *, title: str = "",
     axes.set(xlabel=f"tangential relative displacement u_t [{unit}]",
              ylabel="friction force f [N]", title=title)
     axes.legend(fontsize="small")
+    return _drawn(figure, ax)
+
+
+#: The colours of a contact-state map: open, stuck, slipping (either way).
+STATE_COLOURS = ("0.93", "C1", "C0")
+
+
+def patch_map(patch: PatchHistory, *, quantity: str = "state", title: str = "",
+              ax: Axes | None = None) -> Figure | Axes:
+    """A patch's contacts over time (``analysis.patch_history``): one row per point pair
+    against t/T_e, coloured by its state (``quantity`` "state": open, stuck or slipping)
+    or by its normal load N_k [N] ("normal": the load distribution over the face); on
+    ``ax`` when given (returned), else on a new figure (returned)."""
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    check_instance("patch_map", "patch", patch, PatchHistory,
+                   expected="a PatchHistory (analysis.patch_history)")
+    quantity = check_choice("patch_map", "quantity", quantity, ("state", "normal"))
+    figure, axes = _canvas(ax, "patch_map", (8, 1.2 + 0.3 * patch.contacts))
+    phase = (patch.time - patch.time[0]) / patch.period
+    edges = np.concatenate([phase, [phase[-1] + (phase[-1] - phase[-2] if len(phase) > 1
+                                                 else 1.0)]])
+    rows = np.arange(patch.contacts + 1) - 0.5
+    if quantity == "state":
+        codes = np.where(patch.modes == Mode.OPEN, 0, np.where(patch.modes == Mode.STICK, 1, 2))
+        axes.pcolormesh(edges, rows, codes.T, cmap=ListedColormap(STATE_COLOURS), vmin=-0.5,
+                        vmax=2.5, shading="flat")
+        axes.legend(handles=[Patch(color=c, label=name) for c, name in
+                             zip(STATE_COLOURS, ("open", "stuck", "slipping"))],
+                    loc="upper right", fontsize="small", ncols=3)
+    else:
+        mesh = axes.pcolormesh(edges, rows, patch.normal.T, cmap="viridis", shading="flat")
+        axes.figure.colorbar(mesh, ax=axes, label="normal force N [N]")
+    axes.set(xlabel="t / T_e", ylabel="contact", yticks=range(patch.contacts),
+             title=title or f"interface {patch.interface}: "
+             + ("contact states" if quantity == "state" else "normal load"))
     return _drawn(figure, ax)
 
 

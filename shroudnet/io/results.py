@@ -516,14 +516,17 @@ def load_arrays(path: str | Path) -> SimulationArrays:
 
 
 def _document_counts(path: Path, document: dict) -> tuple[int | None, int]:
-    """(blades, interfaces) listed in a saved scene document; blades is None where a node
-    is a substructure (the state is then by degree of freedom, which the scene counts)."""
+    """(blades, contacts) listed in a saved scene document (an interface's contacts are
+    one, or the points of its patch); blades is None where a node is a substructure (the
+    state is then by degree of freedom, which the scene counts)."""
     counts = []
     for key in ("blades", "interfaces"):
         entries = document.get(key)
         if not isinstance(entries, list):
             raise ResultsError(f"{path}: its scene document has no list of {key}")
-        counts.append(len(entries))
+        counts.append(len(entries) if key == "blades" else sum(
+            scenefile.contact_count(entry) if isinstance(entry, dict) else 1
+            for entry in entries))
     if any(scenefile.is_substructure(entry) for entry in document["blades"]):
         return None, counts[1]
     return counts[0], counts[1]
@@ -555,12 +558,11 @@ def load_simulation(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulatio
     data = load_arrays(path)
     scene = _scene(data.path, data.document, laws).scene
     columns = scene.arrays.n_blades  # blades, or with substructures degrees of freedom
-    if columns != data.x.shape[1] or len(scene.group.interfaces) != \
-            data.normal_force.shape[1]:
+    if columns != data.x.shape[1] or len(scene.contacts) != data.normal_force.shape[1]:
         what = "degrees of freedom" if scene.arrays.is_structure else "blades"
         raise ResultsError(f"{path}: its arrays are for {data.x.shape[1]} {what} and "
                            f"{data.normal_force.shape[1]} interfaces; its scene has "
-                           f"{columns} and {len(scene.group.interfaces)}")
+                           f"{columns} and {len(scene.contacts)}")
     return Simulation(scene=scene, settings=data.settings, t=data.t, x=data.x, v=data.v,
                       normal_force=data.normal_force, friction_force=data.friction_force,
                       modes=data.modes, events=data.events, energy=data.energy,
@@ -1039,7 +1041,7 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
         scenes = [_scene(path, document, laws).scene for document in meta["scenes"]]
     sizes.update({"state variable": state_size(scenes[0]),  # (x, ẋ[, u])
                   "response": len(scenes[0].responses),
-                  "orbit start": total + 1, "interface": len(scenes[0].group.interfaces)})
+                  "orbit start": total + 1, "interface": len(scenes[0].contacts)})
     columns = _checked_arrays(path, arrays, _BRANCH_ARRAYS[1:], sizes)
     offsets = columns["event_offsets"]
     if offsets[0] != 0 or offsets[-1] != sizes["event"]:

@@ -11,6 +11,8 @@ A scene file holds one document (SI units; speeds in rev/min)::
                                       # {travelling_wave = 3}, or [φ1, φ2, …] [rad]
     # blades_on_disc = 36             # with "engine-order": the group is a packet on a
                                       # disc of 36 blades (φ_i = 2π l i / 36)
+    # frequency = 210.0               # f [Hz]: forced at f whatever the speed (which
+                                      # still sets the stiffening); l Ω/2π without
 
     [[blades]]                        # one table per blade, in order
     name = "blade1"
@@ -98,6 +100,11 @@ or with its matrices inline::
                                       # tangent_directions = [[…], […]] (t₁, t₂) with
                                       # tangential_stiffness = 5e5 (elastic stick, k_t N/m)
 
+An end ``[node, [point, …]]`` joins several points at once, a patch: the other end names as
+many (``left = ["blade1", ["R0", "R1"]]``, ``right = ["blade2", ["L0", "L1"]]``), and each
+pair is a contact of its own with the interface's laws (``BladeGroup.connect``). Two nodes
+may be joined by several interfaces and couplings.
+
 A node's matrices may also be written inline: ``mass = [[…], …]``, ``stiffness``, and
 optionally ``damping``, ``stiffness_speed`` (rows of numbers, or ``{shape = [n, n],
 rows = […], columns = […], values = […]}`` for a sparse one, indices from 0), with
@@ -113,7 +120,13 @@ Identical blades may be given once instead, as ``[group]`` with ``shape = "ring"
 identical sectors (``BladeGroup.bladed_disc``) as ``shape = "bladed_disc"``, ``count``
 (sectors), ``disc = {…}`` (a blade table), ``disc_coupling = {stiffness, damping}``,
 ``blade = [{…}, …]`` (its nodes, root to tip), ``blade_couplings = [{…}, …]`` (one per
-blade node) and, optionally, ``interface = {…}`` between neighbouring tips. A law is named by its
+blade node) and, optionally, ``interface = {…}`` between neighbouring tips. With
+``points = ["L", "R"]`` (or lists of names, patches) a ring's or chain's blades, or a disc's
+tips, meet face to face, each turned into a sector frame of its own (``BladeGroup.ring``;
+a chain's with ``blades_on_disc``). A blade table's ``frame = [[…], …]`` is its node's
+rotation into the group's frame (``BladeGroup.add_blade``), and a top-level
+``sectors = N`` declares a group built blade by blade a ring of N sectors
+(``BladeGroup.declare_sectors``). A law is named by its
 class in ``contact_laws``; its other keys are the law's fields, a law it wraps as that
 law's table. ``Regularised`` takes ``exact = {law = "Coulomb", mu = 0.3}`` (its field
 ``law``, spelled so because ``law`` names the class) and ``velocity``.
@@ -375,9 +388,17 @@ _MATRIX = _Kind("rows of numbers [[…], …]", _list_of(_list_of(_is_number)))
 _INDICES = _Kind("a list of integers", _list_of(_INTEGER.test))
 _NAME = _Kind("a node name (text or integer)", _is_name)
 _NAMES = _Kind("a list of node names", _list_of(_is_name))
-_END = _Kind("a node name (text or integer) or [node, point name]", lambda value: _is_name(
-    value) or (isinstance(value, list) and len(value) == 2 and _is_name(value[0])
-               and isinstance(value[1], str) and bool(value[1])))
+_END = _Kind("a node name (text or integer), [node, point name] or [node, [point name, "
+             "…]] (a patch)", lambda value: _is_name(value) or (
+                 isinstance(value, list) and len(value) == 2 and _is_name(value[0])
+                 and (isinstance(value[1], str) and bool(value[1])
+                      or _list_of(lambda name: isinstance(name, str) and bool(name),
+                                  empty=False)(value[1]))))
+_FACES = _Kind("[left face, right face], each a point's name or a list of names",
+               lambda value: isinstance(value, list) and len(value) == 2 and all(
+                   isinstance(face, str) and bool(face)
+                   or _list_of(lambda name: isinstance(name, str), empty=False)(face)
+                   for face in value))
 _RESPONSE = _Kind("a blade name or position, or [node, point, component]", lambda value:
                   _is_name(value) or _list_of(_is_name, empty=False)(value))
 _DIRECTION_LIST = _Kind("a list of one or two directions [[…], …]",
@@ -432,7 +453,7 @@ def _scene(document: dict, own: dict[str, type], fits: bool) -> Scene:
                 or len(group.blades) % sectors:
             raise _KeyError("sectors", f"must be a whole number >= 1 that divides the "
                                        f"{len(group.blades)} blades, got {sectors!r}")
-        group.graph.graph["sectors"] = sectors
+        group.declare_sectors(sectors)
     excitation = _excitation(_table(document, "excitation", "excitation")) \
         if "excitation" in document else NO_EXCITATION
     speed = _number(document, "speed_rpm", "speed_rpm", low=0.0)
@@ -447,13 +468,15 @@ def _explicit(document: dict, own: dict[str, type], fits: bool) -> BladeGroup:
         raise _KeyError("blades", "a group needs at least one blade")
     if fits:
         _fits("blades", len(blades) + len(_list(document, "prescribed", "prescribed")),
-              len(_list(document, "interfaces", "interfaces")))
+              sum(contact_count(entry) if isinstance(entry, dict) else 1
+                  for entry in _list(document, "interfaces", "interfaces")))
     for i, entry in enumerate(blades):
         key = f"blades[{i}]"
         entry = _as_table(entry, key)
         name = _name(entry, key)
-        blade = _body({k: v for k, v in entry.items() if k != "name"}, key)
-        _build(key, lambda: group.add_blade(name, blade))
+        frame = _expect(entry["frame"], _MATRIX, f"{key}.frame") if "frame" in entry else None
+        blade = _body({k: v for k, v in entry.items() if k not in ("name", "frame")}, key)
+        _build(key, lambda: group.add_blade(name, blade, frame))
     for i, name in enumerate(document.get("fixed", [])):
         _build(f"fixed[{i}]", lambda: group.add_fixed(name))
     for i, entry in enumerate(_list(document, "prescribed", "prescribed")):
@@ -488,8 +511,12 @@ def _shorthand(table, own: dict[str, type], fits: bool) -> BladeGroup:
                     "group.shape")
     if shape == "bladed_disc":
         return _bladed_disc(table, own, fits)
-    _only(table, {"shape": _TEXT, "count": _INTEGER, "blade": _TABLE, "interface": _TABLE},
-          "group")
+    _only(table, {"shape": _TEXT, "count": _INTEGER, "blade": _TABLE, "interface": _TABLE,
+                  "points": _FACES, "blades_on_disc": _INTEGER}, "group")
+    if "blades_on_disc" in table and (shape != "chain" or "points" not in table):
+        raise _KeyError("group.blades_on_disc", "turns the blades of a chain given its "
+                                                "points; give it with shape = \"chain\" and "
+                                                "points")
     count = table.get("count")
     if isinstance(count, bool) or not isinstance(count, int) or count < (3 if shape == "ring"
                                                                           else 1):
@@ -497,17 +524,28 @@ def _shorthand(table, own: dict[str, type], fits: bool) -> BladeGroup:
                                        f"for a {shape}, got {count!r}")
     if fits:
         _fits("group.count", count, count if shape == "ring" else count - 1)
-    blade = _blade(_table(table, "blade", "group.blade"), "group.blade")
+    blade = _body(_table(table, "blade", "group.blade"), "group.blade")
     interface = _interface(_table(table, "interface", "group.interface"), "group.interface",
                            own)
-    build = BladeGroup.ring if shape == "ring" else BladeGroup.chain
-    return _build("group", lambda: build(count, blade, interface))
+    faces = _faces(table)
+    if shape == "ring":
+        return _build("group", lambda: BladeGroup.ring(count, blade, interface, points=faces))
+    return _build("group", lambda: BladeGroup.chain(
+        count, blade, interface, points=faces, blades_on_disc=table.get("blades_on_disc")))
+
+
+def _faces(table: dict):
+    """``[group]``'s points: (left face, right face), each a name or a tuple of names."""
+    if "points" not in table:
+        return None
+    return tuple(tuple(face) if isinstance(face, list) else face for face in table["points"])
 
 
 def _bladed_disc(table, own: dict[str, type], fits: bool) -> BladeGroup:
     """``BladeGroup.bladed_disc`` from [group] with shape = "bladed_disc"."""
     _only(table, {"shape": _TEXT, "count": _INTEGER, "disc": _TABLE, "disc_coupling": _TABLE,
-                  "blade": _TABLES, "blade_couplings": _TABLES, "interface": _TABLE}, "group")
+                  "blade": _TABLES, "blade_couplings": _TABLES, "interface": _TABLE,
+                  "points": _FACES}, "group")
     count = table.get("count")
     if isinstance(count, bool) or not isinstance(count, int) or count < 3:
         raise _KeyError("group.count", f"must be an integer >= 3 sectors, got {count!r}")
@@ -528,7 +566,8 @@ def _bladed_disc(table, own: dict[str, type], fits: bool) -> BladeGroup:
         shroud = _interface(_table(table, "interface", "group.interface"), "group.interface",
                             own)
     return _build("group", lambda: BladeGroup.bladed_disc(count, disc, disc_coupling, blade,
-                                                         couplings, shroud))
+                                                         couplings, shroud,
+                                                         points=_faces(table)))
 
 
 #: The ``kind`` of a prescribed motion in a file, its class and its keys.
@@ -1005,8 +1044,8 @@ def _law_names(kind: type) -> str:
 
 def _excitation(table: dict) -> Excitation:
     _only(table, {"engine_order": _INTEGER, "amplitudes": _NUMBERS,
-                  "phases": _TEXT | _TABLE | _NUMBERS, "blades_on_disc": _INTEGER},
-          "excitation")
+                  "phases": _TEXT | _TABLE | _NUMBERS, "blades_on_disc": _INTEGER,
+                  "frequency": _NUMBER}, "excitation")
     for name in ("engine_order", "amplitudes"):
         if name not in table:
             raise _KeyError(f"excitation.{name}", "is required")
@@ -1031,7 +1070,8 @@ def _excitation(table: dict) -> Excitation:
     amplitudes = table["amplitudes"]
     return _build("excitation", lambda: Excitation(engine_order=table["engine_order"],
                                                    amplitudes=tuple(amplitudes),
-                                                   phases=pattern))
+                                                   phases=pattern,
+                                                   frequency=table.get("frequency")))
 
 
 _METHODS = {"adaptive": (Adaptive, dict.fromkeys(("rtol", "atol", "max_step"), _NUMBER)),
@@ -1083,9 +1123,20 @@ def _name(entry: dict, key: str):
 
 
 def _end(entry: dict, name: str, key: str):
-    """An edge's end: a node's name, or ``[node, point]`` (a point of a substructure)."""
+    """An edge's end: a node's name, ``[node, point]`` (a point of a substructure), or
+    ``[node, [point, …]]`` (a patch's points)."""
     value = _expect(entry.get(name), _END, key)
-    return tuple(value) if isinstance(value, list) else value
+    if not isinstance(value, list):
+        return value
+    node, point = value
+    return node, tuple(point) if isinstance(point, list) else point
+
+
+def contact_count(entry) -> int:
+    """The contacts an ``[[interfaces]]`` entry makes: the points of its patch, else 1."""
+    sizes = [len(end[1]) for end in (entry.get("left"), entry.get("right"))
+             if isinstance(end, list) and len(end) == 2 and isinstance(end[1], list)]
+    return max(sizes, default=1)
 
 
 def _fits(key: str, nodes: int, interfaces: int) -> None:
@@ -1131,7 +1182,7 @@ def document(scene: Scene, run: RunSettings | None = None, *,
     result: dict[str, Any] = {"speed_rpm": float(scene.speed_rpm),
                               "excitation": _excitation_document(scene.excitation)}
     result["blades"] = [{"name": name, **_body_document(group.blade(name), folder)}
-                        for name in group.blades]
+                        | _frame_document(group.frame(name)) for name in group.blades]
     if group.fixed:
         result["fixed"] = list(group.fixed)
     if group.prescribed:
@@ -1151,6 +1202,10 @@ def document(scene: Scene, run: RunSettings | None = None, *,
     if run is not None:
         result["run"] = _run_document(run)
     return result
+
+
+def _frame_document(frame) -> dict:
+    return {} if frame is None else {"frame": np.asarray(frame, dtype=float).tolist()}
 
 
 def _blade_document(blade: Blade) -> dict:
@@ -1225,6 +1280,8 @@ def _dense(matrix) -> np.ndarray:
 
 
 def _end_document(node, point):
+    if isinstance(point, tuple):  # a patch's points
+        return [node, list(point)]
     return node if point is None else [node, point]
 
 
@@ -1268,8 +1325,11 @@ def _excitation_document(excitation: Excitation) -> dict:
         pattern = {"travelling_wave": phases.nodal_diameter}
     else:
         pattern = [float(p) for p in phases.values]
+    frequency = {} if excitation.frequency is None else {
+        "frequency": float(excitation.frequency)}
     return {"engine_order": excitation.engine_order,
-            "amplitudes": [float(q) for q in excitation.amplitudes], "phases": pattern}
+            "amplitudes": [float(q) for q in excitation.amplitudes], "phases": pattern,
+            **frequency}
 
 
 def _run_document(run: RunSettings) -> dict:

@@ -3,6 +3,9 @@
 Q_i(t) = s_i [q0 + Σ_{n≥1} q_n sin(n (l Ω t + φ_i))], with engine order l, rotating speed
 Ω [rad/s], a phase φ_i per blade from a phase pattern and the blade's excitation scale s_i
 (``Blade.excitation_scale``, 1 for a blade, 0 for an unforced node such as a damper).
+Forced at a frequency f of its own (``Excitation.frequency``: a shaker, or a sweep in
+frequency at a fixed speed), l Ω is 2π f instead, the speed setting only the stiffening
+and the pattern φ_i keeping its engine order.
 
 The force on a blade is a periodic function of the angle l Ω t + φ_i as a whole: the
 pattern the blade meets one excitation period later is the same pattern shifted by φ_i.
@@ -172,10 +175,12 @@ _PATTERNS = ("AntiPhase(), TravellingWave(nd), EngineOrderWave() or ExplicitPhas
 
 @dataclass(frozen=True, kw_only=True)
 class Excitation:
-    """The harmonic force on every blade, locked to the rotation by the engine order.
+    """The harmonic force on every blade, locked to the rotation by the engine order, or
+    at a frequency of its own.
 
-    Q_i(t) = s_i [q0 + Σ_{n≥1} q_n sin(n (l Ω t + φ_i))] (paper §2; harmonic n carries
-    n φ_i, see the module's docstring), with s_i the blade's ``excitation_scale``.
+    Q_i(t) = s_i [q0 + Σ_{n≥1} q_n sin(n (ω t + φ_i))] (paper §2; harmonic n carries
+    n φ_i, see the module's docstring), with s_i the blade's ``excitation_scale`` and
+    ω = l Ω, or 2π f where ``frequency`` f is given.
 
     Parameters
     ----------
@@ -186,11 +191,17 @@ class Excitation:
         (q0, q1, …, qn) [N]: the mean force q0 and the amplitude q_n of the n-th harmonic.
     phases : AntiPhase, TravellingWave, EngineOrderWave, ExplicitPhases or a sequence
         The phase pattern φ_i; a sequence of floats is taken as explicit phases [rad].
+    frequency : float or None
+        f > 0 [Hz]: the excitation's frequency, whatever the speed (the speed still sets
+        the blades' stiffening, and the engine order the phase pattern's nodal
+        diameters); None (the default): f_e = l Ω/2π, locked to the speed. Read the
+        frequency at a speed with ``frequency_at``.
     """
 
     engine_order: int
     amplitudes: tuple[float, ...]
     phases: PhasePattern
+    frequency: float | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "engine_order",
@@ -218,6 +229,9 @@ class Excitation:
                 object.__setattr__(self, "phases", ExplicitPhases(tuple(self.phases)))
             except (TypeError, ValueError) as error:
                 raise type(error)(f"Excitation.phases: {error}") from None
+        if self.frequency is not None:
+            object.__setattr__(self, "frequency", check_real(
+                "Excitation", "frequency", self.frequency, low=0.0, low_open=True, unit="Hz"))
 
     @property
     def n_harmonics(self) -> int:
@@ -235,10 +249,13 @@ class Excitation:
         """n φ_i [rad]: row n (0 … number of harmonics) holds the phases of harmonic n."""
         return np.arange(len(self.amplitudes))[:, None] * self.blade_phases(n_blades)[None, :]
 
-    def frequency(self, speed_rpm: float) -> float:
-        """f_e = l Ω/60 [Hz] at ``speed_rpm`` [rev/min]."""
-        speed_rpm = check_real("Excitation.frequency", "speed_rpm", speed_rpm, low=0.0,
+    def frequency_at(self, speed_rpm: float) -> float:
+        """The excitation frequency f_e [Hz] at ``speed_rpm`` [rev/min]: ``frequency``
+        where given, else l Ω/60."""
+        speed_rpm = check_real("Excitation.frequency_at", "speed_rpm", speed_rpm, low=0.0,
                                unit="rpm")
+        if self.frequency is not None:
+            return self.frequency
         return self.engine_order * speed_rpm / 60.0
 
 

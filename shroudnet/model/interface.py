@@ -15,7 +15,8 @@ by −F and blade j by +F with F = N sin α + f cos α (paper eqs. 2–7).
 Between points of substructures (``BladeGroup.connect`` with (node, point) ends), whose
 displacements r have d ≤ 3 components, the relative displacement is r = r_a − r_b, and the
 interface may give its face's unit ``normal_direction`` n and a unit
-``tangent_direction`` t in the points' frame, orthogonal to n: then δ = n·r − Δ (Δ along
+``tangent_direction`` t in the points' frame (its left node's, where the nodes carry frames
+of their own: ``BladeGroup.add_blade``), orthogonal to n: then δ = n·r − Δ (Δ along
 the normal) and v = t·ṙ, and it pushes point a by −(N n + f t), point b by +(N n + f t).
 Without directions, points of one component take the angle form above. Points of three
 components may slide in the face's plane: ``tangent_directions`` gives t₁ and t₂, and
@@ -51,7 +52,8 @@ class Interface:
         The friction law μ(|v|); None for a frictionless interface.
     normal_direction, tangent_direction : sequence of float, optional
         For an interface between points of d components (d ≤ 3): the unit normal n of the
-        contact face and a unit tangent t orthogonal to it, in the points' frame, both
+        contact face and a unit tangent t orthogonal to it, in the points' frame (the
+        left node's, where nodes carry frames: ``BladeGroup.add_blade``), both
         given or neither. Then δ = n·(r_a − r_b) − Δ and v = t·(ṙ_a − ṙ_b), and ``angle``
         is not used (leave it out).
     tangent_directions : sequence of one or two unit vectors, optional

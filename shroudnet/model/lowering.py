@@ -12,6 +12,17 @@ coordinate each. Each point of a node becomes a row block of the coordinates
 - a coupling adds k DᵀD to the stiffness and c DᵀD to the damping (isotropic in its
   points' components).
 
+An edge that joins a patch of k point pairs gives k such differences, one per pair: an
+interface's patch is k contacts (k rows of each kind, each with the interface's laws, its
+own normal load, stick or slip and slider), a coupling's k springs. The engine sees
+contacts, one row each (``BladeGroup.contacts``), never edges.
+
+A node may carry a frame Q_i (``BladeGroup.add_blade``), the rotation of its points'
+components into the group's frame; an edge's difference is taken in its left node's frame,
+D = P_a − Q_aᵀ Q_b P_b, where the interface's directions are given. Identical sectors of a
+disc, each turned by its own Q_s, thus give identical rows, their sector's coordinates
+shifted.
+
 The excitation Q_i(t) of node i acts on its coordinates along Φᵀ b_i (its load vector),
 scaled by its signed ``excitation_scale``.
 
@@ -112,6 +123,16 @@ def law_arrays(interfaces) -> dict:
                                  for f in frictions]),
         exact=np.array([f is not None and f.regularisation_velocity == 0.0
                         for f in frictions], dtype=bool))
+
+
+def relative_frame(left, right, components: int) -> np.ndarray:
+    """Q_aᵀ Q_b: a point of ``components`` of the right node's frame in the left node's
+    (``left`` and ``right`` the nodes' frames, None for the group's; points of one
+    component are not turned)."""
+    identity = np.eye(components)
+    turn = [identity if frame is None or frame.shape[0] != components else frame
+            for frame in (left, right)]
+    return turn[0].T @ turn[1]
 
 
 def static_scale(squared) -> np.ndarray:
@@ -219,11 +240,18 @@ def lower(scene) -> dict:
             return rows
         return None
 
+    frames = {name: group.frame(name) for name in group.graph.nodes}
+
     def difference(left, right, points, what):
+        """D = P_a − Q_aᵀ Q_b P_b: the relative displacement of the edge's points in its
+        left node's frame (Q the nodes' frames, I where none, and for points of one
+        component)."""
         a, b = block(left, points[0]), block(right, points[1])
         if a is not None and b is not None and a.shape[0] != b.shape[0]:
             raise ValueError(f"{what} ({left!r}, {right!r}) joins points of {a.shape[0]} and "
                              f"{b.shape[0]} components")
+        if b is not None:
+            b = relative_frame(frames[left], frames[right], b.shape[0]) @ b
         if a is None:
             return -b
         return a if b is None else a - b
@@ -234,33 +262,36 @@ def lower(scene) -> dict:
         where = slice(offsets[i], offsets[i] + sizes[i])
         stiffness[where, where] = model[1]
         damping[where, where] = model[2]
-    for (left, right, coupling), points in zip(group.couplings, group.edge_points("coupling")):
-        d = difference(left, right, points, "coupling")
-        stiffness += coupling.stiffness * d.T @ d
-        damping += coupling.damping * d.T @ d
+    for (left, right, coupling), pairs in zip(group.couplings, group.point_pairs("coupling")):
+        for points in pairs:
+            d = difference(left, right, points, "coupling")
+            stiffness += coupling.stiffness * d.T @ d
+            damping += coupling.damping * d.T @ d
 
     interfaces = group.interfaces
-    m = len(interfaces)
+    contacts = group.contacts
+    m = len(contacts)
     normal_rows, tangent_rows = np.zeros((m, n)), np.zeros((m, n))
     second_tangent_rows = np.zeros((m, n))
     normal_gap, sin_angle, cos_angle = np.zeros(m), np.ones(m), np.ones(m)
-    for e, ((left, right, interface), points) in enumerate(
-            zip(interfaces, group.edge_points("interface"))):
-        d = difference(left, right, points, "interface")
+    laws_of = [interfaces[contact.interface][2] for contact in contacts]
+    for c, (contact, interface) in enumerate(zip(contacts, laws_of)):
+        d = difference(contact.left, contact.right, (contact.left_point, contact.right_point),
+                       "interface")
         if interface.normal_direction is None:
             angle = interface.angle
-            sin_angle[e] = math.sin(angle)
-            cos_angle[e] = 0.0 if angle == math.pi / 2 else math.cos(angle)
-            normal_rows[e] = sin_angle[e] * d[0]
-            tangent_rows[e] = cos_angle[e] * d[0]
-            normal_gap[e] = interface.gap * sin_angle[e]
+            sin_angle[c] = math.sin(angle)
+            cos_angle[c] = 0.0 if angle == math.pi / 2 else math.cos(angle)
+            normal_rows[c] = sin_angle[c] * d[0]
+            tangent_rows[c] = cos_angle[c] * d[0]
+            normal_gap[c] = interface.gap * sin_angle[c]
         else:
-            normal_rows[e] = np.asarray(interface.normal_direction) @ d
+            normal_rows[c] = np.asarray(interface.normal_direction) @ d
             tangents = interface.tangent_directions
-            tangent_rows[e] = np.asarray(tangents[0]) @ d
+            tangent_rows[c] = np.asarray(tangents[0]) @ d
             if len(tangents) == 2:
-                second_tangent_rows[e] = np.asarray(tangents[1]) @ d
-            normal_gap[e] = interface.gap
+                second_tangent_rows[c] = np.asarray(tangents[1]) @ d
+            normal_gap[c] = interface.gap
 
     bodies = [group.blade(name) for name in names]
     load = np.concatenate([float(body.excitation_scale) * model[6]
@@ -268,7 +299,7 @@ def lower(scene) -> dict:
     node_phases = scene.excitation.blade_phases(len(names)).astype(float)
     node_harmonics = scene.excitation.harmonic_phases(len(names)).astype(float)
     amplitudes = np.array(scene.excitation.amplitudes, dtype=float)
-    laws = law_arrays([interface for _, _, interface in interfaces])
+    laws = law_arrays(laws_of)
     exact = laws.pop("exact")
     tangential = np.abs(tangent_rows).max(axis=1, initial=0.0) > NO_TANGENTIAL
     none = np.zeros(0, dtype=np.int64)
@@ -277,11 +308,11 @@ def lower(scene) -> dict:
         mass=mass, damping=np.diag(damping)[:n_free].copy(),
         stiffness=np.diag(stiffness)[:n_free].copy(),
         left=np.full(m, -1, dtype=np.int64), right=np.full(m, -1, dtype=np.int64),
-        gap=np.array([i.gap for _, _, i in interfaces], dtype=float),
+        gap=np.array([i.gap for i in laws_of], dtype=float),
         sin_angle=sin_angle, cos_angle=cos_angle, **laws, can_stick=exact & tangential,
         amplitudes=amplitudes,
         phases=np.repeat(node_phases, sizes),
-        excitation_frequency=scene.excitation.engine_order * scene.omega,
+        excitation_frequency=scene.excitation_circular_frequency,
         excitation_scale=load,
         harmonic_amplitudes=amplitudes[:, None] * load[None, :],
         harmonic_phases=np.repeat(node_harmonics, sizes, axis=1),

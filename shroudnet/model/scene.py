@@ -15,11 +15,11 @@ from functools import cached_property
 import networkx as nx
 import numpy as np
 
-from contact_laws import FrictionLaw, NormalLaw, check_real
+from contact_laws import FrictionLaw, NormalLaw, check_int, check_real
 
 from ..checked_records import check_record
 from .excitation import EngineOrderWave, Excitation, ExplicitPhases
-from .group import BLADE_POINT, BladeGroup
+from .group import BLADE_POINT, BladeGroup, Contact
 from .lowering import NO_TANGENTIAL, Layout, law_arrays, lower
 from .motion import Motion
 from .substructure import Substructure
@@ -29,7 +29,8 @@ from .substructure import Substructure
 class SceneArrays:
     """A scene as flat arrays: blades by position, interfaces by edge order.
 
-    Blade arrays have length n_blades, interface arrays length n_interfaces. ``left`` and
+    Blade arrays have length n_blades, interface arrays length n_interfaces: one entry per
+    contact (``Scene.contacts``: an interface's, or each point pair's of a patch). ``left`` and
     ``right`` hold node positions: a blade's (0 … n_blades − 1), n_blades + p for the
     prescribed-motion node ``motions[p]``, −1 for a fixed node (x ≡ 0). With substructures
     (or elastic contacts) they are by the engine's coordinates (``model.lowering``), which
@@ -54,7 +55,7 @@ class SceneArrays:
     tangential_stiffness: np.ndarray  # k_t [N/m] of an elastic contact; inf where rigid
     amplitudes: np.ndarray     # (q0, q1, …, qn) [N]
     phases: np.ndarray         # φ_i [rad], the phases of the fundamental
-    excitation_frequency: float  # l Ω [rad/s]
+    excitation_frequency: float  # ω = l Ω, or 2π f at a frequency of its own [rad/s]
     excitation_scale: np.ndarray   # s_i [-], the factor on Q(t) of each blade
     harmonic_amplitudes: np.ndarray  # s_i q_n [N]: row n (0 … n_harmonics), column i
     harmonic_phases: np.ndarray      # n φ_i [rad]: row n, column i (paper §2, see excitation)
@@ -280,8 +281,17 @@ class Scene:
 
     @property
     def excitation_period(self) -> float:
-        """T_e = 2π/(l Ω) [s]."""
+        """T_e = 2π/(l Ω) [s], or 1/f at the excitation's own ``frequency`` f."""
+        if self.excitation.frequency is not None:
+            return 1.0 / self.excitation.frequency
         return 2.0 * math.pi / (self.excitation.engine_order * self.omega)
+
+    @property
+    def excitation_circular_frequency(self) -> float:
+        """ω = l Ω, or 2π f at the excitation's own ``frequency`` f [rad/s]."""
+        if self.excitation.frequency is not None:
+            return 2.0 * math.pi * self.excitation.frequency
+        return self.excitation.engine_order * self.omega
 
     def blade_position(self, blade: Hashable | int) -> int:
         """The 0-based position of a blade given by name or by position."""
@@ -294,6 +304,43 @@ class Scene:
             return int(blade)
         raise ValueError(f"unknown blade {blade!r}: give a name in {names} or a position "
                          f"0..{len(names) - 1}")
+
+    @cached_property
+    def contacts(self) -> tuple[Contact, ...]:
+        """Every contact, in the order of the interface arrays (``Scene.arrays``, the
+        columns of ``Simulation.normal_force``, ``friction_force`` and ``modes``, the
+        interfaces of events): an interface's one point pair, or each pair of a patch in
+        turn (``BladeGroup.contacts``)."""
+        return tuple(self.group.contacts)
+
+    def contact_position(self, contact, owner: str = "Scene.contact_position") -> int:
+        """The column of a contact among ``contacts``: ``contact`` an interface's position
+        (0-based, in the order of ``BladeGroup.interfaces``) where the interface is one
+        point pair, or (interface, k), the k-th pair (0-based) of its patch. Messages name
+        ``owner``."""
+        contacts = self.contacts
+        count = len(self.group.interfaces)
+        if count == 0:
+            raise ValueError(f"{owner}: the scene has no interfaces")
+        if isinstance(contact, tuple) and len(contact) == 2:
+            interface, k = contact
+        else:
+            interface, k = contact, None
+        interface = check_int(owner, "interface", interface, low=0, high=count - 1)
+        first = self._first_contacts[interface]
+        pairs = contacts[first].pairs
+        if k is None:
+            if pairs > 1:
+                raise ValueError(f"{owner}: interface {interface} is a patch of {pairs} "
+                                 f"contacts; name one as ({interface}, k), k in 0..{pairs - 1}")
+            return first
+        return first + check_int(owner, "contact", k, low=0, high=pairs - 1)
+
+    @cached_property
+    def _first_contacts(self) -> np.ndarray:
+        """The column of each interface's first contact."""
+        return np.array([c for c, contact in enumerate(self.contacts) if contact.contact == 0],
+                        dtype=int)
 
     @cached_property
     def responses(self) -> tuple:
@@ -420,7 +467,7 @@ class Scene:
             can_stick=exact & (np.abs(cos_angle) > NO_TANGENTIAL),
             amplitudes=np.array(self.excitation.amplitudes, dtype=float),
             phases=self.excitation.blade_phases(len(names)).astype(float),
-            excitation_frequency=self.excitation.engine_order * self.omega,
+            excitation_frequency=self.excitation_circular_frequency,
             excitation_scale=scale,
             harmonic_amplitudes=np.array(self.excitation.amplitudes, dtype=float)[:, None]
             * scale[None, :],
@@ -599,7 +646,7 @@ def check_user_laws(scene: Scene) -> None:
     only called, so its contract (``contact_laws.NormalLaw``, ``FrictionLaw``) is checked
     here by sampling, not proved. With the length scale L = max(|Δ_e|, x_s) (the largest
     gap, or the static deflection x_s under the whole excitation; 1 µm without either) and
-    the rate scale r = L l Ω:
+    the rate scale r = L ω (ω = l Ω, or 2π f):
 
     - a normal law must return a finite N ≥ 0 at penetrations δ = L·10⁻⁶ … 10 L (one per
       decade) and rates δ̇ = 0, ±r, and a finite N at δ = −10⁻³ L (a trial state of a step
@@ -611,12 +658,11 @@ def check_user_laws(scene: Scene) -> None:
     Raises ``ValueError`` naming the interface, the law, the point and the value.
     """
     group = scene.group
-    excitation = scene.excitation
     deflection = scene.arrays.static_deflection
     length = max([abs(interface.gap) for _, _, interface in group.interfaces] + [deflection])
     if not length > 0.0:
         length = PROBE_FALLBACK_LENGTH
-    rate = length * excitation.engine_order * scene.omega
+    rate = length * scene.excitation_circular_frequency
     for e, (left, right, interface) in enumerate(group.interfaces):
         where = f"interface {e} ({left!r}, {right!r})"
         if not _builtin(interface.normal):

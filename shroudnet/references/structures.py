@@ -361,8 +361,10 @@ def structure_from_substructures(scene) -> StructureProblem:
     not, nor prescribed-motion nodes), built from each substructure's own matrices and
     points in its physical degrees of freedom, side by side in the order of the scene's
     nodes (not from the coordinates the engine lowers the scene to): M, C, K block by
-    block; per interface between points a and b, n = n̂·(Φ_a − Φ_b) and
-    t = t̂·(Φ_a − Φ_b), Δ = the gap; node i's load s_i b_i, forced as
+    block; per interface between points a and b (per pair of points of a patch: a contact
+    each), in the group's frame (nodes' frames Q turn their points and the left one's
+    the interface's directions), n = (Q_a n̂)·(Q_a Φ_a − Q_b Φ_b) and
+    t = (Q_a t̂)·(Q_a Φ_a − Q_b Φ_b), Δ = the gap; node i's load s_i b_i, forced as
     Q_i = q_0 + Σ_h q_h sin(h (lΩ t + φ_i))."""
     group = scene.group
     bodies = [group.blade(name) for name in scene.blades]
@@ -379,21 +381,33 @@ def structure_from_substructures(scene) -> StructureProblem:
     offsets = np.cumsum([0] + [body.n_dofs for body in bodies])
     n = int(offsets[-1])
 
+    def turned(node, vectors):
+        """``vectors`` (rows of a point's components) of ``node``'s frame in the group's:
+        Q v, for points of as many components as its frame has."""
+        frame = group.frame(node) if node in scene.blades else None
+        if frame is None or vectors.shape[0] != frame.shape[0]:
+            return vectors
+        return frame @ vectors
+
     def point(node, name):
+        """A point's displacement in the group's frame, Q Φ_p, over all the dofs."""
         if node not in scene.blades:  # a fixed node
             return 0.0
         i = scene.blades.index(node)
         rows = np.zeros((bodies[i].point(name).shape[0], n))
         rows[:, offsets[i]:offsets[i + 1]] = bodies[i].point(name)
-        return rows
+        return turned(node, rows)
 
     contacts = []
-    for (left, right, interface), (a, b) in zip(group.interfaces,
-                                                 group.edge_points("interface")):
-        relative = point(left, a) - point(right, b)
-        contacts.append(Contact(np.asarray(interface.normal_direction) @ relative,
-                                np.asarray(interface.tangent_direction) @ relative,
-                                interface.gap, interface.normal, interface.friction))
+    for (left, right, interface), pairs in zip(group.interfaces,
+                                               group.point_pairs("interface")):
+        normal, tangent = (turned(left, np.asarray(direction, dtype=float)[:, None])[:, 0]
+                           for direction in (interface.normal_direction,
+                                             interface.tangent_direction))
+        for a, b in pairs:  # a patch: a contact per pair of points
+            relative = point(left, a) - point(right, b)
+            contacts.append(Contact(normal @ relative, tangent @ relative, interface.gap,
+                                    interface.normal, interface.friction))
     excitation = scene.excitation
     phases = excitation.blade_phases(len(bodies))
     loads = []

@@ -293,11 +293,10 @@ def check_linear_phases(scene: Scene) -> None:
     elif a.n_stretches:
         why = "elastic contacts, whose sliders turn with the stretch's direction"
     else:
-        for (left, right, _), normal, friction in zip(scene.group.interfaces, a.normal_laws,
-                                                      a.friction_laws):
+        for contact, normal, friction in zip(scene.contacts, a.normal_laws, a.friction_laws):
             for law in (normal, friction):
                 if law is not None and not type(law).constant_slopes:
-                    why = (f"interface ({left!r}, {right!r}) has a {type(law).__name__}, "
+                    why = (f"{contact} has a {type(law).__name__}, "
                            "not a law of constant slopes (LinearSpring, ConstantLoad, "
                            "Coulomb)")
                     break
@@ -511,8 +510,7 @@ def _stop_message(scene, status, t, interface, period, zeno_events, zeno_window,
                   fixed_step=False):
     where = ""
     if interface >= 0:
-        left, right, _ = scene.group.interfaces[interface]
-        where = f" on interface {interface} ({left!r}, {right!r})"
+        where = f" on {scene.contacts[interface]}"
     when = f"at t = {t:.9g} s (period {t / period:.6f})"
     return status.message(when, where, zeno_events=zeno_events, zeno_window=zeno_window,
                           smallest_step=SMALLEST_STEP, fixed_step=fixed_step)

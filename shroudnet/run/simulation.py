@@ -27,7 +27,7 @@ class EventLog:
     """Every located switch, in time order."""
 
     time: np.ndarray        # [s]
-    interface: np.ndarray   # interface index (order of ``BladeGroup.interfaces``)
+    interface: np.ndarray   # contact index (order of ``Scene.contacts``: of the interfaces)
     kind: np.ndarray        # ``EventKind`` values
     counts: dict            # events of each kind by name, complete even if the log is not
 
@@ -146,20 +146,21 @@ class Simulation:
         substructure's units; expand a reduced one with ``Substructure.expand``."""
         return self.x @ self.scene.dof_rows(node).T
 
-    def slip_displacement(self, interface: int, direction: int = 1) -> np.ndarray:
+    def slip_displacement(self, interface, direction: int = 1) -> np.ndarray:
         """The tangential relative displacement u_t [m] of the interface at position
-        ``interface`` (0-based, as in ``friction_force``) at every sample: the integral of
-        its slip velocity, t·(r_a − r_b) (blades: (x_i − x_j) cos α); with ``direction``
-        2, t₂·(r_a − r_b) in a face's plane. Against ``friction_force[:, interface]`` (or
-        ``friction_force_second``) it draws the interface's hysteresis loop in that
-        direction, whose area is the energy friction takes along it
-        (``analysis.hysteresis_loop``)."""
+        ``interface`` (0-based, or (interface, k) for a patch's k-th contact:
+        ``Scene.contact_position``; its column of ``friction_force``) at every sample: the
+        integral of its slip velocity, t·(r_a − r_b) (blades: (x_i − x_j) cos α); with
+        ``direction`` 2, t₂·(r_a − r_b) in a face's plane. Against its column of
+        ``friction_force`` (or ``friction_force_second``) it draws the contact's
+        hysteresis loop in that direction, whose area is the energy friction takes along
+        it (``analysis.hysteresis_loop``)."""
         row = self._slip_row(interface, "Simulation.slip_displacement", direction)
         return np.concatenate([from_dofs(self.scene.arrays.layout, self.x),
                                self.scene.arrays.prescribed_state(self.t)[0]], axis=1) @ row
 
-    def slip_velocity(self, interface: int) -> np.ndarray:
-        """The slip velocity u̇_t [m/s] of the interface at position ``interface`` at every
+    def slip_velocity(self, interface) -> np.ndarray:
+        """The slip velocity u̇_t [m/s] of the interface (or contact) ``interface`` at every
         sample: t·(ṙ_a − ṙ_b) (blades: (ẋ_i − ẋ_j) cos α), prescribed nodes moving as
         they do."""
         row = self._slip_row(interface, "Simulation.slip_velocity")
@@ -167,12 +168,10 @@ class Simulation:
                                self.scene.arrays.prescribed_state(self.t)[1]], axis=1) @ row
 
     def checked_interface(self, interface, caller: str) -> int:
-        """``interface`` as a position among the scene's interfaces, or an error naming
-        ``caller`` where there is no such interface."""
-        count = self.scene.arrays.n_interfaces
-        if count == 0:
-            raise ValueError(f"{caller}: the scene has no interfaces")
-        return check_int(caller, "interface", interface, low=0, high=count - 1)
+        """``interface`` as a contact's column (``Scene.contact_position``: an interface's
+        position, or (interface, k) for the k-th pair of a patch), or an error naming
+        ``caller`` where there is no such contact."""
+        return self.scene.contact_position(interface, caller)
 
     def _slip_row(self, interface, caller: str, direction: int = 1) -> np.ndarray:
         """The interface's row of ``SceneArrays.slip_rows``: by the engine's coordinates
@@ -206,8 +205,8 @@ class Simulation:
         stretches = (self.stretches[sample],) if self.scene.arrays.n_stretches else ()
         return (self.x[sample].copy(), self.v[sample].copy()) + stretches
 
-    def friction_along(self, interface: int, direction: int = 1) -> np.ndarray:
-        """The friction force [N] of the interface at position ``interface`` along its
+    def friction_along(self, interface, direction: int = 1) -> np.ndarray:
+        """The friction force [N] of the interface (or contact) ``interface`` along its
         tangent t₁ (``direction`` 1: ``friction_force``) or t₂ (2: 0 where the interface
         has one direction) at every sample."""
         interface = self.checked_interface(interface, "Simulation.friction_along")

@@ -244,11 +244,11 @@ class PeriodicOrbit(OrbitReadings):
         values, vectors = np.linalg.eig(self.monodromy_matrix())
         order = np.argsort(-np.abs(values), kind="stable")
         vectors = vectors[:, order]
-        n = vectors.shape[0] // 2
+        n = self.scene.arrays.n_blades  # the coordinates, the stretches left out
         per_sector = n // sectors
         shapes = np.concatenate(
             [vectors[:n].reshape(sectors, per_sector, -1),
-             vectors[n:].reshape(sectors, per_sector, -1)
+             vectors[n:2 * n].reshape(sectors, per_sector, -1)
              / self.scene.arrays.excitation_frequency], axis=1)
         return nodal_diameters(shapes.reshape(2 * n, -1), sectors)
 
@@ -295,23 +295,27 @@ class PeriodicOrbit(OrbitReadings):
         displacement (``Simulation.slip_displacement``: the motion of its pair of points
         along the face), as ``harmonics``."""
         run = self.simulation(samples_per_period)
-        slip = run.slip_displacement(run.checked_interface(interface, "slip_harmonics"))
+        run.checked_interface(interface, "slip_harmonics")
+        slip = run.slip_displacement(interface)
         return harmonics(slip, self.periods * self.scene.excitation_period, order)
 
     def friction_losses(self, samples_per_period: int = 100) -> np.ndarray:
-        """The energy [J] each interface's friction takes per excitation period: the sum of
-        the areas of its hysteresis loops (``analysis.hysteresis_loop``) over the orbit
-        along every tangent direction it slides in (t₁, and t₂ of a face that slides in its
-        plane), from the samples (0 where an interface has no friction). Summed over the
-        interfaces, it is the friction loss per cycle of ``energy_per_cycle`` to the
-        samples' trapezoidal error (falling as their spacing squared), less the kinetic
-        energy lost where a slipping interface sticks rigidly, which loops do not hold."""
+        """The energy [J] each contact's friction takes per excitation period (one per
+        interface, or per point pair of a patch: ``Scene.contacts``): the sum of the areas
+        of its hysteresis loops (``analysis.hysteresis_loop``) over the orbit along every
+        tangent direction it slides in (t₁, and t₂ of a face that slides in its plane),
+        from the samples (0 where a contact has no friction). Summed over the contacts, it
+        is the friction loss per cycle of ``energy_per_cycle`` to the samples' trapezoidal
+        error (falling as their spacing squared), less the kinetic energy lost where a
+        slipping contact sticks rigidly, which loops do not hold."""
         run = self.simulation(samples_per_period)
         planar = np.any(self.scene.arrays.slip_rows(2) != 0.0, axis=1)
-        return np.array([sum(hysteresis_loop(run, e, 0, direction).area_per_cycle()
+        return np.array([sum(hysteresis_loop(run, (contact.interface, contact.contact), 0,
+                                             direction).area_per_cycle()
                              for direction in ((1, 2) if planar[e] else (1,)))
                          if law is not None else 0.0
-                         for e, law in enumerate(self.scene.arrays.friction_laws)])
+                         for e, (contact, law) in enumerate(zip(
+                             self.scene.contacts, self.scene.arrays.friction_laws))])
 
 
 #: The smallest residual Newton is asked for, relative to the state scale: a few times the

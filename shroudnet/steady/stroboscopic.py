@@ -56,7 +56,7 @@ from ..model.scene import Scene
 from ..run.methods import EVENT_TOLERANCE, SMALLEST_EVENT_TOLERANCE, Accuracy, Adaptive, Exponential
 from ..run.simulate import integrate, simulate
 from ..run.simulation import Simulation
-from .cyclic import CyclicSymmetry, reduced_step, state_on_orbit
+from .cyclic import CyclicSymmetry, reduced_step, shifted_end, state_on_orbit
 from .extremes import state_at
 
 #: The smallest rtol an adaptive run takes (``Adaptive``).
@@ -213,7 +213,7 @@ class StroboscopicMap:
         if self.cyclic is None:
             return self._run(y, np.eye(self.size), "dense")
         clock = time.perf_counter()
-        step = reduced_step(self.scene, self.cyclic, np.split(y, 2), method=self.method,
+        step = reduced_step(self.scene, self.cyclic, y, method=self.method,
                             event_tolerance=self.event_tolerance, repeating=self.repeating)
         self.work.add("dense", self.size, time.perf_counter() - clock)
         return MapValue(scene=self.scene, start=np.asarray(y, dtype=float), end=step.end,
@@ -259,19 +259,18 @@ class StroboscopicMap:
 
     def _reduced_run(self, y, vectors) -> MapValue:
         symmetry = self.cyclic
-        x0, v0 = np.split(symmetry.tiled(y) if self.repeating else y, 2)
+        whole = symmetry.tiled(y) if self.repeating else y
         columns = None
         if vectors is not None and self.repeating:
             vectors = symmetry.tiled(vectors)
         done = integrate(self.scene, 1, samples_per_period=1,
                          method=self.state_method if vectors is None else self.method,
                          event_tolerance=self.state_event_tolerance if vectors is None
-                         else self.event_tolerance, initial=(x0, v0),
+                         else self.event_tolerance, initial=state_parts(self.scene, whole),
                          event_capacity=EVENT_LOG, tangent=vectors,
                          until=symmetry.fraction * self.scene.excitation_period)
         run = done.run
-        end = symmetry.shifted(np.concatenate([run.output.x[-1], run.output.v[-1]]),
-                               -symmetry.steps)
+        end = shifted_end(symmetry, done)
         if vectors is not None:
             columns = symmetry.shifted(run.tangent.matrix, -symmetry.steps)
         if self.repeating:

@@ -132,7 +132,8 @@ def mistuned_group(scene: Scene, factors,
     group = BladeGroup()
     for name, data in scene.group.graph.nodes(data=True):
         if data["blade"] is not None:
-            group.add_blade(name, _scaled_node(data["blade"], factor[name]))
+            group.add_blade(name, _scaled_node(data["blade"], factor[name]),
+                            scene.group.frame(name))
         elif data.get("motion") is not None:
             group.add_prescribed(name, data["motion"])
         else:
