@@ -263,10 +263,12 @@ def _parser() -> argparse.ArgumentParser:
     follow.set_defaults(command=_continue, name="continue")
 
     modes = commands.add_parser(
-        "modes", help="the group's linear modes with its interfaces open and stuck, by "
-        "nodal diameter for a ring",
+        "modes", help="the group's linear modes with its interfaces open, stuck and "
+        "closed, by nodal diameter for a ring",
         description="Natural frequencies of SCENE.toml's group at its speed, with every "
-        "interface open and with every interface that can stick stuck. For a ring of "
+        "interface open, with every interface that can stick stuck (the group at rest, "
+        "its friction locked), and closed (every contact closed and stuck, normal springs "
+        "included: the upper bound). For a ring of "
         "sectors (a [group] ring, or 'sectors' in the file) the table is by nodal diameter, "
         "and the frequency-nodal-diameter (ZZENF) figure SCENE-modes.png is written with "
         "the engine orders at the scene's speed.")
