@@ -298,8 +298,9 @@ def test_the_loops_in_both_directions_of_a_face_add_up_to_the_sliders_loss():
 
 def test_a_loop_along_a_second_direction_needs_a_face_that_has_one():
     sim = sn.simulate(sn.scenes.modal_packet(), 3)
-    with pytest.raises(ValueError, match="hysteresis_loop.direction = 2: interface 0 slides "
-                                         "along one direction"):
+    with pytest.raises(ValueError, match=r"hysteresis_loop.direction = 2: interface 0 "
+                                         r"\('blade1', 'blade2'\) slides along one "
+                                         r"direction"):
         sn.hysteresis_loop(sim, 0, 1, 2)
     assert sim.friction_force_second is None
     assert not sim.friction_along(0, 2).any()

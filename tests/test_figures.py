@@ -18,6 +18,8 @@ from shroudnet import (
     Coupling,
     EngineOrderWave,
     Excitation,
+    Mode,
+    PatchHistory,
     Scene,
     Sweep,
     SweepMap,
@@ -100,14 +102,27 @@ def drawn():
                                        rows=tuple(Sweep(parameter="q1", blade=swept.blade,
                                                         points=(point,), settings={})
                                                   for point in swept.points)),), {}, None),
+        "patch_map": ((patch_of_four(),), {}, None),
     }
+
+
+def patch_of_four() -> PatchHistory:
+    """A patch of four point pairs over one period of 10 ms: the first pair open, the
+    second stuck, the others slipping one way then the other."""
+    time = np.linspace(0.0, 0.01, 41)
+    modes = np.empty((41, 4), dtype=np.int64)
+    modes[:, 0], modes[:, 1] = Mode.OPEN, Mode.STICK
+    modes[:, 2:] = np.where(time < 0.005, Mode.SLIP_POSITIVE, Mode.SLIP_NEGATIVE)[:, None]
+    normal = np.where(modes == Mode.OPEN, 0.0, 1.0 + np.arange(4.0))
+    return PatchHistory(interface=0, time=time, modes=modes, normal=normal,
+                        friction=0.3 * normal, period=0.01)
 
 
 FUNCTIONS = ["response_panel", "bifurcation_diagram", "curves", "campbell_diagram",
              "group_campbell_diagram", "work_precision_diagram", "forced_response",
              "branch_content", "zzenf_diagram", "sector_amplitudes", "mistuning_histogram",
              "stick_slip_cycle", "hysteresis_loops", "harmonic_precision_diagram",
-             "sweep_map_figure"]
+             "sweep_map_figure", "patch_map"]
 
 
 def has_drawing(axes: Axes) -> bool:
