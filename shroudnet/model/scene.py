@@ -97,12 +97,25 @@ class SceneArrays:
             return self.second_tangent_rows.copy()
         if self.is_structure:
             return self.tangent_rows.copy()
+        return self._blade_rows(self.cos_angle)
+
+    def normal_rows_over_coordinates(self) -> np.ndarray:
+        """N (interfaces × (coordinates + prescribed nodes)): each interface's penetration
+        per unit coordinate, n_e over the coordinates with substructures, else sin α at
+        its left blade and −sin α at its right one (a fixed node has no column)."""
+        if self.is_structure:
+            return self.normal_rows
+        return self._blade_rows(self.sin_angle)
+
+    def _blade_rows(self, weight: np.ndarray) -> np.ndarray:
+        """Rows (interfaces × (blades + prescribed nodes)) of ``weight[e]`` at interface
+        e's left blade and −``weight[e]`` at its right one (a fixed node has no column)."""
         rows = np.zeros((self.n_interfaces, self.n_blades + self.n_prescribed))
         for e, (i, j) in enumerate(zip(self.left, self.right)):
             if i >= 0:
-                rows[e, i] += self.cos_angle[e]
+                rows[e, i] += weight[e]
             if j >= 0:
-                rows[e, j] -= self.cos_angle[e]
+                rows[e, j] -= weight[e]
         return rows
 
     @property

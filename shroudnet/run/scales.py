@@ -157,7 +157,7 @@ def _check_contacts(scene, mass, where) -> None:
     a = scene.arrays
     n = a.n_blades
     smallest = SMALLEST_STEP * scene.excitation_period
-    normal = _normal_rows(a)[:, :n]
+    normal = a.normal_rows_over_coordinates()[:, :n]
     tangents = [a.slip_rows(direction)[:, :n] for direction in (1, 2)]
     for e, (left, right, interface) in enumerate(scene.group.interfaces):
         law = a.normal_laws[e]
@@ -180,21 +180,6 @@ def _check_contacts(scene, mass, where) -> None:
                     f"step of any method, {SMALLEST_STEP:g} excitation periods = "
                     f"{smallest:.3g} s {where}: no run can follow the contact. Check the "
                     "units of the stiffness and the masses.")
-
-
-def _normal_rows(a) -> np.ndarray:
-    """Each interface's penetration per unit coordinate (interfaces × coordinates and
-    prescribed nodes): n_e over the coordinates with substructures, else sin α at its
-    left blade and −sin α at its right one (a fixed node has no column)."""
-    if a.is_structure:
-        return a.normal_rows
-    rows = np.zeros((a.n_interfaces, a.n_blades + a.n_prescribed))
-    for e, (i, j) in enumerate(zip(a.left, a.right)):
-        if i >= 0:
-            rows[e, i] += a.sin_angle[e]
-        if j >= 0:
-            rows[e, j] -= a.sin_angle[e]
-    return rows
 
 
 def _check_forcing(scene, mass, stiffness) -> None:
