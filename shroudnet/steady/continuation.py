@@ -59,7 +59,7 @@ from ..model.scene import Scene
 from ..run.methods import EVENT_TOLERANCE, Accuracy, Adaptive, Exponential, check_event_tolerance
 from ..run.simulate import MAX_PERIODS, integrate
 from ..run.simulation import SimulationError
-from .cyclic import CyclicSymmetry, cyclic_symmetry
+from .cyclic import CyclicSymmetry, cyclic_symmetry, symmetry_of
 from .harmonic.orbit import HarmonicOrbit
 from .krylov import gmres
 from .neutral import tested
@@ -79,7 +79,6 @@ from .orbits import (
     pins,
     stability_of,
     state_weights,
-    symmetry_of,
 )
 from .parametric import checked_scene_at, same_scene
 from .stroboscopic import EVENT_LOG, MapValue, MapWork, StroboscopicMap

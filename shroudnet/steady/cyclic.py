@@ -40,6 +40,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from contact_laws import check_choice
+
 from ..analysis.stability import StroboscopicStep, state_parts
 from ..model.scene import Scene
 from ..run.simulate import integrate
@@ -191,7 +193,7 @@ def cyclic_symmetry(scene: Scene) -> CyclicSymmetry:
         elastic = a.elastic_interfaces
         where = {int(e): k for k, e in enumerate(elastic)}
         slot = np.array([where[int(twins[e])] for e in elastic], dtype=int)
-        contact_sector = _contact_sectors(scene, nodes // sectors)[elastic]
+        contact_sector = contact_sectors(scene, nodes // sectors)[elastic]
         symmetry = dataclasses.replace(
             symmetry, stretch_image=np.stack([2 * slot, 2 * slot + 1], axis=1).ravel(),
             stretch_sector=np.repeat(contact_sector, 2),
@@ -203,6 +205,27 @@ def cyclic_symmetry(scene: Scene) -> CyclicSymmetry:
         symmetry = dataclasses.replace(symmetry, responses=symmetry.per_sector)
     _check_forcing(a, image, symmetry.engine_order, sectors)
     return symmetry
+
+
+def symmetry_of(scene: Scene, periods: int, symmetry: str | None,
+                owner: str = "periodic_orbit") -> CyclicSymmetry | None:
+    """The ``CyclicSymmetry`` ``owner`` solves with (``symmetry`` as ``periodic_orbit``
+    takes it), or None for whole periods."""
+    if symmetry is not None:
+        check_choice(owner, "symmetry", symmetry, ("cyclic", "none"))
+    if symmetry == "none":
+        return None
+    if periods != 1:
+        if symmetry == "cyclic":
+            raise ValueError(f"{owner}: symmetry='cyclic' solves period-1 orbits (a "
+                             f"travelling wave), got periods = {periods}")
+        return None
+    try:
+        return cyclic_symmetry(scene)
+    except ValueError as reason:
+        if symmetry == "cyclic":
+            raise ValueError(f"{owner}: symmetry='cyclic' does not hold: {reason}") from None
+        return None
 
 
 #: Entries of a sector's rows and matrices may differ from their twins' one sector on by
@@ -240,7 +263,7 @@ def _contact_twins(scene: Scene, per_sector: int) -> np.ndarray:
     return twins
 
 
-def _contact_sectors(scene: Scene, per_sector: int) -> np.ndarray:
+def contact_sectors(scene: Scene, per_sector: int) -> np.ndarray:
     """The sector of each contact: its left node's, or its right node's at a fixed one."""
     position = {name: i for i, name in enumerate(scene.blades)}
     return np.array([position.get(contact.left, position.get(contact.right)) // per_sector

@@ -44,7 +44,7 @@ from .cycle import (
     harmonics,
     kinetic_peak,
 )
-from .cyclic import CyclicSymmetry, cyclic_symmetry, first_sector
+from .cyclic import CyclicSymmetry, first_sector, symmetry_of
 from .extremes import orbit_extremes
 from .krylov import gmres, leading_eigenvalues
 from .neutral import pin_rows, tested
@@ -465,27 +465,6 @@ def _whole(cyclic, weights):
     if cyclic is None or len(weights) == 2 * cyclic.sectors * cyclic.per_sector:
         return weights
     return cyclic.tiled(weights)
-
-
-def symmetry_of(scene: Scene, periods: int, symmetry: str | None,
-                owner: str = "periodic_orbit") -> CyclicSymmetry | None:
-    """The ``CyclicSymmetry`` ``owner`` solves with (``symmetry`` as ``periodic_orbit``
-    takes it), or None for whole periods."""
-    if symmetry is not None:
-        check_choice(owner, "symmetry", symmetry, ("cyclic", "none"))
-    if symmetry == "none":
-        return None
-    if periods != 1:
-        if symmetry == "cyclic":
-            raise ValueError(f"{owner}: symmetry='cyclic' solves period-1 orbits (a "
-                             f"travelling wave), got periods = {periods}")
-        return None
-    try:
-        return cyclic_symmetry(scene)
-    except ValueError as reason:
-        if symmetry == "cyclic":
-            raise ValueError(f"{owner}: symmetry='cyclic' does not hold: {reason}") from None
-        return None
 
 
 #: Starts taken from a transient: its closest returns after ``periods`` periods.
