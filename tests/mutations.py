@@ -131,6 +131,10 @@ ONE_COLUMN = ("tests/test_elastic_tangent.py::"
               "test_one_tangent_column_passes_faces_that_open_while_they_slip")
 #: Harmonic balance against closed forms, exact orbits and differences of its own forces.
 HARMONIC = "tests/test_harmonic_balance.py"
+#: A tuned ring's harmonic balance on one sector against the whole ring's balance.
+HARMONIC_SECTORS = "tests/test_harmonic_sectors.py"
+#: A patch solved on its directions against the balance on every contact coordinate.
+HARMONIC_PATCHES = "tests/test_harmonic_patches.py"
 #: Patches: four pairs on two beams against the independent reference, and coincident
 #: pairs against one of their summed stiffnesses.
 PATCH_REFERENCE = ("tests/test_patches.py::"
@@ -674,9 +678,8 @@ MUTATIONS = (
              "the dynamic compliance's damping leads the motion: every phase is mirrored",
              (HARMONIC,)),
     Mutation("condensation-jacobian-conjugated", "harmonic",
-             'product = np.einsum("kab,kbc->kac", self.compliance, complex_amplitudes(columns))',
-             'product = np.einsum("kab,kbc->kac", self.compliance.conj(), '
-             'complex_amplitudes(columns))',
+             "product = np.matmul(self.compliance, complex_amplitudes(columns))",
+             "product = np.matmul(self.compliance.conj(), complex_amplitudes(columns))",
              "W applied to the Jacobian's columns conjugates each harmonic's compliance: "
              "Newton's Jacobian is not the balance's", (HARMONIC,)),
     Mutation("condensation-recovery-sign", "harmonic",
@@ -684,6 +687,39 @@ MUTATIONS = (
              "        response = self.to_load + np.einsum(",
              "the full response is recovered with the contacts pulling where they push",
              (HARMONIC,)),
+    Mutation("sector-lag-reversed", "harmonic",
+             "        turns = np.exp(1j * lag * np.arange(n_sectors))",
+             "        turns = np.exp(-1j * lag * np.arange(n_sectors))",
+             "the neighbours' harmonics lag the wrong way round the ring: the sector answers "
+             "the wave travelling backwards", (HARMONIC_SECTORS,)),
+    Mutation("sector-forces-unconjugated", "harmonic",
+             "np.column_stack([reading.conj().T, load[k]])",
+             "np.column_stack([reading.T, load[k]])",
+             "the other sectors' contacts push sector 0 with R_θᵀ, not R_θᴴ: the forces of "
+             "the neighbours' contacts arrive with the lag of the reading, not against it",
+             (HARMONIC_SECTORS,)),
+    Mutation("sector-spread-first-only", "harmonic",
+             "turns = np.exp(1j * np.outer(self.lags, np.arange(self.sectors)))",
+             "turns = np.ones((len(self.lags), self.sectors))",
+             "every sector repeats sector 0 in phase: the ring's series is a standing copy, "
+             "not the travelling wave", (HARMONIC_SECTORS,)),
+    Mutation("sector-samples-not-on-the-lag", "harmonic",
+             "    return -(-samples // step) * step",
+             "    return samples",
+             "the time samples are not moved onto samples by the lag: the sector's forces "
+             "alias differently from the whole ring's, its orbit off by the aliasing",
+             (HARMONIC_SECTORS,)),
+    Mutation("patch-reading-scaled", "harmonic",
+             "    return values[:rank, None] * right[:rank], left[:, :rank]",
+             "    return values[:rank, None] * right[:rank], left[:, :rank] * values[:rank]",
+             "the patch's contact coordinates are read from its directions with their "
+             "singular values twice: z is not G η", (HARMONIC_PATCHES,)),
+    Mutation("patch-jacobian-one-side", "harmonic",
+             "        left = local.reshape(count * rho, r).T @ right.reshape(count * rho, -1)",
+             "        left = np.eye(rho, r).T @ right.reshape(count, rho, -1).sum(axis=0)",
+             "the forces' Jacobian is taken to the directions on its columns alone: Newton's "
+             "matrix is not the derivative of the balance on the directions",
+             (HARMONIC_PATCHES,)),
     Mutation("hill-velocity-coupling-once", "harmonic",
              "second = (np.kron(identity, model.damping) + 2.0 * np.kron(derivative, model.mass)",
              "second = (np.kron(identity, model.damping) + 1.0 * np.kron(derivative, model.mass)",

@@ -11,12 +11,9 @@ contacts (DESIGN §8): a module per job —
 - ``balance``: ``harmonic_balance``, a scene's orbit as a ``HarmonicOrbit`` (``orbit``);
 - ``hill``: stability by Hill's method;
 - ``continuation``: ``harmonic_continuation``, branches in a parameter with their folds;
-- ``certificate``: ``certify``, the exact orbit by shooting from a series, and its error.
+- ``certificate``: ``certify``, the exact orbit by shooting from a series, and its error;
+- ``sectors``: a tuned ring forced in engine order on one sector, its neighbours'
+  harmonics lagging by 2πkl/N.
 
-Not yet here: a tuned ring or disc solved on one sector with the harmonics' inter-sector
-phase lag (it needs the sector frames of the model), and continuation in the excitation
-frequency at a fixed speed (it needs an excitation whose frequency is not the speed's):
-both enter through ``model.harmonic_model`` (the sector's rows and the lag per harmonic
-in ``condensation``; the fundamental ω there), the rest unchanged. Importing this
-package imports nothing: ``shroudnet`` exports its public names.
+Importing this package imports nothing: ``shroudnet`` exports its public names.
 """

@@ -61,19 +61,38 @@ def normal_samples(contact: Contact, penetration, rate, gradient: bool):
     function, parameters = type(law).normal_force, contact.normal_parameters
     closed = np.flatnonzero((penetration > 0.0) | (not contact.opens))
     force = np.zeros(len(penetration))
-    depths, speeds = penetration[closed].tolist(), rate[closed].tolist()
-    force[closed] = [function(d, v, *parameters) for d, v in zip(depths, speeds)]
+    depths, speeds = penetration[closed], rate[closed]
+    force[closed] = at_samples(function, depths, speeds, parameters)
     if not gradient:
         return force, None, None
     slope, damping = np.zeros(len(penetration)), np.zeros(len(penetration))
     if type(law).has_analytic_gradient():
         derivative = type(law).normal_force_gradient
-        values = [derivative(d, v, *parameters) for d, v in zip(depths, speeds)]
+        values = at_samples(derivative, depths, speeds, parameters, 2)
     else:
-        values = [law.gradient(d, v) for d, v in zip(depths, speeds)]
-    if values:
-        slope[closed], damping[closed] = np.array(values, dtype=float).T
+        values = np.array([law.gradient(d, v) for d, v in zip(depths.tolist(),
+                                                              speeds.tolist())]).T
+    if len(closed):
+        slope[closed], damping[closed] = values
     return force, slope, damping
+
+
+def at_samples(function, depths: np.ndarray, speeds: np.ndarray, parameters,
+               outputs: int = 1) -> np.ndarray:
+    """A law's scalar function of (δ, δ̇, *parameters) at every sample: called once on
+    the arrays where its code is numpy's arithmetic (a linear spring, Hertz's power: its
+    ``outputs`` results broadcast to the samples), else sample by sample (a law whose
+    code branches on its penetration cannot take arrays, and says so by raising)."""
+    shape = (outputs, len(depths)) if outputs > 1 else (len(depths),)
+    try:
+        with np.errstate(all="ignore"):
+            values = function(depths, speeds, *parameters)
+        values = np.broadcast_to(np.array(values, dtype=float), shape)
+    except (TypeError, ValueError, ArithmeticError):
+        values = np.array([function(d, v, *parameters) for d, v in zip(depths.tolist(),
+                                                                       speeds.tolist())],
+                          dtype=float).reshape(len(depths), *shape[:-1]).T
+    return values
 
 
 def regularised_samples(contact: Contact, speed):
@@ -97,9 +116,12 @@ def outer(values, first, second) -> np.ndarray:
 
 
 def contact_forces(model: HarmonicModel, basis: FourierBasis, z: np.ndarray,
-                   jacobian: bool = True) -> ContactForces:
+                   jacobian: bool = True, reading: np.ndarray | None = None
+                   ) -> ContactForces:
     """The ``ContactForces`` at the coefficients z ((2H+1) × m), with the Jacobian if
-    asked (module docstring)."""
+    asked (module docstring). Where the contact coordinates are read from fewer ones,
+    z = y Eᵀ with ``reading`` E (m × r, ``balance``), the Jacobians are those in y,
+    (I ⊗ Eᵀ) ∂λ̂/∂z (I ⊗ E), assembled contact by contact."""
     synthesis, rate_synthesis, analysis = basis.synthesis, basis.rate, basis.analysis
     count, size = basis.samples, basis.size
     m = model.n_contact_coordinates
@@ -108,8 +130,7 @@ def contact_forces(model: HarmonicModel, basis: FourierBasis, z: np.ndarray,
     normal_force = np.zeros((count, interfaces))
     friction = np.zeros((count, interfaces, 2))
     generalised = np.zeros((count, m))
-    total = np.zeros((size * m, size * m)) if jacobian else None
-    through_rate = np.zeros((size * m, size * m)) if jacobian else None
+    blocks, rate_blocks = [], []  # (J × ρ × J × ρ block, its contact's columns)
     stretches, periods, repeated = [], 0, True
     for contact in model.contacts:
         columns, rho = contact.columns, contact.size
@@ -156,12 +177,17 @@ def contact_forces(model: HarmonicModel, basis: FourierBasis, z: np.ndarray,
             if hysteretic is not None:
                 block = block + (analysis @ hysteretic.reshape(count, -1)).reshape(
                     size, rho, size, rho)
-            place(total, block, columns, m)
+            blocks.append((block, columns))
             if rate_dependent:
                 rate_samples = by_rate[..., None] * synthesis[:, None, None, :]
-                place(through_rate, (analysis @ rate_samples.reshape(count, -1)).reshape(
-                    size, rho, rho, size).transpose(0, 1, 3, 2), columns, m)
+                rate_blocks.append(((analysis @ rate_samples.reshape(count, -1)).reshape(
+                    size, rho, rho, size).transpose(0, 1, 3, 2), columns))
     stretch_array = np.concatenate(stretches) if stretches else np.zeros(0)
+    if jacobian:
+        total = assembled(blocks, size, m, reading)
+        through_rate = assembled(rate_blocks, size, m, reading)
+    else:
+        total = through_rate = None
     return ContactForces(normal=normal_force, friction=friction, generalised=generalised,
                          coefficients=analysis @ generalised, stretches=stretch_array,
                          hysteresis_periods=periods, repeated=repeated, jacobian=total,
@@ -194,9 +220,27 @@ def elastic_forces(contact: Contact, basis: FourierBasis, local_r, penetration, 
                                np.ascontiguousarray(contact.tangents))
 
 
-def place(matrix: np.ndarray, block: np.ndarray, columns: slice, m: int) -> None:
-    """Add a contact's block (J × ρ × J × ρ) at its rows and columns of the
-    harmonic-major matrix (index j·m + a)."""
-    size = block.shape[0]
-    index = (np.arange(size)[:, None] * m + np.arange(columns.start, columns.stop)).ravel()
-    matrix[np.ix_(index, index)] += block.reshape(len(index), len(index))
+def assembled(blocks, size: int, m: int, reading: np.ndarray | None) -> np.ndarray:
+    """The harmonic-major matrix (index j·m + a) of the contacts' blocks (each J × ρ × J
+    × ρ at its contact's columns); with ``reading`` E, the matrix in y (index j·r + s),
+    Σ_c E_cᵀ block_c E_c (E_c the contact's rows of E), contacts of one ρ in one
+    product."""
+    unknowns = size * (m if reading is None else reading.shape[1])
+    matrix = np.zeros((unknowns, unknowns))
+    for rho in sorted({block.shape[1] for block, _ in blocks}):
+        group = [(block, columns) for block, columns in blocks if block.shape[1] == rho]
+        stack = np.stack([block for block, _ in group])  # C × J × ρ × J × ρ
+        if reading is None:
+            for block, columns in zip(stack, (columns for _, columns in group)):
+                index = (np.arange(size)[:, None] * m
+                         + np.arange(columns.start, columns.stop)).ravel()
+                matrix[np.ix_(index, index)] += block.reshape(len(index), len(index))
+            continue
+        local = np.stack([reading[columns] for _, columns in group])  # C × ρ × r
+        count, r = len(group), reading.shape[1]
+        right = np.matmul(stack.reshape(count, -1, rho), local)  # C × (J ρ J) × r
+        right = right.reshape(count, size, rho, size * r).transpose(0, 2, 1, 3)
+        left = local.reshape(count * rho, r).T @ right.reshape(count * rho, -1)
+        matrix += left.reshape(r, size, size, r).transpose(1, 0, 2, 3).reshape(
+            unknowns, unknowns)
+    return matrix

@@ -18,7 +18,9 @@ factorisations being done once per frequency.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -27,13 +29,15 @@ from contact_laws import check_instance, check_int, check_real
 from ...model.lowering import to_dofs
 from ...model.scene import Scene
 from ...run.simulate import MAX_PERIODS
+from ..cyclic import symmetry_of
 from .aft import ContactForces, contact_forces
 from .condensation import Condensed, condense
 from .fourier import FourierBasis, extremes, mean_product, samples_for
 from .hill import hill_exponents, multipliers_of
-from .model import ELASTIC, HarmonicModel, harmonic_model
+from .model import ELASTIC, RANK, HarmonicModel, harmonic_model
 from .newton import ITERATIONS, NewtonOutcome, newton
 from .orbit import HarmonicOrbit, energy_per_cycle, kinetic_peak
+from .sectors import condense_sector, first_sector_model, kept_columns, lag_samples, whole_ring
 
 #: The residual max |R| / scale a balance is solved to by default.
 BALANCE_TOLERANCE = 1e-10
@@ -48,43 +52,131 @@ MOST_SAMPLES = 100_000
 @dataclass(frozen=True, eq=False)
 class Balance:
     """A scene's balance for H harmonics: its model, time samples and condensed
-    structure, and the map z ↦ (R, ∂R/∂z) Newton solves."""
+    structure, and the map y ↦ (R, ∂R/∂y) Newton solves.
+
+    The unknowns y are the contact coordinates z themselves, or, where the contacts'
+    rows are fewer directions than their coordinates (a patch of many points on a
+    blade of few modes), the coordinates of those directions: z = y Eᵀ with ``reading``
+    E (m × r, orthonormal columns, ``contact_span``), the structure condensed onto them
+    and the forces' Jacobian taken in them (``aft``). On a tuned ring solved on one
+    sector (``sectors``), ``model`` holds sector 0's contacts, which are the unknowns,
+    and ``ring`` the whole ring, on which the orbit's outputs are read; else ``ring`` is
+    None."""
 
     model: HarmonicModel
     basis: FourierBasis
     condensed: Condensed
+    ring: HarmonicModel | None = None
+    reading: np.ndarray | None = None
 
     @property
     def shape(self) -> tuple[int, int]:
-        """(2H + 1, m): the unknowns' shape."""
-        return self.basis.size, self.model.n_contact_coordinates
+        """(2H + 1, r): the unknowns' shape."""
+        return self.basis.size, self.condensed.linear.shape[1]
 
-    def evaluate(self, z: np.ndarray, jacobian: bool):
-        """(R flat, ∂R/∂z or None, the ``ContactForces``) at z ((2H+1) × m)."""
-        forces = contact_forces(self.model, self.basis, z, jacobian)
-        residual = self.condensed.residual(z, forces.coefficients).ravel()
+    def contact_coordinates(self, y: np.ndarray) -> np.ndarray:
+        """z = y Eᵀ: the contact coordinates' coefficients of the unknowns'."""
+        return y if self.reading is None else y @ self.reading.T
+
+    def read_back(self, coefficients: np.ndarray) -> np.ndarray:
+        """Coefficients over the contact coordinates (forces λ̂, or z) taken to the
+        unknowns: λ̂ E (z E = y for z = y Eᵀ)."""
+        return coefficients if self.reading is None else coefficients @ self.reading
+
+    def evaluate(self, y: np.ndarray, jacobian: bool):
+        """(R flat, ∂R/∂y or None, the ``ContactForces``) at y ((2H+1) × r)."""
+        forces = contact_forces(self.model, self.basis, self.contact_coordinates(y),
+                                jacobian, self.reading)
+        residual = self.condensed.residual(y, self.read_back(forces.coefficients)).ravel()
         if not jacobian:
             return residual, None, forces
         return residual, np.eye(len(residual)) + self.condensed.apply_columns(
             forces.jacobian), forces
 
-    def scale(self, z: np.ndarray) -> float:
-        """The contacts' motion [m]: the largest coefficient of z or of z^lin."""
-        return max(float(np.abs(z).max(initial=0.0)),
-                   float(np.abs(self.condensed.linear).max(initial=0.0)), 1e-300)
+    def scale(self, y: np.ndarray) -> float:
+        """The contacts' motion [m]: the largest coefficient of y or of y^lin."""
+        return motion_scale(y, self.condensed.linear)
+
+    @cached_property
+    def kept(self) -> np.ndarray | None:
+        """On a ring solved on one sector, the columns of the ring's contact coordinates
+        that are the unknowns (sector 0's contacts'); else None."""
+        return None if self.ring is None else kept_columns(self.ring, self.model)
+
+    def unknowns_of(self, coefficients: np.ndarray) -> np.ndarray:
+        """The unknowns of the coefficients of the scene's contact coordinates: all of
+        them read back (``read_back``), or on a ring solved on one sector those of
+        sector 0's contacts (given either way)."""
+        if self.kept is not None and coefficients.shape[1] == self.ring.n_contact_coordinates:
+            return coefficients[:, self.kept]
+        if self.reading is not None and coefficients.shape[1] == self.reading.shape[0]:
+            return self.read_back(coefficients)
+        return coefficients
+
+    def whole(self, found: NewtonOutcome, jacobian: bool
+              ) -> tuple[HarmonicModel, NewtonOutcome, np.ndarray, float]:
+        """(the model the orbit is read on, Newton's outcome on its contact coordinates
+        with the contacts' forces, their Jacobian in z where ``jacobian``, every
+        coordinate's coefficients over the engine's η, the contacts' motion [m]) where
+        Newton stopped: the scene's own, or on a ring solved on one sector the whole
+        ring's (``sectors.whole_ring``)."""
+        if self.ring is not None:
+            outcome, modal, opened = whole_ring(self.ring, self.condensed, self.basis,
+                                                found, jacobian)
+            return self.ring, outcome, modal, motion_scale(outcome.z, opened)
+        forces = found.value  # computed on z = y Eᵀ; its Jacobian, if any, in y
+        if jacobian and (self.reading is not None or forces.jacobian is None):
+            forces = contact_forces(self.model, self.basis,
+                                    self.contact_coordinates(found.z), jacobian)
+        modal = self.condensed.recover(self.read_back(forces.coefficients))
+        z = self.contact_coordinates(found.z)
+        outcome = dataclasses.replace(found, z=z, value=forces)
+        return self.model, outcome, modal, motion_scale(
+            z, self.contact_coordinates(self.condensed.linear))
+
+
+def contact_span(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+    """(the rows the structure is condensed onto, the reading E or None): the contact
+    coordinates' rows G (m × n) themselves where they are independent, else G = E B
+    by the singular value decomposition G = U S Vᵀ, E = U_r (orthonormal columns) and
+    B = S_r V_rᵀ over the r = rank G directions (a patch of nine 3-D points between
+    blades of four modes each: 27 coordinates, at most 8 directions)."""
+    if rows.shape[0] <= 1:
+        return rows, None
+    left, values, right = np.linalg.svd(rows, full_matrices=False)
+    rank = int(np.sum(values > RANK * values.max(initial=0.0)))
+    if rank == rows.shape[0]:
+        return rows, None
+    return values[:rank, None] * right[:rank], left[:, :rank]
+
+
+def motion_scale(z: np.ndarray, linear: np.ndarray) -> float:
+    """The contacts' motion [m]: the largest coefficient of z or of z^lin (1e-300 at
+    rest)."""
+    return max(float(np.abs(z).max(initial=0.0)), float(np.abs(linear).max(initial=0.0)),
+               1e-300)
 
 
 def balance_of(scene: Scene, harmonics: int, periods: int, samples: int,
-               owner: str = "harmonic_balance") -> Balance:
-    """The ``Balance`` of ``scene`` (refusals named after ``owner``)."""
+               owner: str = "harmonic_balance", symmetry: str | None = None) -> Balance:
+    """The ``Balance`` of ``scene`` (refusals named after ``owner``), on one sector of a
+    tuned ring where ``symmetry`` (as ``harmonic_balance`` takes it) says so."""
     model = harmonic_model(scene, periods, owner)
+    cyclic = symmetry_of(scene, periods, symmetry, owner)
+    ring = reading = None
+    if cyclic is None:
+        rows, reading = contact_span(model.rows)
+        condensed = condense(model, harmonics, rows)
+    else:
+        ring, model = model, first_sector_model(model, cyclic)
+        condensed = condense_sector(ring, model, cyclic, harmonics)
+        samples = lag_samples(samples, cyclic)
     basis = FourierBasis(harmonics, model.frequency, samples)
-    condensed = condense(model, harmonics)
     if not np.all(np.isfinite(condensed.to_contacts)) or not np.all(
             np.isfinite(condensed.to_load)):
         raise ValueError(f"{owner}: the structure is at a resonance nothing damps at one of "
                          f"its harmonics (K − (kω)²M + ikωC is singular): give it damping")
-    return Balance(model, basis, condensed)
+    return Balance(model, basis, condensed, ring, reading)
 
 
 def resized(coefficients: np.ndarray, harmonics: int) -> np.ndarray:
@@ -109,6 +201,8 @@ def first_guess(balance: Balance, guess, owner: str) -> np.ndarray | None:
         values = None if isinstance(guess, str | bytes) else np.asarray(guess, dtype=float)
     except (TypeError, ValueError):
         values = None
+    if values is not None and values.ndim == 2:
+        values = balance.unknowns_of(values)
     if values is None or values.ndim != 2 or values.shape[1] != m or values.shape[0] % 2 \
             != 1 or not np.all(np.isfinite(values)):
         raise ValueError(f"{owner}.guess must be a HarmonicOrbit of the scene or its "
@@ -122,7 +216,7 @@ def truncated(balance: Balance, harmonics: int) -> Balance:
     them."""
     condensed = balance.condensed.truncated(harmonics)
     basis = FourierBasis(harmonics, balance.basis.frequency, samples_for(harmonics))
-    return Balance(balance.model, basis, condensed)
+    return dataclasses.replace(balance, basis=basis, condensed=condensed)
 
 
 def ladder(balance: Balance, tolerance: float, iterations: int) -> NewtonOutcome:
@@ -168,18 +262,16 @@ def solve(balance: Balance, z0: np.ndarray | None, tolerance: float,
 
 
 def orbit_from(balance: Balance, found: NewtonOutcome, stability: bool) -> HarmonicOrbit:
-    """The ``HarmonicOrbit`` where Newton stopped."""
-    model, basis = balance.model, balance.basis
+    """The ``HarmonicOrbit`` where Newton stopped, read on the whole scene."""
+    basis = balance.basis
+    model, found, modal, scale = balance.whole(found, stability)
     forces: ContactForces = found.value
-    modal = balance.condensed.recover(forces.coefficients)  # over the engine's η
     scene = model.scene
     coefficients = to_dofs(scene.arrays.layout, modal)  # over the nodes' own q
     responses = scene.responses_of(coefficients)
     maximum, minimum = extremes(responses, basis.frequency)
     exponents = multipliers = np.zeros(0, dtype=complex)
     if stability:
-        if forces.jacobian is None:
-            forces = contact_forces(model, basis, found.z, True)
         exponents = hill_exponents(model, basis, forces.jacobian, forces.velocity_jacobian)
         multipliers = multipliers_of(exponents, basis.period)
     return HarmonicOrbit(
@@ -187,7 +279,7 @@ def orbit_from(balance: Balance, found: NewtonOutcome, stability: bool) -> Harmo
         samples=basis.samples, coefficients=coefficients,
         contact_coefficients=found.z.copy(), force_coefficients=forces.coefficients,
         stretches=stretches_by_interface(model, forces), residual=found.residual,
-        tolerance=found.tolerance, iterations=found.iterations, scale=balance.scale(found.z),
+        tolerance=found.tolerance, iterations=found.iterations, scale=scale,
         message=found.message + ("" if forces.repeated else
                                  "; an elastic contact's hysteresis did not repeat"),
         exponents=exponents.astype(complex), multipliers=multipliers.astype(complex),
@@ -196,7 +288,8 @@ def orbit_from(balance: Balance, found: NewtonOutcome, stability: bool) -> Harmo
         peak=np.maximum(np.abs(maximum), np.abs(minimum)),
         energy_per_cycle=energy_per_cycle(model, basis, modal, found.z, forces),
         kinetic_peak=kinetic_peak(modal, model.mass, basis.frequency, basis.harmonics),
-        hysteresis_periods=forces.hysteresis_periods, smooth=smooth_forces(model, forces))
+        hysteresis_periods=forces.hysteresis_periods, smooth=smooth_forces(model, forces),
+        sectors=1 if balance.ring is None else balance.condensed.sectors)
 
 
 #: A slider's force within this fraction of its limit μ_s N counts as slipping.
@@ -233,7 +326,8 @@ def stretches_by_interface(model: HarmonicModel, forces: ContactForces) -> np.nd
 
 def harmonic_balance(scene: Scene, harmonics: int, *, periods: int = 1, guess=None,
                      samples: int | None = None, tolerance: float = BALANCE_TOLERANCE,
-                     iterations: int = ITERATIONS, stability: bool = True) -> HarmonicOrbit:
+                     iterations: int = ITERATIONS, stability: bool = True,
+                     symmetry: str | None = None) -> HarmonicOrbit:
     """The periodic orbit of ``scene`` as a series of ``harmonics`` harmonics, by harmonic
     balance condensed onto the contacts (alternating frequency–time for their forces).
 
@@ -267,6 +361,14 @@ def harmonic_balance(scene: Scene, harmonics: int, *, periods: int = 1, guess=No
     stability : bool
         Compute Hill's exponents and multipliers (``hill``): an eigenvalue problem of
         2n(2H+1) unknowns, the costliest part for large H.
+    symmetry : None, "cyclic" or "none"
+        "cyclic": solve a tuned ring forced in engine order on one sector, the harmonics
+        of its neighbours lagging by 2πkl/N (``sectors``; a ValueError says what breaks
+        the symmetry where the scene has none, or where ``periods`` > 1); "none": the
+        whole group; None (default): "cyclic" where the scene has the symmetry and
+        ``periods`` is 1, as ``periodic_orbit``. The orbit is read on the whole ring
+        either way (``HarmonicOrbit.sectors`` says which was solved), and Hill's
+        stability is the whole ring's, symmetry-breaking perturbations included.
 
     Returns
     -------
@@ -292,7 +394,7 @@ def harmonic_balance(scene: Scene, harmonics: int, *, periods: int = 1, guess=No
     check_real(owner, "tolerance", tolerance, low=1e-14, high=1e-2)
     iterations = check_int(owner, "iterations", iterations, low=0, most=10_000)
     check_instance(owner, "stability", stability, bool, expected="True or False")
-    balance = balance_of(scene, harmonics, periods, samples, owner)
+    balance = balance_of(scene, harmonics, periods, samples, owner, symmetry)
     z0 = first_guess(balance, guess, owner)
     found = solve(balance, z0, tolerance, iterations)
     return orbit_from(balance, found, stability)

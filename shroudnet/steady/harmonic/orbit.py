@@ -60,6 +60,9 @@ class HarmonicOrbit(OrbitReadings):
     opens and closes, no elastic contact both sticks and slips —, the orbits on which
     Hill's multipliers converge to the exact ones; where not, they are not to be
     trusted (``hill``), nor ``stable``: ``certify`` gives the exact multipliers.
+    ``sectors``: N where a tuned ring of N sectors was solved on one (``sectors``), the
+    rest of it by the harmonics' phase lag; 1 where the whole group was solved. Every
+    output is the whole group's either way.
     """
 
     scene: Scene
@@ -86,6 +89,7 @@ class HarmonicOrbit(OrbitReadings):
     kinetic_peak: float
     hysteresis_periods: int
     smooth: bool
+    sectors: int = 1
 
     def __post_init__(self):
         check_record(self)
