@@ -36,6 +36,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg
 
 from contact_laws import check_callable, check_calls_with, check_instance, check_int, \
     check_real
@@ -70,9 +71,11 @@ from .newton import NewtonOutcome
 from .orbit import HarmonicOrbit
 
 #: Corrector iterations before a step is halved; a step that converged in at most
-#: ``EASY_ITERATIONS`` grows by ``GROWTH``.
-CORRECTOR_ITERATIONS = 8
-EASY_ITERATIONS = 3
+#: ``EASY_ITERATIONS`` grows by ``GROWTH``; the corrector's first ``FRESH_JACOBIANS``
+#: iterations compute the Jacobian, the rest keep the last (``Follower.correct``).
+CORRECTOR_ITERATIONS = 10
+EASY_ITERATIONS = 4
+FRESH_JACOBIANS = 2
 GROWTH = 1.5
 #: Relative step of the forward difference ∂R/∂p (of max(|p|, |stop − start|)).
 PARAMETER_DIFFERENCE = 1e-7
@@ -108,26 +111,29 @@ class Follower:
     high: float
     tolerance: float
     stability: bool
+    symmetry: str | None = None
     scale: float = 1.0
 
     def balance(self, p: float) -> Balance:
         return balance_of(self.scene_at(p), self.harmonics, self.periods, self.samples,
-                          "harmonic_continuation")
+                          "harmonic_continuation", self.symmetry)
 
     def split(self, u):
         """(z, p) of the scaled unknowns."""
         shape = (2 * self.harmonics + 1, -1)
         return u[:-1].reshape(shape) * self.scale, u[-1] * self.span
 
-    def evaluate(self, u, balance=None):
-        """(R / scale, [∂R/∂z ∂R/∂p] scaled, the balance at p, the contact forces)."""
+    def evaluate(self, u, rate=None):
+        """(R / scale, [∂R/∂z ∂R/∂p] scaled, the balance at p, the contact forces), with
+        the scaled ∂R/∂p given as ``rate`` or by a forward difference."""
         z, p = self.split(u)
-        balance = balance or self.balance(p)
+        balance = self.balance(p)
         residual, jacobian, forces = balance.evaluate(z, True)
-        h = PARAMETER_DIFFERENCE * max(abs(p), self.span)
-        shifted, _, _ = self.balance(p + h).evaluate(z, False)
-        rate = (shifted - residual) / h
-        matrix = np.column_stack([jacobian, rate * self.span / self.scale])
+        if rate is None:
+            h = PARAMETER_DIFFERENCE * max(abs(p), self.span)
+            shifted, _, _ = self.balance(p + h).evaluate(z, False)
+            rate = (shifted - residual) / h * self.span / self.scale
+        matrix = np.column_stack([jacobian, rate])
         return residual / self.scale, matrix, balance, forces
 
     def point(self, u, outcome_z=None) -> Point:
@@ -143,17 +149,34 @@ class Follower:
         bordered = np.vstack([point.jacobian, reference])
         right = np.zeros(len(reference))
         right[-1] = 1.0
-        tangent = np.linalg.lstsq(bordered, right, rcond=None)[0]
+        try:
+            tangent = np.linalg.solve(bordered, right)
+        except np.linalg.LinAlgError:  # a singular border: the least-squares kernel
+            tangent = np.linalg.lstsq(bordered, right, rcond=None)[0]
         tangent /= np.linalg.norm(tangent)
         return tangent if tangent @ reference >= 0.0 else -tangent
 
     def correct(self, predicted, normal, offset) -> tuple[Point, int]:
         """Newton on R(z, p) = 0, normal · u = offset from ``predicted``: the point and
-        the iterations, or ``ConvergenceError``."""
+        the iterations, or ``ConvergenceError``. Past ``FRESH_JACOBIANS`` iterations the
+        last Jacobian is kept (chord steps, each a balance without the forces' Jacobian,
+        a fifth of the cost on a patch of 45 contacts) for as long as a step at least
+        halves the residual; the point keeps the last Jacobian computed, a step or two
+        from it, for its tangent."""
         u = predicted.copy()
+        rate = factor = matrix = None
+        last = math.inf
         for iteration in range(CORRECTOR_ITERATIONS):
+            fresh = factor is None or iteration < FRESH_JACOBIANS
             try:
-                residual, matrix, balance, forces = self.evaluate(u)
+                if fresh:
+                    # ∂R/∂p from the prediction on (a chord in the parameter alone: over
+                    # one step it changes by the step, and its difference is a second
+                    # balance)
+                    residual, matrix, balance, forces = self.evaluate(u, rate)
+                    rate = matrix[:, -1]
+                else:
+                    residual, balance, forces = self.residual(u)
             except ValueError as error:  # scene_at refuses p: the corrector went astray
                 raise ConvergenceError(f"the corrector reached p = {u[-1] * self.span:.9g}, "
                                        f"where scene_at says: {error}") from error
@@ -165,10 +188,24 @@ class Follower:
                                         f"converged: residual {size:.3g} of the contacts' "
                                         "motion")
                 return Point(u, p, balance, outcome, matrix), iteration
-            system = np.vstack([matrix, normal])
-            u = u - np.linalg.solve(system, np.append(residual, constraint))
+            if not fresh and size > 0.5 * last:  # the chord stalls: a fresh Jacobian
+                factor = None
+                continue
+            last = size
+            if fresh:
+                factor = scipy.linalg.lu_factor(np.vstack([matrix, normal]),
+                                                check_finite=False)
+            u = u - scipy.linalg.lu_solve(factor, np.append(residual, constraint),
+                                          check_finite=False)
         raise ConvergenceError(f"no convergence in {CORRECTOR_ITERATIONS} corrector steps "
                                f"(residual {size:.3g})")
+
+    def residual(self, u):
+        """(R / scale, the balance at p, the contact forces) without Jacobians."""
+        z, p = self.split(u)
+        balance = self.balance(p)
+        residual, _, forces = balance.evaluate(z, False)
+        return residual / self.scale, balance, forces
 
     def advance(self, point: Point, sigma: float) -> tuple[Point, int]:
         predicted = point.u + sigma * point.tangent
@@ -274,7 +311,7 @@ def harmonic_continuation(scene_at: Callable[[float], object], start: float, sto
                           samples: int | None = None, step: float | None = None,
                           max_step: float = LARGEST_STEP, max_points: int = 1000,
                           tolerance: float = BALANCE_TOLERANCE, stability: bool = True,
-                          parameter: str = "value",
+                          parameter: str = "value", symmetry: str | None = None,
                           progress: Callable | None = None) -> Branch:
     """The branch of harmonic-balance orbits of ``scene_at(p)`` from p = ``start``
     towards ``stop`` (module docstring): through folds, to where p leaves [start, stop]
@@ -296,6 +333,9 @@ def harmonic_continuation(scene_at: Callable[[float], object], start: float, sto
     step, max_step, max_points, parameter, progress
         As ``continuation``: the first and largest arclength steps in the scaled
         unknowns, the most points, the parameter's name, ``progress(points, p)``.
+    symmetry : None, "cyclic" or "none"
+        As ``harmonic_balance``: a tuned ring forced in engine order is solved on one
+        sector by default.
 
     Raises
     ------
@@ -332,7 +372,8 @@ def harmonic_continuation(scene_at: Callable[[float], object], start: float, sto
                           f"stop = {stop:g}: {error}") from error
     follower = Follower(scene_at=scene_at, harmonics=harmonics, periods=periods,
                         samples=samples, span=span, low=min(start, stop),
-                        high=max(start, stop), tolerance=tolerance, stability=stability)
+                        high=max(start, stop), tolerance=tolerance, stability=stability,
+                        symmetry=symmetry)
     first = follower.balance(start)
     found = solve(first, first_guess(first, guess, owner), tolerance)
     if not found.converged:
