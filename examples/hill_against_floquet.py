@@ -1,10 +1,14 @@
 """Where Hill's method can be trusted: Hill's multipliers against the exact Floquet
-multipliers as the harmonics grow, on a smooth orbit and on a stick–slip one.
+multipliers as the harmonics grow, on a smooth orbit, an impacting one and a stick–slip
+one.
 
 Smooth: a mass pressed on a Hertz stop that never opens (``scenes.mass_on_stop`` with a
 2 mm interference, 2 N at 31 Hz), its contact force smooth over the orbit: Hill's
 multipliers converge to the exact ones exponentially, down to the exact orbit's own
-accuracy (shot at rtol 1e-12, a residual of 1e-12). Stick–slip: the 2-DOF Jenkins chain
+accuracy (shot at rtol 1e-12, a residual of 1e-12). Impacting: the same mass hitting a
+linear stop once a cycle (``scenes.mass_on_stop()``): the force has a kink at each
+closing and opening, and the saltations there are in no series; Hill's multipliers
+approach the exact ones slowly, about as 1/H. Stick–slip: the 2-DOF Jenkins chain
 (``scenes.jenkins_chain``), its slider sticking and slipping twice a cycle: a slipping
 slider forgets a constant offset, so Hill's problem is solved by the open structure's
 motions, and Hill's multipliers are the open structure's at every H, as far from the
@@ -36,6 +40,7 @@ CASES = {
     "Hertz stop, closed throughout": (
         lambda: mass_on_stop(gap=-2e-3, normal=Hertz(stiffness=1e6), q1=2.0, frequency=31.0),
         dict(method=Adaptive(rtol=1e-12), tolerance=1e-12)),
+    "mass hitting a stop": (mass_on_stop, {}),
     "Jenkins chain, stick–slip": (jenkins_chain, {}),
 }
 
