@@ -14,9 +14,10 @@ contacts (DESIGN §8): a module per job —
 - ``certificate``: ``certify``, the exact orbit by shooting from a series, and its error.
 
 Not yet here: a tuned ring or disc solved on one sector with the harmonics' inter-sector
-phase lag (it needs the sector frames of the model), and continuation in the excitation
-frequency at a fixed speed (it needs an excitation whose frequency is not the speed's):
-both enter through ``model.harmonic_model`` (the sector's rows and the lag per harmonic
-in ``condensation``; the fundamental ω there), the rest unchanged. Importing this
+phase lag (it needs the sector frames of the model): it enters through
+``model.harmonic_model`` (the sector's rows and the lag per harmonic in
+``condensation``), the rest unchanged. Continuation in the excitation frequency at a
+fixed speed needs nothing of its own: a scene forced at a frequency of its own
+(``Excitation(frequency=f)``) gives ``model.harmonic_model`` its fundamental. Importing this
 package imports nothing: ``shroudnet`` exports its public names.
 """
