@@ -74,7 +74,7 @@ def hill_against_floquet(scene: Scene, harmonics: Sequence[int] = HARMONICS, *,
     scene : Scene
         A scene harmonic balance carries (``harmonic_balance``).
     harmonics : sequence of int
-        The numbers of harmonics H ≥ 0, at least one (sorted; the exact orbit is shot
+        The numbers of harmonics H ≥ 1, at least one (sorted; the exact orbit is shot
         from the largest's series).
     method, tolerance
         The exact orbit's accuracy, as ``certify``'s: the errors read no less than the
@@ -89,8 +89,8 @@ def hill_against_floquet(scene: Scene, harmonics: Sequence[int] = HARMONICS, *,
     owner = "hill_against_floquet"
     check_instance(owner, "scene", scene, Scene, expected="a Scene")
     harmonics = check_sequence(owner, "harmonics", harmonics,
-                               expected="a sequence of ints ≥ 0", min_length=1)
-    harmonics = np.array(sorted({check_int(owner, "harmonics", h, low=0, most=MOST_HARMONICS)
+                               expected="a sequence of ints ≥ 1", min_length=1)
+    harmonics = np.array(sorted({check_int(owner, "harmonics", h, low=1, most=MOST_HARMONICS)
                                  for h in harmonics}))
     check_instance(owner, "method", method, (Adaptive, Accuracy),
                    expected="Adaptive(...) or Accuracy(...)")
