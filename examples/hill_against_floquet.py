@@ -8,11 +8,12 @@ multipliers converge to the exact ones exponentially, down to the exact orbit's 
 accuracy (shot at rtol 1e-12, a residual of 1e-12). Impacting: the same mass hitting a
 linear stop once a cycle (``scenes.mass_on_stop()``): the force has a kink at each
 closing and opening, and the saltations there are in no series; Hill's multipliers
-approach the exact ones slowly, about as 1/H. Stick–slip: the 2-DOF Jenkins chain
-(``scenes.jenkins_chain``), its slider sticking and slipping twice a cycle: a slipping
-slider forgets a constant offset, so Hill's problem is solved by the open structure's
-motions, and Hill's multipliers are the open structure's at every H, as far from the
-exact ones at H = 16 as at H = 1 (``steady.harmonic.hill``).
+approach the exact ones slowly and not monotonically, about as 1/H from H = 4.
+Stick–slip: the 2-DOF Jenkins chain (``scenes.jenkins_chain``), its slider sticking and
+slipping twice a cycle: a slipping slider forgets a constant offset, so Hill's problem
+is solved by the open structure's motions, and Hill's multipliers are the open
+structure's at every H, as far from the exact ones at H = 16 as at H = 1
+(``steady.harmonic.hill``).
 
 Run: python examples/hill_against_floquet.py [OUTPUT_FOLDER]
 Saves in OUTPUT_FOLDER (default examples/output/):
