@@ -41,7 +41,9 @@ from shroudnet.scenes import (
     three_blade_paper,
 )
 from shroudnet.studies.harmonic_precision import HarmonicPrecision
+from shroudnet.studies.hill_floquet import hill_against_floquet
 from shroudnet.studies.precision import Measurement, Setting, Study
+from tests.test_harmonic_balance import open_pair
 
 
 def coupled_ring(speed_rpm: float = 6000.0) -> Scene:
@@ -94,6 +96,8 @@ def drawn():
             seconds=np.array([1e-3, 2e-3, 4e-3]), amplitude_error=np.array([1e-2, 1e-3, 1e-4]),
             energy_error=np.array([2e-2, 2e-3, 2e-4]), state_error=np.array([1e-2, 1e-3, 1e-4]),
             exact=wave, exact_seconds=0.5),), {"against": "time"}, None),
+        "hill_floquet_diagram": ((hill_against_floquet(open_pair(), (1, 2)),),
+                                 {"label": "pair"}, 2),
         "mistuning_histogram": ((mistuned,), {}, None),
         "stick_slip_cycle": ((belt, 0, 10), {}, 3),
         "hysteresis_loops": (({"blade1–blade2": hysteresis_loop(sim, 0, 20)},), {}, None),
@@ -122,7 +126,7 @@ FUNCTIONS = ["response_panel", "bifurcation_diagram", "curves", "campbell_diagra
              "group_campbell_diagram", "work_precision_diagram", "forced_response",
              "branch_content", "zzenf_diagram", "sector_amplitudes", "mistuning_histogram",
              "stick_slip_cycle", "hysteresis_loops", "harmonic_precision_diagram",
-             "sweep_map_figure", "patch_map"]
+             "hill_floquet_diagram", "sweep_map_figure", "patch_map"]
 
 
 def has_drawing(axes: Axes) -> bool:

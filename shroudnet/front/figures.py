@@ -37,6 +37,7 @@ from ..run.simulation import Simulation
 from ..steady.continuation import Branch
 from ..steady.orbits import PeriodicOrbit
 from ..studies.harmonic_precision import HarmonicPrecision
+from ..studies.hill_floquet import HillFloquet
 from ..studies.mistuning import MistuningStudy
 from ..studies.precision import Study
 from ..run.classification import CHAOTIC, FAILED, QUASI_PERIODIC, UNDETERMINED
@@ -666,6 +667,80 @@ def harmonic_precision_diagram(study: HarmonicPrecision, *, ax=None, against: st
     ax.grid(True, which="major", lw=0.3)
     ax.legend(fontsize="small")
     return _drawn(figure, ax)
+
+
+#: The exact multipliers whose errors ``hill_floquet_diagram`` draws, at most, and how
+#: near two of them (or one and the other's conjugate) are to be drawn as one.
+DRAWN_MULTIPLIERS = 4
+SAME_MULTIPLIER = 1e-9
+
+
+def hill_floquet_diagram(study: HillFloquet, *, label: str = "",
+                         axes: Sequence[Axes] | None = None) -> Figure | Sequence[Axes]:
+    """Hill's multipliers against the exact Floquet multipliers
+    (``studies.hill_floquet``), on two panels: (a) the multipliers in the complex plane,
+    Hill's at each H (coloured by H) over the exact ones (black rings) and the unit
+    circle; (b) against H, the error e_j(H) = min_i |μ_j − μ̂_i(H)| of each exact
+    multiplier of largest modulus (a complex pair drawn once, at most
+    ``DRAWN_MULTIPLIERS``).
+
+    Parameters
+    ----------
+    study : HillFloquet
+    label : str
+        Panel (a)'s title (the scene's name); panel (b)'s says whether the orbits'
+        contact forces are smooth (``HarmonicOrbit.smooth``), where Hill's method is to be
+        trusted.
+    axes : sequence of two Axes, optional
+        The panels (a) and (b); by default those of a new figure, which is returned.
+
+    Returns
+    -------
+    Figure or the given ``axes``
+    """
+    figure, panels = _mosaic(axes, "hill_floquet_diagram", (11, 4.5), [["plane", "error"]])
+    plane, error = panels["plane"], panels["error"]
+    smooth = all(orbit.smooth for orbit in study.orbits)
+    smoothness = "smooth contact forces" if smooth else "contacts switch: not smooth"
+    angle = np.linspace(0.0, 2.0 * math.pi, 361)
+    plane.plot(np.cos(angle), np.sin(angle), color="0.6", lw=0.8, label="unit circle")
+    colours = [f"C{k % 10}" for k in range(len(study.harmonics))]
+    for k, (h, orbit) in enumerate(zip(study.harmonics, study.orbits)):
+        plane.plot(orbit.multipliers.real, orbit.multipliers.imag, "o", color=colours[k],
+                   ms=7.0 - 5.0 * k / max(len(study.harmonics) - 1, 1),
+                   label=f"Hill, H = {h}")
+    exact = study.exact.multipliers
+    plane.plot(exact.real, exact.imag, "o", mfc="none", mec="k", ms=11, mew=1.2,
+               label="exact (Floquet)")
+    plane.set(xlabel="Re μ", ylabel="Im μ", aspect="equal", title=f"(a) {label or 'multipliers'}")
+    plane.grid(True, lw=0.3)
+    plane.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.02, 1.0))
+    for j in _distinct(exact)[:DRAWN_MULTIPLIERS]:
+        error.loglog(study.harmonics, np.maximum(study.errors[:, j], 1e-16), "o-", ms=4,
+                     label=f"exact μ = {_shown_multiplier(exact[j])}")
+    error.set(xlabel="harmonics H", ylabel="distance to the nearest of Hill's",
+              title=f"(b) {smoothness}")
+    error.grid(True, which="major", lw=0.3)
+    error.legend(fontsize="small", loc="best")
+    return _drawn(figure, axes)
+
+
+def _shown_multiplier(mu: complex) -> str:
+    """μ as a ± bi to three digits, a part below ``SAME_MULTIPLIER`` shown as 0."""
+    real, imaginary = (part if abs(part) > SAME_MULTIPLIER else 0.0
+                       for part in (mu.real, mu.imag))
+    return f"{real:.3g}" + (f" ± {abs(imaginary):.3g}i" if imaginary else "")
+
+
+def _distinct(multipliers: np.ndarray) -> list[int]:
+    """The positions of ``multipliers`` that are neither a repeat of an earlier one nor
+    its conjugate (within ``SAME_MULTIPLIER``)."""
+    kept: list[int] = []
+    for j, mu in enumerate(multipliers):
+        if all(min(abs(mu - multipliers[k]), abs(mu - np.conj(multipliers[k])))
+               > SAME_MULTIPLIER for k in kept):
+            kept.append(j)
+    return kept
 
 
 # ---- where a figure is drawn --------------------------------------------------------------

@@ -15,5 +15,8 @@ contacts (DESIGN §8): a module per job —
 - ``sectors``: a tuned ring forced in engine order on one sector, its neighbours'
   harmonics lagging by 2πkl/N.
 
-Importing this package imports nothing: ``shroudnet`` exports its public names.
+Continuation in the excitation frequency at a fixed speed needs nothing of its own: a
+scene forced at a frequency of its own (``Excitation(frequency=f)``) gives
+``model.harmonic_model`` its fundamental. Importing this package imports nothing:
+``shroudnet`` exports its public names.
 """

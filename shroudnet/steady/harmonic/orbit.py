@@ -32,7 +32,8 @@ from .model import harmonic_model
 @dataclass(frozen=True)
 class HarmonicOrbit(OrbitReadings):
     """A periodic orbit of ``periods`` excitation periods by harmonic balance with
-    ``harmonic_count`` H harmonics of ω = l Ω / periods, its contact forces evaluated at
+    ``harmonic_count`` H harmonics of ω = l Ω / periods (2π f / periods at an
+    excitation frequency f of its own), its contact forces evaluated at
     ``samples`` N times per period.
 
     ``coefficients`` ((2H+1) × n): the real Fourier coefficients (c₀, a₁, b₁, …) of
@@ -101,7 +102,8 @@ class HarmonicOrbit(OrbitReadings):
 
     @property
     def frequency(self) -> float:
-        """ω = l Ω / periods [rad/s], the series' fundamental."""
+        """ω = l Ω / periods [rad/s] (2π f / periods at an excitation frequency f of
+        its own, ``Excitation.frequency``), the series' fundamental."""
         return self.scene.arrays.excitation_frequency / self.periods
 
     @property
