@@ -76,6 +76,24 @@ def test_a_linear_structure_is_its_closed_form_response_at_any_number_of_harmoni
     assert energy.friction == energy.contact == 0.0
 
 
+def test_a_scene_without_contacts_is_its_closed_form_and_its_branch_runs():
+    """No contact coordinates at all: the balance has no unknowns, the orbit is the
+    linear response |X| = q/|k − ω²m + iωc|, and a branch follows it."""
+    group = sn.BladeGroup().add_blade("a", sn.Blade(mass=0.1, damping=2.0, stiffness=1e5))
+
+    def scene_at(rpm):
+        return sn.Scene(group=group, speed_rpm=rpm, excitation=sn.Excitation(
+            engine_order=1, amplitudes=(0.0, 10.0), phases=sn.ExplicitPhases((0.0,))))
+
+    orbit = sn.harmonic_balance(scene_at(6000.0), 3)
+    omega = scene_at(6000.0).excitation_circular_frequency
+    assert orbit.converged and orbit.contact_coefficients.shape == (7, 0)
+    assert orbit.amplitude("a") == pytest.approx(
+        10.0 / abs(1e5 - 0.1 * omega ** 2 + 2j * omega), rel=1e-12)
+    branch = sn.harmonic_continuation(scene_at, 5000.0, 6000.0, 3, stability=False)
+    assert branch.parameter[-1] == pytest.approx(6000.0)
+
+
 def test_an_orbit_of_two_periods_of_a_linear_structure_is_its_one_period_orbit():
     """periods=2: the series of ω/2, whose odd harmonics a linear structure leaves at 0."""
     scene = open_pair()

@@ -67,6 +67,8 @@ class Condensed:
         j·m + a), harmonic by harmonic: the Jacobian W ∂λ̂/∂z without W as a dense
         matrix (its blocks off the harmonics' diagonal are zero)."""
         size, m = self.linear.shape
+        if m == 0:  # no contacts: nothing to apply
+            return np.zeros((0, matrix.shape[1]))
         columns = matrix.reshape(size, m, -1)
         # a batched matrix product (BLAS), not einsum's loops: 17× faster on 135 contact
         # coordinates of 15 coefficients

@@ -139,7 +139,7 @@ class Follower:
     def point(self, u, outcome_z=None) -> Point:
         residual, matrix, balance, forces = self.evaluate(u)
         z, p = self.split(u)
-        size = float(np.abs(residual).max()) * self.scale / balance.scale(z)
+        size = float(np.abs(residual).max(initial=0.0)) * self.scale / balance.scale(z)
         outcome = NewtonOutcome(z, forces, size, 0, self.tolerance,
                                 f"converged: residual {size:.3g} of the contacts' motion")
         return Point(u, p, balance, outcome, matrix)
@@ -181,7 +181,7 @@ class Follower:
                 raise ConvergenceError(f"the corrector reached p = {u[-1] * self.span:.9g}, "
                                        f"where scene_at says: {error}") from error
             z, p = self.split(u)
-            size = float(np.abs(residual).max()) * self.scale / balance.scale(z)
+            size = float(np.abs(residual).max(initial=0.0)) * self.scale / balance.scale(z)
             constraint = normal @ u - offset
             if size <= self.tolerance and abs(constraint) <= 1e-12:
                 outcome = NewtonOutcome(z, forces, size, iteration, self.tolerance,

@@ -53,7 +53,7 @@ def newton(evaluate: Callable, z: np.ndarray, scale: Callable[[np.ndarray], floa
     """Newton with a line search from ``z`` on ``evaluate(z, jacobian)`` → (R, J or
     None, value), R flat, J its square Jacobian; the residual max |R| / ``scale(z)``."""
     residual_vector, jacobian, value = evaluate(z, True)
-    size = float(np.abs(residual_vector).max()) / scale(z)
+    size = float(np.abs(residual_vector).max(initial=0.0)) / scale(z)
     for iteration in range(iterations + 1):
         if size <= tolerance:
             return NewtonOutcome(z, value, size, iteration, tolerance,
@@ -76,7 +76,7 @@ def newton(evaluate: Callable, z: np.ndarray, scale: Callable[[np.ndarray], floa
                                  f"give a guess, or continue from a nearby orbit)")
         z = trial
         residual_vector, jacobian, value = evaluate(z, True)
-        size = float(np.abs(residual_vector).max()) / scale(z)
+        size = float(np.abs(residual_vector).max(initial=0.0)) / scale(z)
     return NewtonOutcome(z, value, size, iterations, tolerance,
                          f"stopped after {iterations} Newton steps at the residual "
                          f"{size:.3g} (asked {tolerance:.3g})")
