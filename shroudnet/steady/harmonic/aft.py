@@ -77,6 +77,11 @@ def normal_samples(contact: Contact, penetration, rate, gradient: bool):
     return force, slope, damping
 
 
+#: The law functions found to branch on their arguments (``at_samples``): called sample
+#: by sample from then on, without trying the arrays again.
+SCALAR_ONLY: set = set()
+
+
 def at_samples(function, depths: np.ndarray, speeds: np.ndarray, parameters,
                outputs: int = 1) -> np.ndarray:
     """A law's scalar function of (δ, δ̇, *parameters) at every sample: called once on
@@ -84,15 +89,15 @@ def at_samples(function, depths: np.ndarray, speeds: np.ndarray, parameters,
     ``outputs`` results broadcast to the samples), else sample by sample (a law whose
     code branches on its penetration cannot take arrays, and says so by raising)."""
     shape = (outputs, len(depths)) if outputs > 1 else (len(depths),)
-    try:
-        with np.errstate(all="ignore"):
-            values = function(depths, speeds, *parameters)
-        values = np.broadcast_to(np.array(values, dtype=float), shape)
-    except (TypeError, ValueError, ArithmeticError):
-        values = np.array([function(d, v, *parameters) for d, v in zip(depths.tolist(),
-                                                                       speeds.tolist())],
-                          dtype=float).reshape(len(depths), *shape[:-1]).T
-    return values
+    if function not in SCALAR_ONLY:
+        try:
+            values = np.asarray(function(depths, speeds, *parameters), dtype=float)
+            return values if values.shape == shape else np.broadcast_to(values, shape)
+        except Exception:  # noqa: BLE001 - whatever a scalar code raises on arrays
+            SCALAR_ONLY.add(function)
+    return np.array([function(d, v, *parameters) for d, v in zip(depths.tolist(),
+                                                                  speeds.tolist())],
+                    dtype=float).reshape(len(depths), *shape[:-1]).T
 
 
 def regularised_samples(contact: Contact, speed):

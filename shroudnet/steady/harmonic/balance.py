@@ -224,7 +224,9 @@ def ladder(balance: Balance, tolerance: float, iterations: int) -> NewtonOutcome
     orbit, up to the balance's own: a hard nonlinearity (an impact, say) whose full
     series Newton cannot reach from the linear response is reached harmonic by
     harmonic (a level that does not converge hands on where its Newton stopped). The
-    levels below the last are starts only, solved to ``LADDER_TOLERANCE``."""
+    levels below the last are starts only, solved to ``LADDER_TOLERANCE`` (levels that
+    triple took 39 ms for the six-blade packet's point against 63, but left a Hertz
+    contact with regularised Stribeck friction where Newton no longer converged)."""
     z = balance.condensed.linear[:3].copy()
     level = 1
     while level < balance.basis.harmonics:

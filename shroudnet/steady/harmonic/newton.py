@@ -54,6 +54,7 @@ def newton(evaluate: Callable, z: np.ndarray, scale: Callable[[np.ndarray], floa
     None, value), R flat, J its square Jacobian; the residual max |R| / ``scale(z)``."""
     residual_vector, jacobian, value = evaluate(z, True)
     size = float(np.abs(residual_vector).max(initial=0.0)) / scale(z)
+    hopeful = True
     for iteration in range(iterations + 1):
         if size <= tolerance:
             return NewtonOutcome(z, value, size, iteration, tolerance,
@@ -65,33 +66,43 @@ def newton(evaluate: Callable, z: np.ndarray, scale: Callable[[np.ndarray], floa
         except np.linalg.LinAlgError:
             change = -np.linalg.lstsq(jacobian, residual_vector, rcond=None)[0]
         norm = np.linalg.norm(residual_vector)
-        trial = line_search(evaluate, z, change, norm)
-        if trial is None:
-            trial = damped_step(evaluate, z, jacobian, residual_vector, norm)
-        if trial is None:
-            return NewtonOutcome(z, value, size, iteration, tolerance,
-                                 f"stopped: no step along Newton's direction lowers the "
-                                 f"residual {size:.3g} (the equations are not smooth "
-                                 f"enough there, or the start is too far from an orbit: "
-                                 f"give a guess, or continue from a nearby orbit)")
-        z = trial
-        residual_vector, jacobian, value = evaluate(z, True)
+        # after a full step, the next full step is tried with its Jacobian: where it is
+        # taken, as it mostly is near an orbit, its evaluation is the next iteration's
+        evaluated = evaluate(z + change.reshape(z.shape), True) if hopeful else None
+        if evaluated is not None and np.linalg.norm(evaluated[0]) <= (1.0 - DESCENT) * norm:
+            z = z + change.reshape(z.shape)
+        else:
+            trial, fraction = line_search(evaluate, z, change, norm,
+                                          first=0.5 if hopeful else 1.0)
+            hopeful = fraction == 1.0
+            if trial is None:
+                trial = damped_step(evaluate, z, jacobian, residual_vector, norm)
+            if trial is None:
+                return NewtonOutcome(z, value, size, iteration, tolerance,
+                                     f"stopped: no step along Newton's direction lowers "
+                                     f"the residual {size:.3g} (the equations are not "
+                                     f"smooth enough there, or the start is too far from "
+                                     f"an orbit: give a guess, or continue from a nearby "
+                                     f"orbit)")
+            z = trial
+            evaluated = evaluate(z, True)
+        residual_vector, jacobian, value = evaluated
         size = float(np.abs(residual_vector).max(initial=0.0)) / scale(z)
     return NewtonOutcome(z, value, size, iterations, tolerance,
                          f"stopped after {iterations} Newton steps at the residual "
                          f"{size:.3g} (asked {tolerance:.3g})")
 
 
-def line_search(evaluate, z, change, norm):
-    """z + α Δ with the largest α = 2⁻ᵏ, k ≤ ``HALVINGS``, that meets Armijo's rule; None
-    where none does."""
-    fraction = 1.0
+def line_search(evaluate, z, change, norm, first: float = 1.0):
+    """(z + α Δ, α) with the largest α = ``first`` 2⁻ᵏ, k ≤ ``HALVINGS``, that meets
+    Armijo's rule; (None, 0) where none does."""
+    fraction = first
     for _ in range(HALVINGS + 1):
         trial = z + fraction * change.reshape(z.shape)
         if np.linalg.norm(evaluate(trial, False)[0]) <= (1.0 - DESCENT * fraction) * norm:
-            return trial
+            return trial, fraction
         fraction /= 2.0
-    return None
+    return None, 0.0
 
 
 def damped_step(evaluate, z, jacobian, residual_vector, norm):
