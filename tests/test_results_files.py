@@ -451,3 +451,34 @@ def test_without_a_reporter_a_damaged_point_is_a_warning(tmp_path, whole):
         resumed = sweep(paper_scene_at, VALUES, workers=1, progress=False, save_to=folder,
                         **SETTINGS)
     assert_same(resumed, whole)
+
+
+def test_a_branch_keeps_its_notes_and_its_orbits_neutral_directions(tmp_path):
+    """What the solver said beyond Newton, and which contacts stuck all through (their
+    offsets pinned), come back from the file; a file without them loads with none."""
+    import dataclasses
+
+    from shroudnet import continuation
+
+    branch = continuation(lambda q1: three_blade_paper(q1=q1, gap=1.0), 10.0, 20.0,
+                          max_points=3)
+    marked = dataclasses.replace(
+        branch, notes=("a step from a transient",),
+        orbits=(dataclasses.replace(branch.orbits[0], neutral=(0, 1), neutral_directions=2,
+                                    notes=("Newton from the guess did not converge",)),
+                *branch.orbits[1:]))
+    loaded = results.load(results.save_branch(tmp_path / "branch.npz", marked))
+    assert loaded.notes == marked.notes
+    first = loaded.orbits[0]
+    assert (first.neutral, first.neutral_directions, first.notes) == \
+        ((0, 1), 2, ("Newton from the guess did not converge",))
+    assert all(o.neutral == () and o.notes == () for o in loaded.orbits[1:])
+    older = rewritten(results.save_branch(tmp_path / "older.npz", branch), meta=lambda m: {
+        k: v for k, v in m.items()
+        if k not in ("notes", "orbit_notes", "neutral", "neutral_directions")})
+    assert results.load(older).notes == ()
+    damaged = rewritten(results.save_branch(tmp_path / "damaged.npz", branch),
+                        meta=lambda m: {**m, "neutral": [["one"]] * len(m["neutral"])})
+    with pytest.raises(results.ResultsError,
+                       match=r"meta\.neutral must be a list of lists of interface indices"):
+        results.load(damaged)

@@ -979,7 +979,11 @@ def save_branch(path: str | Path, branch: Branch, scene_at=None) -> Path:
             "parameter_path": parameter_path, "name": branch.name, "ended": branch.ended,
             "periods": branch.periods, "points": len(branch), "kinds":
                 [b.kind for b in branch.bifurcations],
-            "event_counts": [o.events.counts for o in orbits]}
+            "event_counts": [o.events.counts for o in orbits],
+            "notes": list(branch.notes),
+            "orbit_notes": [list(o.notes) for o in orbits],
+            "neutral": [[int(e) for e in o.neutral] for o in orbits],
+            "neutral_directions": [int(o.neutral_directions) for o in orbits]}
     arrays = {"parameter": np.array(values, dtype=float),
               "initial": np.array([o.state for o in orbits]),
               "multipliers": np.array([o.multipliers for o in orbits]),
@@ -1057,6 +1061,7 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
     if len(index) and (index.min() < 0 or index.max() >= points):
         raise ResultsError(f"{path}: bifurcation_index holds {index.min()} to "
                            f"{index.max()}; the branch has points 0 to {points - 1}")
+    extra = _orbit_notes(path, meta, total)
     orbits = []
     for k, scene in enumerate(scenes):
         run = slice(int(offsets[k]), int(offsets[k + 1]))
@@ -1071,7 +1076,9 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
             events=events, **{name: columns[name][k] for name in _PER_RESPONSE},
             energy_per_cycle=EnergyPerCycle(*(float(e) for e in columns["energy_per_cycle"][k])),
             kinetic_peak=float(columns["kinetic_peak"][k]),
-            singular=int(columns["singular"][k])))
+            singular=int(columns["singular"][k]), neutral=tuple(extra["neutral"][k]),
+            neutral_directions=extra["neutral_directions"][k],
+            notes=tuple(extra["orbit_notes"][k])))
     bifurcations = tuple(
         Bifurcation(kind=kind, parameter=float(values[points + j]), orbit=orbits[points + j],
                     multiplier=complex(columns["bifurcation_multiplier"][j]),
@@ -1080,7 +1087,40 @@ def load_branch(path: str | Path, *, laws: scenefile.Laws = ()) -> Branch:
         for j, kind in enumerate(kinds))
     return Branch(parameter=values[:points].copy(), orbits=tuple(orbits[:points]),
                   bifurcations=bifurcations, periods=meta["periods"], name=meta["name"],
-                  ended=meta["ended"])
+                  ended=meta["ended"], notes=tuple(extra["notes"]))
+
+
+def _is_strings(value) -> bool:
+    return isinstance(value, list) and all(isinstance(v, str) for v in value)
+
+
+#: What a branch file may say beyond its arrays, per orbit and of the branch (files
+#: written before it was kept have none of it: empty).
+_NOTES = (
+    _Field("notes", "a list of strings", _is_strings),
+    _Field("orbit_notes", "a list of lists of strings, one per orbit",
+           lambda v: isinstance(v, list) and all(_is_strings(n) for n in v)),
+    _Field("neutral", "a list of lists of interface indices, one per orbit",
+           lambda v: isinstance(v, list) and all(
+               isinstance(n, list) and all(_is_count(e) for e in n) for n in v)),
+    _Field("neutral_directions", "a list of counts, one per orbit",
+           lambda v: isinstance(v, list) and all(_is_count(n) for n in v)),
+)
+
+
+def _orbit_notes(path: Path, meta: dict, total: int) -> dict:
+    """The branch's notes and each orbit's notes and neutral interfaces, checked; empty
+    where the file has none."""
+    present = {field.name: meta[field.name] for field in _NOTES if field.name in meta}
+    _checked(path, present, [f for f in _NOTES if f.name in present])
+    extra = {"notes": [], "orbit_notes": [[]] * total, "neutral": [[]] * total,
+             "neutral_directions": [0] * total}
+    extra.update(present)
+    for name in ("orbit_notes", "neutral", "neutral_directions"):
+        if len(extra[name]) != total:
+            raise ResultsError(f"{path}: meta.{name} has {len(extra[name])} entries for "
+                               f"{total} orbits")
+    return extra
 
 
 def load(path: str | Path, *, laws: scenefile.Laws = ()) -> Simulation | Sweep | Branch:
