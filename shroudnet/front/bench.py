@@ -1047,7 +1047,7 @@ def substructures_section(sizes: Sizes) -> None:
     print(f"   with the 3-D elastic contacts (their stretches in the state), a periodic orbit "
           f"with its {len(elastic_orbit.multipliers)} multipliers from a settled guess "
           f"{elastic_seconds * 1e3:.0f} ms ({elastic_orbit.iterations} Newton steps)")
-    seconds, branch = packet_curve(20 if sizes.quick else 300)
+    seconds, branch = packet_curve(5 if sizes.quick else 300)
     print(f"   its forced-response curve up from 2600 rpm: {len(branch)} orbits with their "
           f"multipliers in {seconds:.1f} s ({branch.ended} at "
           f"{branch.parameter[-1]:.1f} rpm)")
