@@ -1,3 +1,5 @@
+import os
+
 import pytest
 from hypothesis import HealthCheck, settings
 
@@ -20,3 +22,16 @@ def pytest_collection_modifyitems(config, items):
         marker = item.get_closest_marker("timeout")
         if marker is not None and marker.args and float(marker.args[0]) > default:
             item.add_marker(pytest.mark.slow)
+
+
+#: The BLAS libraries' thread counts, one thread each.
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def pytest_configure(config):
+    """BLAS on one thread in every test process (unless the caller chose otherwise): the
+    tests run one worker a core, and a worker's second BLAS thread only waits for a core
+    the other worker holds, spinning. Set before the workers start (they inherit it) and
+    before the tests import numpy."""
+    for name in BLAS_THREADS:
+        os.environ.setdefault(name, "1")

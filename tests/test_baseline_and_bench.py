@@ -57,23 +57,32 @@ def event_total(scene, periods, method, **options):
     return sum(simulate(scene, periods, method=method, **options).events.counts.values())
 
 
-@pytest.mark.slow
-@pytest.mark.timeout(1500)  # compiles in fresh processes, then every kind of kernel
-def test_the_benchmark_prints_every_section_with_figures_that_hold_together(capsys):
-    """``--quick`` prints every section, and its figures are what they say: parts no larger
-    than their wholes, rates that are the quotients they claim, the events of a plain run
-    of the scene measured, the linear multiplier every orbit of three identical blades
-    has (all three moving alike, their contacts never see it: |μ| = e^(−c kT/2m)), a
-    positive exponent for the paper's chaotic case and its torus bifurcation near 6120 rpm."""
-    bench_main(["--quick"])
+def quick_bench(capsys, sections: str, *headings: str) -> str:
+    """What ``bench --quick --sections sections`` prints, each of ``headings`` in it.
+
+    The benchmark's sections are run by separate tests, so that the test workers share
+    them out; each section's figures are checked against what they claim to be."""
+    bench_main(["--quick", "--sections", sections])
     out = capsys.readouterr().out
-    for heading in ("0. First run", "1. Integration speed", "2. Effects", "3. Against plain",
-                    "4. Sweeps", "Fig. 6-class diagram", "peak resident memory",
-                    "5. The tangent flow", "6. Steady states", "8. Tuned rings",
-                    "9. Harmonic balance", "10. GPU batches", "wall time of the benchmark"):
+    for heading in (*headings, "wall time of the benchmark"):
         assert heading in out
+    return out
+
+
+@pytest.mark.slow  # compiles in fresh processes, on an empty cache
+def test_the_benchmarks_first_run_is_timed_with_its_compiling_apart(capsys):
+    out = quick_bench(capsys, "0", "0. First run")
     for wall, compiling in figures(rf"\): {N} s, of which {N} s compiling$", out, 2):
         assert 0.0 <= compiling <= wall
+
+
+@pytest.mark.slow
+def test_the_benchmarks_rates_are_their_quotients_and_its_events_a_plain_runs(capsys):
+    """Sections 1-4: each integrator's rate, and the events of a plain run of the same
+    scene; the effects (no contact, no events); the ratio against solve_ivp; sweeps."""
+    out = quick_bench(capsys, "1,2,3,4", "1. Integration speed", "2. Effects",
+                      "3. Against plain", "4. Sweeps", "Fig. 6-class diagram",
+                      "peak resident memory")
 
     # 1. each integrator's rate, and the events of a plain run of the same scene
     scene, periods = three_blade_paper(**POINT), 20
@@ -121,6 +130,15 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
     assert all(mb > 0.0 for mb in figures(rf"memory of the first run: {N} MB in its main "
                                           rf"process, {N} MB", out, 1)[0])
 
+
+@pytest.mark.slow
+def test_the_benchmarks_tangent_flow_and_steady_states_hold_together(capsys):
+    """Sections 5 and 6: the ratios are the quotients; the linear multiplier every orbit
+    of three identical blades has (all three moving alike, their contacts never see it:
+    |μ| = e^(−c kT/2m)), a positive exponent for the paper's chaotic case and its torus
+    bifurcation near 6120 rpm."""
+    out = quick_bench(capsys, "5,6", "5. The tangent flow", "6. Steady states")
+
     # 5. the tangent flow: the ratios are the quotients; γ1 = 8.8 is chaotic
     ((plain, one, one_ratio, every, every_ratio),) = figures(
         rf"paper group, 3 blades: {N}, {N} \({N}x\), {N} \({N}x\)$", out, 1)
@@ -131,6 +149,7 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
     assert exponent > 0.0 <= error
 
     # 6. steady states: stable orbits, each with the blades' common multiplier
+    scene = three_blade_paper(**POINT)
     a = scene.arrays
     for k, _, _, largest in figures(
             rf"period {N}: {N} ms \({N} steps\), \|μ\|max = {N}(?:, .*)?$", out, 2):
@@ -145,7 +164,13 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
                                 out, 1)
     assert ratio == pytest.approx(swept / seconds, abs=0.06)
 
-    # 7. the packet's contacts: both kinds run, the elastic 3-D ones carrying sliders
+
+@pytest.mark.slow
+@pytest.mark.timeout(900)  # on an empty cache it compiles five kernels of substructures
+def test_the_benchmarks_packets_contacts_both_run(capsys):
+    """Section 7: both kinds of the packet's contacts run, the elastic 3-D ones carrying
+    sliders."""
+    out = quick_bench(capsys, "7", "7. Substructures")
     ((rigid, elastic),) = figures(rf"rigid stick {N} periods/s; 3-D contacts, elastic "
                                   rf"stick, 2-D friction {N} periods/s", out, 1)
     assert rigid > 0.0 and elastic > 0.0
@@ -154,10 +179,44 @@ def test_the_benchmark_prints_every_section_with_figures_that_hold_together(caps
         rf"settled guess {N} ms \({N} Newton steps\)", out, 1)
     assert multipliers == 2 * 18 + 2 * 5 and milliseconds > 0.0 and steps <= 2
 
-    # 8. tuned rings: the speed-ups are the quotients of the times
+
+@pytest.mark.slow
+def test_the_benchmarks_tuned_rings_speed_ups_are_the_quotients_of_the_times(capsys):
+    """Section 8."""
+    out = quick_bench(capsys, "8", "8. Tuned rings")
     for full, symmetric, ratio in figures(
             rf"full {N} ms, symmetric {N} ms \({N}x\)", out, 1):
         assert ratio == pytest.approx(full / symmetric, abs=0.05 + 0.1 * ratio / symmetric)
+
+
+@pytest.mark.slow
+def test_the_benchmarks_harmonic_balance_times_are_per_point_and_its_errors_fall(capsys):
+    """Section 9: a curve's time per point is its time over its points; the series'
+    errors against the exact orbit fall from H = 1 to H = 7 (measured 7.8e-2, 5.1e-1 and
+    1.7e-1 at H = 1; 3.6e-4, 1.7e-3 and 1.4e-3 at H = 7), the exact orbit's own nought."""
+    out = quick_bench(capsys, "9", "9. Harmonic balance")
+    figures(rf"certificate .*: {N} ms; errors: amplitude {N}, energy per cycle {N}, state "
+            rf"{N}, Hill's multipliers {N}$", out, 1)
+    for points, seconds, per_point in figures(
+            rf"at H = 7(?:, with Hill)?: {N} points in {N} s \({N} ms a point", out, 2):
+        # the time is printed to 0.1 s, the time a point to 1 ms
+        assert per_point == pytest.approx(seconds / points * 1e3, abs=50.0 / points + 0.5)
+    rows = {h: errors for h, _, *errors in figures(
+        rf"^ +(\d+|exact) +(?:\d+)? +{N} ms  {N}  {N}  {N}$", out, 5)}
+    assert all(low < high for low, high in zip(rows[7.0], rows[1.0]))
+    assert rows["exact"] == [0.0, 0.0, 0.0]
+
+
+@pytest.mark.slow
+def test_the_benchmarks_gpu_and_fe_sections_run_and_their_solvers_agree(capsys):
+    """Sections 10 (without a GPU, it says what is missing) and 11: the dense and Krylov
+    solvers, with and without stability, find the same orbit (measured: 1.7e-11 of the
+    scale) and the same leading multipliers (5.1e-12)."""
+    out = quick_bench(capsys, "10,11", "10. GPU batches", "11. Steady states at the scale")
+    ((state_gap, _, multiplier_gap),) = figures(
+        rf"orbits agree to {N} of the scale, their multipliers \(Arnoldi's {N} leading "
+        rf"ones\) the dense ones to {N}$", out, 1)
+    assert state_gap <= 1e-8 and multiplier_gap <= 1e-8
 
 
 def test_a_second_process_loads_the_compiled_kernel_instead_of_compiling():

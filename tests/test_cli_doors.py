@@ -67,6 +67,10 @@ def no_work(monkeypatch):
     ("--scaling-points", "0", "argument --scaling-points: must be a whole number >= 1"),
     ("--baseline-periods", "0", "argument --baseline-periods: must be a whole number >= 1"),
     ("--workers", "0", "argument --workers: must be a whole number >= 1, got 0"),
+    ("--sections", "12", "argument --sections: must be section numbers 0–11 separated by "
+                         "commas, got '12'"),
+    ("--sections", "1,,2", "argument --sections: must be section numbers 0–11"),
+    ("--sections", "-1", "argument --sections: must be section numbers 0–11"),
 ])
 def test_a_bad_benchmark_option_is_one_line_before_any_work(capsys, no_work, option, value,
                                                             message):

@@ -64,6 +64,7 @@ the kernel); nothing here is asserted, because timings depend on the machine.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import functools
 import json
 import os
@@ -799,6 +800,27 @@ def print_breakdown(label: str, scene, transient: int, runs: int = ORBIT_RUNS) -
     return found
 
 
+#: The benchmark's sections, by number (see the module's docstring).
+SECTION_NUMBERS = tuple(range(12))
+
+
+def section_list(text: str) -> tuple[int, ...]:
+    """An argparse type: section numbers separated by commas (``"0,5,7"``), each one of
+    ``SECTION_NUMBERS``, in the order the benchmark prints them."""
+    try:
+        numbers = {int(part) for part in text.split(",")}
+    except ValueError:
+        numbers = None
+    if not numbers or not numbers <= set(SECTION_NUMBERS):
+        raise argparse.ArgumentTypeError(
+            f"must be section numbers {SECTION_NUMBERS[0]}–{SECTION_NUMBERS[-1]} separated "
+            f"by commas, got {text!r}")
+    return tuple(sorted(numbers))
+
+
+section_list.__name__ = "section numbers"
+
+
 def options_parser(prog: str = "python -m shroudnet.front.bench",
                    parser_class: type[argparse.ArgumentParser] = argparse.ArgumentParser
                    ) -> argparse.ArgumentParser:
@@ -817,6 +839,9 @@ def options_parser(prog: str = "python -m shroudnet.front.bench",
                         help="periods of the comparison with solve_ivp (default 50)")
     parser.add_argument("--quick", action="store_true",
                         help="small sizes everywhere, to check that the benchmark runs")
+    parser.add_argument("--sections", type=section_list, default=SECTION_NUMBERS,
+                        help="the sections to run, numbers separated by commas, e.g. 0,5,7 "
+                             "(default all of them, 0–11)")
     parser.add_argument("--gpu", action="store_true",
                         help="run section 10 alone: batches of trajectories on a GPU")
     parser.add_argument("--fe-curve", action="store_true",
@@ -827,27 +852,68 @@ def options_parser(prog: str = "python -m shroudnet.front.bench",
     return parser
 
 
-def main(argv=None) -> None:
-    """Run the benchmark with the options ``argv`` (default: the process's)."""
-    args = options_parser().parse_args(argv)
-    if args.diagram_only:
-        return _diagram_only(args.points, args.transient, args.record, args.workers)
-    if args.gpu:
-        return gpu_section(default_workers())
-    if args.quick:
-        args.points, args.transient, args.record, args.baseline_periods = 8, 20, 10, 5
-    cores = default_workers()
-    scaling_points = args.scaling_points or (4 if args.quick else 8 * cores)
-    repeats = 1 if args.quick else 5
-    periods = 20 if args.quick else 200
-    start = time.perf_counter()
+@dataclasses.dataclass(frozen=True)
+class Sizes:
+    """How much each section runs: the options' sizes, or ``--quick``'s small ones (enough
+    for every figure to be what it says, nothing representative of the machine).
 
+    Parameters
+    ----------
+    quick : bool
+        Whether these are ``--quick``'s sizes.
+    cores : int
+        This machine's cores (``default_workers``).
+    points, transient, record : int
+        Values of γ1 in the Fig. 6-class diagram; periods before recording and recorded,
+        per value.
+    scaling_points : int
+        Values per run of the worker scaling.
+    baseline_periods : int
+        Periods of the comparison with solve_ivp.
+    repeats : int
+        Runs each time is the median of.
+    periods : int
+        Periods of each rate's run.
+    fe_curve : bool
+        Whether section 11 adds the six eight-mode blades' forced response.
+    """
+
+    quick: bool
+    cores: int
+    points: int
+    transient: int
+    record: int
+    scaling_points: int
+    baseline_periods: int
+    repeats: int
+    periods: int
+    fe_curve: bool
+
+    @classmethod
+    def from_options(cls, args: argparse.Namespace) -> Sizes:
+        """The sizes ``options_parser``'s ``args`` ask for."""
+        cores = default_workers()
+        quick = args.quick
+        return cls(quick=quick, cores=cores,
+                   points=8 if quick else args.points,
+                   transient=20 if quick else args.transient,
+                   record=10 if quick else args.record,
+                   scaling_points=args.scaling_points or (4 if quick else 8 * cores),
+                   baseline_periods=5 if quick else args.baseline_periods,
+                   repeats=1 if quick else 5, periods=20 if quick else 200,
+                   fe_curve=args.fe_curve)
+
+
+def first_run_section(sizes: Sizes) -> None:
     runs = first_runs()
     print("0. First run in a fresh process on an empty cache (import, compile, 1 period)")
     for which, (wall, compiling) in runs.items():
         laws = "LinearSpring + ExponentialFriction" if which == "paper" else "Hertz + Coulomb"
         print(f"   {which} ({laws}): {wall:.1f} s, of which {compiling:.1f} s compiling")
 
+
+def integration_section(sizes: Sizes) -> None:
+    repeats, periods = sizes.repeats, sizes.periods
     print(f"\n1. Integration speed, one core: paper scene γ1 = {POINT['gamma1']}, "
           f"{POINT['speed_rpm']:g} rpm, q1 = {POINT['q1']:g} N, {periods} periods")
     for label, method in [("fixed-step RK4, 1000 steps/period", FixedStep()),
@@ -862,78 +928,89 @@ def main(argv=None) -> None:
               f"residual {sim.energy.residual:.3e} J against friction loss "
               f"{sim.energy.friction_loss:.4f} J")
 
+
+def effects_section(sizes: Sizes) -> None:
     print("\n2. Effects: the same blades, one core, steps/s with fixed-step RK4 and adaptive "
           "DP5(4)")
     for label, scene in effect_scenes().items():
-        fixed, sim = steps_per_second(FixedStep(), scene=scene, periods=periods,
-                                      repeats=repeats)
-        adaptive, _ = steps_per_second(Adaptive(), scene=scene, periods=periods,
-                                       repeats=repeats)
+        fixed, sim = steps_per_second(FixedStep(), scene=scene, periods=sizes.periods,
+                                      repeats=sizes.repeats)
+        adaptive, _ = steps_per_second(Adaptive(), scene=scene, periods=sizes.periods,
+                                       repeats=sizes.repeats)
         print(f"   {label}: {fixed:,.0f} fixed, {adaptive:,.0f} adaptive steps/s, "
               f"{sum(sim.events.counts.values())} events")
 
+
+def baseline_section(sizes: Sizes) -> None:
     print(f"\n3. Against plain solve_ivp (RK45, Python right-hand side, event functions), "
-          f"{args.baseline_periods} periods, both at rtol 1e-8, atol 1e-12 m")
+          f"{sizes.baseline_periods} periods, both at rtol 1e-8, atol 1e-12 m")
     ratios = []
     for gamma1, ours, plain, error_ours, error_plain, switches in baseline_comparison(
-            gammas=(2.2,) if args.quick else (1.0, 2.2, 3.5), periods=args.baseline_periods,
-            repeats=repeats):
+            gammas=(2.2,) if sizes.quick else (1.0, 2.2, 3.5),
+            periods=sizes.baseline_periods, repeats=sizes.repeats):
         ratios.append(plain / ours)
         print(f"   γ1 = {gamma1:g}: shroudnet {ours * 1e3:.1f} ms (error {error_ours:.1e}), "
               f"solve_ivp {plain:.2f} s (error {error_plain:.1e}), {switches} switches: "
               f"{plain / ours:,.0f}x")
     print(f"   median ratio: {statistics.median(ratios):,.0f}x per trajectory")
 
-    print(f"\n4. Sweeps of γ1 ({args.transient} transient + {args.record} recorded periods "
+
+def sweeps_section(sizes: Sizes) -> None:
+    cores, scaling_points = sizes.cores, sizes.scaling_points
+    print(f"\n4. Sweeps of γ1 ({sizes.transient} transient + {sizes.record} recorded periods "
           f"per value, adaptive DP5(4)); this machine has {cores} cores")
     subset = np.linspace(0.5, 10.0, scaling_points)
     diagram(subset[:2], workers=1, transient=2, record=3)  # compile or load the kernel
     serial = None
     for workers in worker_counts(cores):
-        seconds, _ = diagram(subset, workers=workers, transient=args.transient,
-                             record=args.record)
+        seconds, _ = diagram(subset, workers=workers, transient=sizes.transient,
+                             record=sizes.record)
         serial = serial or seconds
         print(f"   {workers:>3} worker(s), {scaling_points} values: {seconds:6.2f} s, "
               f"{seconds / scaling_points:.3f} s per point, speed-up "
               f"{serial / seconds:.2f} (efficiency {serial / seconds / workers:.0%})")
-    runs = [diagram_in_fresh_process(args.points, args.transient, args.record, cores)
-            for _ in range(1 if args.quick else DIAGRAM_REPEATS)]
+    runs = [diagram_in_fresh_process(sizes.points, sizes.transient, sizes.record, cores)
+            for _ in range(1 if sizes.quick else DIAGRAM_REPEATS)]
     times = sorted(run["seconds"] for run in runs)
     seconds = statistics.median(times)
     figures = runs[0]
-    print(f"   Fig. 6-class diagram, {args.points} values on {cores} workers: {seconds:.1f} s "
+    print(f"   Fig. 6-class diagram, {sizes.points} values on {cores} workers: {seconds:.1f} s "
           f"wall (median of {len(times)}, {times[0]:.1f}–{times[-1]:.1f} s), "
-          f"{seconds / args.points:.3f} s per point")
+          f"{seconds / sizes.points:.3f} s per point")
     print(f"   peak resident memory of the first run: {figures['own_mb']:.0f} MB in its main "
           f"process, {figures['worker_mb']:.0f} MB in its largest worker; the sweep keeps "
           f"{figures['kept_mb']:.2f} MB of results")
+
+
+def tangent_section(sizes: Sizes) -> None:
     print("\n5. The tangent flow, one core, ms per period: plain run, with one tangent vector "
           "(lyapunov), with all 2N (monodromy)")
     scenes = {"paper group, 3 blades": three_blade_paper(**POINT)}
-    if RING.exists() and not args.quick:
+    if RING.exists() and not sizes.quick:
         scenes["ring of 24 blades"] = scenefile.load(RING).scene
     for label, scene in scenes.items():
         lyapunov(scene, 10, transient=0)  # compile or load the kernel
-        plain, one, every = tangent_costs(scene, 20 if args.quick else 100, repeats)
+        plain, one, every = tangent_costs(scene, 20 if sizes.quick else 100, sizes.repeats)
         # five significant figures: the ratios, to 0.1, are then the printed times' quotients
         print(f"   {label}: {plain * 1e3:.5g}, {one * 1e3:.5g} ({one / plain:.1f}x), "
               f"{every * 1e3:.5g} ({every / plain:.1f}x)")
-    for periods in (100,) if args.quick else (1000, 2000):
-        seconds, result = chaotic_exponent(periods, repeats)
+    for periods in (100,) if sizes.quick else (1000, 2000):
+        seconds, result = chaotic_exponent(periods, sizes.repeats)
         print(f"   γ1 = 8.8: λ_max = {result.largest:.3f} ± {result.error[0]:.3f} per period "
               f"from {periods} periods, {seconds:.2f} s")
 
+
+def steady_section(sizes: Sizes) -> None:
     print("\n6. Steady states, one core: ms per periodic orbit from a settled guess "
           "(Newton steps)")
     cases = {"paper group, γ1 = 1, period 1": (three_blade_paper(gamma1=1.0), 1, {}),
              "paper group, γ1 = 3.5, period 3": (three_blade_paper(gamma1=3.5), 3, {})}
-    if RING.exists() and not args.quick:
+    if RING.exists() and not sizes.quick:
         cases["ring of 24 blades, period 1 (its travelling wave), to 1e-8"] = (
-            scenefile.load(RING).scene, 1,
-                                                         {"tolerance": 1e-8})
+            scenefile.load(RING).scene, 1, {"tolerance": 1e-8})
     for label, (scene, orbit_periods, options) in cases.items():
         try:
-            seconds, orbit = orbit_cost(scene, orbit_periods, repeats, **options)
+            seconds, orbit = orbit_cost(scene, orbit_periods, sizes.repeats, **options)
         except SimulationError as error:
             print(f"   {label}: no orbit ({error})")
             continue
@@ -941,22 +1018,24 @@ def main(argv=None) -> None:
               f"|μ|max = {abs(orbit.multipliers[0]):.4f}"
               + (f", {orbit.singular} switches where the map is not differentiable"
                  if orbit.singular else ""))
-    target = 30 if args.quick else 300
+    target = 30 if sizes.quick else 300
     max_step = 0.0185 * 453 / target  # about ``target`` orbits over the range
     response_curve(0.3, 20, 1)  # compile or load the kernels
-    seconds, branch = response_curve(max_step, 2 * target, repeats)
+    seconds, branch = response_curve(max_step, 2 * target, sizes.repeats)
     print(f"   forced response of the paper's group, 5800–7200 rpm: {len(branch)} orbits in "
           f"{seconds:.2f} s ({seconds / len(branch) * 1e3:.1f} ms per orbit), "
           f"bifurcations: " + ", ".join(f"{b.kind} at {b.parameter:.1f} rpm"
                                         for b in branch.bifurcations))
     values = np.linspace(5800.0, 7200.0, len(branch))
-    swept = transient_sweeps(values, args.transient, 50)
-    print(f"   transient sweeps up and down the same {len(values)} speeds ({args.transient} + "
+    swept = transient_sweeps(values, sizes.transient, 50)
+    print(f"   transient sweeps up and down the same {len(values)} speeds ({sizes.transient} + "
           f"50 periods a point): {swept:.2f} s, {swept / seconds:.1f}x the continuation's "
           "time, for the stable orbits only")
 
+
+def substructures_section(sizes: Sizes) -> None:
     print("\n7. Substructures, one core")
-    periods = 20 if args.quick else 200
+    repeats, periods = sizes.repeats, sizes.periods
     rate, orbit_seconds, orbit = packet_costs(modal_packet(), periods, repeats)
     print(f"   packet of 6 blades of 3 modes (18 coordinates, 5 interfaces): {rate:,.0f} "
           f"periods/s; a periodic orbit with its {len(orbit.multipliers)} multipliers from a "
@@ -968,18 +1047,21 @@ def main(argv=None) -> None:
     print(f"   with the 3-D elastic contacts (their stretches in the state), a periodic orbit "
           f"with its {len(elastic_orbit.multipliers)} multipliers from a settled guess "
           f"{elastic_seconds * 1e3:.0f} ms ({elastic_orbit.iterations} Newton steps)")
-    seconds, branch = packet_curve(20 if args.quick else 300)
+    seconds, branch = packet_curve(5 if sizes.quick else 300)
     print(f"   its forced-response curve up from 2600 rpm: {len(branch)} orbits with their "
           f"multipliers in {seconds:.1f} s ({branch.ended} at "
           f"{branch.parameter[-1]:.1f} rpm)")
-    rows = beams_against_plain(2 if args.quick else 10, repeats)
+    beam_periods = 2 if sizes.quick else 10
+    rows = beams_against_plain(beam_periods, repeats)
     print("   two unreduced beams (2 × 8 degrees of freedom) with a tip shroud contact, "
-          f"{2 if args.quick else 10} periods from rest:")
+          f"{beam_periods} periods from rest:")
     for label, (seconds, error) in rows.items():
         print(f"     {label}: {seconds:.3f} s, error {error:.1e}")
     for label, (ours, ratio) in against_ours(rows).items():
         print(f"     {label} takes {ratio:,.0f}x the time of {ours}, as accurate or more")
 
+
+def rings_section(sizes: Sizes) -> None:
     print("\n8. Tuned rings at the cost of one sector, one core: ms per period-1 orbit with "
           "all its multipliers, to 1e-8 from a settled guess")
     disc = bladed_disc_24()
@@ -988,11 +1070,11 @@ def main(argv=None) -> None:
              "24-sector disc, l = 5 (τ = T/24)": in_engine_order(disc, 5),
              # where the wave of l = 6 is stable, so that both solvers find it
              "24-sector disc, l = 6 at 3300 rpm (τ = T/4)": bladed_disc_24(speed_rpm=3300.0)}
-    if args.quick:
+    if sizes.quick:
         cases = dict(list(cases.items())[:1])
     for label, scene in cases.items():
         try:
-            found = symmetric_costs(scene, repeats)
+            found = symmetric_costs(scene, sizes.repeats)
         except SimulationError as error:
             print(f"   {label}: no orbit ({error})")
             continue
@@ -1003,7 +1085,7 @@ def main(argv=None) -> None:
               f"{orbit.wave_numbers[0]}"
               + ("" if gap < 1e-6 else f"; the full solver found another orbit ({gap:.2g} "
                  "apart): the travelling wave is unstable there"))
-    points = 10 if args.quick else 100
+    points = 10 if sizes.quick else 100
     times = {symmetry: symmetric_curve(paper_ring(5), 5500.0, 6500.0, points, symmetry)
              for symmetry in ("none", "cyclic")}
     (full, branch), (symmetric, reduced) = times["none"], times["cyclic"]
@@ -1011,30 +1093,59 @@ def main(argv=None) -> None:
           f"{len(branch)} orbits in {full:.1f} s, symmetric {len(reduced)} in "
           f"{symmetric:.1f} s ({full / len(branch) / (symmetric / len(reduced)):.1f}x per "
           "orbit)")
-    bench_harmonic.section(args.quick)
-    gpu_section(cores, report=False)
+
+
+def harmonic_section(sizes: Sizes) -> None:
+    bench_harmonic.section(sizes.quick)
+
+
+def gpu_batches_section(sizes: Sizes) -> None:
+    gpu_section(sizes.cores, report=False)
+
+
+def fe_section(sizes: Sizes) -> None:
     print("\n11. Steady states at the scale of FE models, one core: where an orbit's time "
           "goes")
     cases = [("pair of eight-mode blades, one 3-D elastic face", fe_packet(blades=2))]
-    if not args.quick:
+    if not sizes.quick:
         cases += [("packet of examples/fe_packet_elastic.py, three-mode blades",
                    modal_packet(speed_rpm=3000.0, **ELASTIC_PACKET)),
                   ("packet of six eight-mode blades, 3-D elastic faces", fe_packet()),
                   ("packet of six eight-mode blades, rigid stick (linear phases)",
                    fe_packet(elastic=False))]
     for label, scene in cases:
-        print_breakdown(label, scene, 20 if args.quick else 150, 1 if args.quick else 3)
-    if not args.quick:
+        print_breakdown(label, scene, 20 if sizes.quick else 150, 1 if sizes.quick else 3)
+    if not sizes.quick:
         seconds, orbit = full_ring_orbit()
         print(f"   the 24-blade ring's full orbit (symmetry='none') at default settings: "
               f"residual {orbit.residual:.1e} in {seconds:.1f} s ({orbit.iterations} Newton "
               f"steps){'; ' + '; '.join(orbit.notes) if orbit.notes else ''}")
-    if args.fe_curve:
+    if sizes.fe_curve:
         seconds, branch = fe_curve(2400.0, 3800.0, 400)
         print(f"   forced response of the six eight-mode blades, 2400–3800 rpm: "
               f"{len(branch)} orbits with their stability in {seconds:.0f} s "
               f"({branch.ended}); bifurcations: "
               + ", ".join(f"{b.kind} at {b.parameter:.2f} rpm" for b in branch.bifurcations))
+
+
+#: Each section's printer, by number, in the order the benchmark runs them.
+SECTIONS = dict(zip(SECTION_NUMBERS, (
+    first_run_section, integration_section, effects_section, baseline_section,
+    sweeps_section, tangent_section, steady_section, substructures_section, rings_section,
+    harmonic_section, gpu_batches_section, fe_section)))
+
+
+def main(argv=None) -> None:
+    """Run the benchmark with the options ``argv`` (default: the process's)."""
+    args = options_parser().parse_args(argv)
+    if args.diagram_only:
+        return _diagram_only(args.points, args.transient, args.record, args.workers)
+    if args.gpu:
+        return gpu_section(default_workers())
+    sizes = Sizes.from_options(args)
+    start = time.perf_counter()
+    for number in args.sections:
+        SECTIONS[number](sizes)
     print(f"\nwall time of the benchmark: {time.perf_counter() - start:.0f} s")
 
 
