@@ -198,9 +198,13 @@ def test_the_benchmarks_harmonic_balance_times_are_per_point_and_its_errors_fall
     figures(rf"certificate .*: {N} ms; errors: amplitude {N}, energy per cycle {N}, state "
             rf"{N}, Hill's multipliers {N}$", out, 1)
     for points, seconds, per_point in figures(
-            rf"at H = 7(?:, with Hill)?: {N} points in {N} s \({N} ms a point", out, 2):
+            rf"at H = 7(?:, with Hill)?: {N} points in {N} s \({N} ms a point", out, 3):
         # the time is printed to 0.1 s, the time a point to 1 ms
         assert per_point == pytest.approx(seconds / points * 1e3, abs=50.0 / points + 0.5)
+    ((one, whole, ratio, gap),) = figures(
+        rf"one sector {N} ms, the whole ring {N} ms \({N}x\), their series agree to {N}$",
+        out, 1)
+    assert ratio == pytest.approx(whole / one, abs=0.05 + 0.5 * ratio / one) and gap <= 1e-8
     rows = {h: errors for h, _, *errors in figures(
         rf"^ +(\d+|exact) +(?:\d+)? +{N} ms  {N}  {N}  {N}$", out, 5)}
     assert all(low < high for low, high in zip(rows[7.0], rows[1.0]))

@@ -8,9 +8,11 @@
 - Its certificate: the exact orbit shot from that series (``certify``), and the
   series' errors.
 - A forced-response curve of the packet up in speed by ``harmonic_continuation`` at
-  H = 7, of about ``points`` points, with and without Hill's multipliers: the packet
-  as it is, one point pair per shroud face (faces of 9-point patches need patches of
-  point pairs, which the model does not have yet).
+  H = 7, of about ``points`` points, with and without Hill's multipliers, and one of
+  the packet of four-mode blades whose faces are 9-point patches
+  (``scenes.faced_group``: 135 contact coordinates, solved on their 24 directions)
+  from 2400 to 3800 rpm.
+- A tuned ring of FE sectors with 4-point faces, solved on one sector and whole.
 - The error against H and time at one of its speeds (``studies.harmonic_precision``).
 
 CPU times (``time.process_time``), medians of ``repeats`` after a run that loads the
@@ -23,7 +25,7 @@ from __future__ import annotations
 import statistics
 import time
 
-from ..scenes import modal_packet
+from ..scenes import faced_group, modal_packet
 from ..steady.harmonic.balance import harmonic_balance
 from ..steady.harmonic.certificate import certify
 from ..steady.harmonic.continuation import harmonic_continuation
@@ -75,6 +77,35 @@ def curve_cost(points: int, stability: bool) -> tuple[float, object]:
     return time.process_time() - began, branch
 
 
+def patch_curve_cost(points: int) -> tuple[float, object]:
+    """(CPU seconds, branch) of the 9-point-patch packet's curve up from 2400 to 3800 rpm
+    at H = 7, its largest step sized for about ``points`` points."""
+    def scene_at(rpm):
+        return faced_group(blades=6, face_points=9, speed_rpm=rpm)
+
+    harmonic_balance(scene_at(2400.0), HARMONICS, stability=False)  # load the march
+    began = time.process_time()
+    branch = harmonic_continuation(scene_at, 2400.0, 3800.0, HARMONICS,
+                                   max_step=min(1.0, 28.0 / points), max_points=2 * points,
+                                   stability=False, parameter="speed [rpm]")
+    return time.process_time() - began, branch
+
+
+def ring_costs(quick: bool) -> tuple[str, float, float, float]:
+    """(the ring, CPU seconds of its orbit on one sector, of the whole ring's, the
+    largest difference of their series over its largest coefficient) at H = 5."""
+    blades, points = (6, 1) if quick else (12, 4)
+    scene = faced_group(shape="ring", blades=blades, face_points=points, engine_order=3)
+    sector = harmonic_balance(scene, 5, stability=False)
+    one, _ = cpu_median(lambda: harmonic_balance(scene, 5, stability=False), 1)
+    whole_seconds, whole = cpu_median(lambda: harmonic_balance(
+        scene, 5, symmetry="none", samples=sector.samples, stability=False), 1)
+    gap = abs(sector.coefficients - whole.coefficients).max() / abs(
+        whole.coefficients).max()
+    return (f"{blades} FE sectors with {points}-point 3-D elastic faces, l = 3", one,
+            whole_seconds, gap)
+
+
 def section(quick: bool = False) -> None:
     """Print the section."""
     repeats = 1 if quick else 5
@@ -98,7 +129,15 @@ def section(quick: bool = False) -> None:
         print(f"   forced-response curve 2600–3400 rpm at H = {HARMONICS}"
               f"{', with Hill' if stability else ''}: {len(branch)} points in {seconds:.1f} s "
               f"({seconds / len(branch) * 1e3:.0f} ms a point; {branch.ended}); faces of "
-              "one point pair (9-point patches need the patches model)")
+              "one point pair")
+    seconds, branch = patch_curve_cost(3 if quick else 200)
+    print(f"   the packet of 6 four-mode blades with 9-point faces (135 contact coordinates "
+          f"on 24 directions), 2400–3800 rpm at H = {HARMONICS}: {len(branch)} points in "
+          f"{seconds:.1f} s ({seconds / len(branch) * 1e3:.0f} ms a point; {branch.ended})")
+    ring, one, whole, gap = ring_costs(quick)
+    print(f"   a tuned ring of {ring} at H = 5: one sector {one * 1e3:.0f} ms, the whole "
+          f"ring {whole * 1e3:.0f} ms ({whole / one:.1f}x), their series agree to "
+          f"{gap:.1e}")
     study = harmonic_precision(packet(), (1, 3, 5, 7) if quick else (1, 3, 5, 7, 9, 15),
                                repeats=1 if quick else 3)
     print(f"   error against H at {SPEED:g} rpm (H, samples, ms, amplitude, energy per "
