@@ -567,10 +567,11 @@ MUTATIONS = (
              "the breakaway guard's gradient of a stuck substructure interface takes +|λ|",
              (MULTI_DOF_DROPPING,)),
     Mutation("slip-rows-right-node-sign", "ledger",
-             "                rows[e, j] -= self.cos_angle[e]",
-             "                rows[e, j] += self.cos_angle[e]",
-             "a blade interface's slip displacement adds its right node's motion: the "
-             "hysteresis loop's area is not the friction loss", (HYSTERESIS,)),
+             "                rows[e, j] -= weight[e]",
+             "                rows[e, j] += weight[e]",
+             "a blade interface's rows add its right node's motion: its slip displacement "
+             "is not the relative one, the hysteresis loop's area not the friction loss",
+             (HYSTERESIS,)),
     # ---- linear: the forced response in the open and stuck limits ------------------------
     Mutation("response-damping-sign", "linear",
              "dynamic = stiffness - omega * omega * mass + 1j * omega * damping",

@@ -44,7 +44,7 @@ from .cycle import (
     harmonics,
     kinetic_peak,
 )
-from .cyclic import CyclicSymmetry, first_sector, symmetry_of
+from .cyclic import first_sector, symmetry_of
 from .extremes import orbit_extremes
 from .krylov import gmres, leading_eigenvalues
 from .neutral import pin_rows, tested
