@@ -192,7 +192,7 @@ def first_guess(balance: Balance, guess, owner: str) -> np.ndarray | None:
     """Where Newton starts: ``guess`` (a ``HarmonicOrbit`` of the same scene's contacts, or
     the coefficients of any H of their contact coordinates z = B q, ``model``), checked;
     None without one (``solve``)."""
-    size, m = balance.shape
+    size = balance.shape[0]
     if guess is None:
         return None
     if isinstance(guess, HarmonicOrbit):
@@ -201,14 +201,15 @@ def first_guess(balance: Balance, guess, owner: str) -> np.ndarray | None:
         values = None if isinstance(guess, str | bytes) else np.asarray(guess, dtype=float)
     except (TypeError, ValueError):
         values = None
-    if values is not None and values.ndim == 2:
-        values = balance.unknowns_of(values)
-    if values is None or values.ndim != 2 or values.shape[1] != m or values.shape[0] % 2 \
-            != 1 or not np.all(np.isfinite(values)):
+    # the scene's contact coordinates (a ring's, or its first sector's)
+    whole = (balance.ring or balance.model).n_contact_coordinates
+    accepted = {whole, balance.model.n_contact_coordinates}
+    if values is None or values.ndim != 2 or values.shape[1] not in accepted or \
+            values.shape[0] % 2 != 1 or not np.all(np.isfinite(values)):
         raise ValueError(f"{owner}.guess must be a HarmonicOrbit of the scene or its "
-                         f"contact coefficients ((2H'+1) × {m} finite numbers), got "
+                         f"contact coefficients ((2H'+1) × {whole} finite numbers), got "
                          f"{guess!r:.120}")
-    return resized(values, (size - 1) // 2)
+    return resized(balance.unknowns_of(values), (size - 1) // 2)
 
 
 def truncated(balance: Balance, harmonics: int) -> Balance:
