@@ -71,3 +71,6 @@ def test_a_guess_by_every_coordinate_starts_the_solve_on_the_directions():
     again = harmonic_balance(patch_packet(speed_rpm=2905.0), HARMONICS,
                              guess=orbit.contact_coefficients, stability=False)
     assert again.converged and again.iterations <= 4
+    directions = balance_of(scene, HARMONICS, 1, samples_for(HARMONICS)).shape[1]
+    with pytest.raises(ValueError, match=r"harmonic_balance\.guess must be .* × 24 finite"):
+        harmonic_balance(scene, HARMONICS, guess=np.zeros((3, directions)))
