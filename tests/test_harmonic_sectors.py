@@ -3,8 +3,8 @@
 (condensed over every coordinate and every contact) evaluated at the sector's orbit and
 solved from scratch, and a linear ring's travelling-wave closed form.
 
-No kernel is compiled here: harmonic balance marches its sliders in numpy-free numba
-code the harmonic-balance tests compile anyway."""
+No kernel is compiled here (harmonic balance's slider march only, which the
+harmonic-balance tests compile anyway)."""
 
 import dataclasses
 import math
