@@ -27,6 +27,7 @@ from shroudnet.steady.harmonic.aft import contact_forces
 from shroudnet.steady.harmonic.balance import balance_of
 from shroudnet.steady.harmonic.fourier import samples_for
 from shroudnet.studies.harmonic_precision import harmonic_precision
+from tests.differences import central_columns
 from tests.laws import CubicSpring, RationalWeakening
 
 EXACT = sn.Adaptive(rtol=1e-12)
@@ -336,23 +337,12 @@ def test_the_contact_forces_jacobian_agrees_with_central_differences(case):
     z = z + 0.05 * np.abs(z).max() * rng.normal(size=z.shape)
     jacobian = contact_forces(balance.model, balance.basis, z, True).jacobian
     step = 1e-7 * np.abs(z).max()
-    differences = np.empty_like(jacobian)
-    for j in range(z.size):
-        moved = np.zeros(z.size)
-        moved[j] = step
-        up, down = (contact_forces(balance.model, balance.basis, z + sign * moved.reshape(
-            z.shape), False).coefficients.ravel() for sign in (1.0, -1.0))
-        differences[:, j] = (up - down) / (2.0 * step)
+    differences = central_columns(lambda moved: contact_forces(
+        balance.model, balance.basis, moved, False).coefficients, z, step)
     assert np.abs(jacobian - differences).max() <= 1e-6 * np.abs(differences).max()
     # and the balance's, I + W ∂λ̂/∂z, against differences of R(z) = z − z_lin + W λ̂(z)
     balance_jacobian = balance.evaluate(z, True)[1]
-    residuals = np.empty_like(balance_jacobian)
-    for j in range(z.size):
-        moved = np.zeros(z.size)
-        moved[j] = step
-        up, down = (balance.evaluate(z + sign * moved.reshape(z.shape), False)[0]
-                    for sign in (1.0, -1.0))
-        residuals[:, j] = (up - down) / (2.0 * step)
+    residuals = central_columns(lambda moved: balance.evaluate(moved, False)[0], z, step)
     assert np.abs(balance_jacobian - residuals).max() <= 1e-6 * np.abs(residuals).max()
 
 

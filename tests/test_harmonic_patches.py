@@ -13,6 +13,7 @@ from shroudnet import harmonic_balance, scenes
 from shroudnet.steady.harmonic.balance import Balance, balance_of, orbit_from, solve
 from shroudnet.steady.harmonic.condensation import condense
 from shroudnet.steady.harmonic.fourier import samples_for
+from tests.differences import central_columns
 
 HARMONICS = 5
 
@@ -54,14 +55,8 @@ def test_the_jacobian_on_the_directions_is_the_residuals_derivative():
     y = balance.unknowns_of(orbit.contact_coefficients)
     y = y + 0.05 * np.abs(y).max() * np.random.default_rng(0).normal(size=y.shape)
     jacobian = balance.evaluate(y, True)[1]
-    step = 1e-7 * np.abs(y).max()
-    differences = np.empty_like(jacobian)
-    for j in range(y.size):
-        moved = np.zeros(y.size)
-        moved[j] = step
-        up, down = (balance.evaluate(y + sign * moved.reshape(y.shape), False)[0]
-                    for sign in (1.0, -1.0))
-        differences[:, j] = (up - down) / (2.0 * step)
+    differences = central_columns(lambda moved: balance.evaluate(moved, False)[0], y,
+                                  1e-7 * np.abs(y).max())
     assert np.abs(jacobian - differences).max() <= 1e-6 * np.abs(differences).max()
 
 
