@@ -711,8 +711,8 @@ MUTATIONS = (
              "alias differently from the whole ring's, its orbit off by the aliasing",
              (HARMONIC_SECTORS,)),
     Mutation("patch-reading-scaled", "harmonic",
-             "    return values[:rank, None] * right[:rank], left[:, :rank]",
-             "    return values[:rank, None] * right[:rank], left[:, :rank] * values[:rank]",
+             "    return values[:, None] * right, left",
+             "    return values[:, None] * right, left * values",
              "the patch's contact coordinates are read from its directions with their "
              "singular values twice: z is not G η", (HARMONIC_PATCHES,)),
     Mutation("patch-jacobian-one-side", "harmonic",

@@ -34,7 +34,7 @@ from .aft import ContactForces, contact_forces
 from .condensation import Condensed, condense
 from .fourier import FourierBasis, extremes, mean_product, samples_for
 from .hill import hill_exponents, multipliers_of
-from .model import ELASTIC, RANK, HarmonicModel, harmonic_model
+from .model import ELASTIC, HarmonicModel, harmonic_model, independent_directions
 from .newton import ITERATIONS, NewtonOutcome, newton
 from .orbit import HarmonicOrbit, energy_per_cycle, kinetic_peak
 from .sectors import condense_sector, first_sector_model, kept_columns, lag_samples, whole_ring
@@ -143,11 +143,10 @@ def contact_span(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
     blades of four modes each: 27 coordinates, at most 8 directions)."""
     if rows.shape[0] <= 1:
         return rows, None
-    left, values, right = np.linalg.svd(rows, full_matrices=False)
-    rank = int(np.sum(values > RANK * values.max(initial=0.0)))
-    if rank == rows.shape[0]:
+    left, values, right = independent_directions(rows)
+    if len(values) == rows.shape[0]:
         return rows, None
-    return values[:rank, None] * right[:rank], left[:, :rank]
+    return values[:, None] * right, left
 
 
 def motion_scale(z: np.ndarray, linear: np.ndarray) -> float:

@@ -174,6 +174,15 @@ def friction_kind(arrays, e: int, owner: str, scene: Scene) -> str:
         "solve the exact orbit with periodic_orbit")
 
 
+def independent_directions(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(U_r, s_r, V_rᵀ): the singular value decomposition rows = U_r diag(s_r) V_rᵀ kept
+    to the r singular values above ``RANK`` of the largest, the directions the rows
+    span."""
+    left, values, right = np.linalg.svd(rows, full_matrices=False)
+    rank = int(np.sum(values > RANK * values.max(initial=0.0)))
+    return left[:, :rank], values[:rank], right[:rank]
+
+
 def harmonic_model(scene: Scene, periods: int, owner: str = "harmonic_balance"
                    ) -> HarmonicModel:
     """The ``HarmonicModel`` of ``scene`` for orbits of ``periods`` periods, or a
@@ -200,12 +209,11 @@ def harmonic_model(scene: Scene, periods: int, owner: str = "harmonic_balance"
     for e in range(a.n_interfaces):
         kind = friction_kind(a, e, owner, scene)
         rows = np.vstack([normal_rows[e], tangent_rows[e], second_rows[e]]) @ to_coordinates
-        left, values, right = np.linalg.svd(rows, full_matrices=False)
-        rank = int(np.sum(values > RANK * values.max(initial=0.0)))
+        left, values, basis = independent_directions(rows)  # basis: B_e, over q
+        rank = len(values)
         if rank == 0:
             continue  # an interface between fixed nodes: nothing moves it
-        basis = right[:rank]  # B_e, over q
-        coordinates = left[:, :rank] * values[:rank]  # rows = coordinates @ basis
+        coordinates = left * values  # rows = coordinates @ basis
         friction = a.friction_laws[e]
         contacts.append(Contact(
             index=e, columns=slice(start, start + rank), normal=coordinates[0],
