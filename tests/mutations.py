@@ -77,11 +77,11 @@ MONODROMY = "tests/test_tangent.py::test_monodromy_agrees_with_differences_of_th
 #: Its cases, each run alone: a mutation of the engine compiles the kernels of those it
 #: runs. Breakaway is seen only where the friction drops as it slips (μ(0⁺) < μ_s, a law of
 #: the tests' own): elsewhere the vector field is continuous there, and its saltation P.
-SLIP_REVERSAL, STICKING, DROPPING, SPRING_BREAKAWAY, DAMPED_IMPACT = (
+SLIP_REVERSAL, STICKING, DROPPING, SPRING_BREAKAWAY, DAMPED_IMPACT, STIFFENING = (
     f"{MONODROMY}[{case}]" for case in ("slip reversal", "stick and breakaway",
                                         "friction dropping at breakaway",
                                         "stick and breakaway on a spring pad",
-                                        "damped impact"))
+                                        "damped impact", "stiffening impact"))
 STUCK_CLUSTER = "tests/test_tangent.py::test_monodromy_of_an_all_stuck_cluster_moves_it_as_one_body"
 APART = ("tests/test_tangent.py::"
          "test_apart_interfaces_switching_at_the_same_instant_multiply_their_saltations")
@@ -395,6 +395,18 @@ MUTATIONS = (
              "a tangent carried by phases forgets where it was last carried: every phase's "
              "e^{JΔt} spans the run from its start, not the phase",
              (EXPONENTIAL, *SHOOTING_EXPONENTIAL)),
+    Mutation("stage-slopes-of-the-last-stage", "tangent",
+             "    kept, forces = g.stage_forces[j], g.work\n",
+             "    kept, forces = g.stage_forces[DP_STAGES - 1], g.work\n",
+             "the tangent's slopes at every kept stage of a step are read from the forces at "
+             "the step's end: the step's derivative is off wherever the slopes vary",
+             (STIFFENING, SLIP_REVERSAL)),
+    Mutation("stage-stretch-rate-left-zero", "tangent",
+             "                g.acceleration[k] = w.stage_v[j, k]\n",
+             "                g.acceleration[k] = w.stage_a[j, k]\n",
+             "a kept stage's stretch rate is read from its acceleration slot, which the "
+             "sliders' first-order stage has zeroed: the slipping direction's turn is lost",
+             (ELASTIC_TANGENT,)),
     # ---- orbits: matrix-free shooting (GMRES and Arnoldi on products) ----------------------
     Mutation("gmres-right-side-unscaled", "orbits",
              "    right[0] = beta\n", "    right[0] = 1.0\n",

@@ -303,6 +303,13 @@ CASES = {
     "damped impact": (pads_scene(Interface(gap=1e-4, angle=1.2,
                                            normal=KelvinVoigt(stiffness=1e7, damping=100.0))),
                       (0.0, 0.0), 30),
+    # knocking on a stiffening pad, N = k δ²: the contact's stiffness grows with the
+    # penetration all through each impact, so every stage of a step has slopes of its own
+    # (at the exponent 1.5 of a Hertz contact, N'' = ∞ at δ = 0, and the differenced runs
+    # are off by 2.8e-5)
+    "stiffening impact": (pads_scene(Interface(gap=1e-4, angle=1.2,
+                                               normal=Hertz(stiffness=1e11, exponent=2.0))),
+                          (0.0, 0.0), 30),
     # pressed against its pad and slipping to and fro: slip reversals
     "slip reversal": (pads_scene(Interface(gap=0.0, angle=0.5, normal=ConstantLoad(force=5.0),
                                            friction=ExponentialFriction(
@@ -354,6 +361,7 @@ def test_monodromy_agrees_with_differences_of_the_trajectory(case):
                       initial=np.split(y, 2)).events.counts
     expected_kinds = {"impact": ("closing", "separation"),
                       "damped impact": ("closing", "separation"),
+                      "stiffening impact": ("closing", "separation"),
                       "slip reversal": ("reversal",),
                       "stick and breakaway": ("sticking", "breakaway"),
                       "stick and breakaway on a spring pad": ("sticking", "breakaway"),

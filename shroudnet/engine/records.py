@@ -121,13 +121,20 @@ NoPropagation = namedtuple("NoPropagation", [])
 #: resolves, its event tolerance (0 for the exact Jacobian): a slipping elastic contact's
 #: stretch direction that relaxes faster is followed at that pace (``slider_tangent``).
 #: ``since[0]``: the time [s] up to which a run that carries its tangent by phase has
-#: carried it (``kernel.tangent.carry_tangent``).
+#: carried it (``kernel.tangent.carry_tangent``). ``stage_forces``: per Runge–Kutta stage
+#: of the step just taken, the interfaces' kinematics and forces its ``derivative`` found
+#: (``STAGE_FORCES`` rows of n_interfaces), which the tangent's slopes at that stage read
+#: (``kernel.tangent.keep_stage``).
 Tangent = namedtuple("Tangent", [
     "matrix", "log_growth", "history", "normal_u", "normal_du", "force_u", "force_du",
     "stages", "candidate", "direction", "resultant_change", "acceleration_change", "rows",
     "imbalance", "q_rate", "guard_normal", "f_minus", "f_plus", "singular", "singular_time",
     "singular_interface", "work", "acceleration", "phase_work", "resolution", "since",
+    "stage_forces",
 ])
+#: The rows of ``Tangent.stage_forces``: penetration, its rate, slip velocity, normal
+#: force, friction, friction along the second tangent, slider speed (``Work``'s fields).
+STAGE_FORCES = 7
 
 #: The tangent of a run that integrates none, in a kernel compiled without the tangent
 #: flow: a matrix with no columns, and nothing else to carry through every call.
@@ -280,7 +287,8 @@ def new_tangent(tangent0, n_interfaces, n_samples, work, resolution=0.0):
                    np.zeros(2 * b),
                    np.zeros(1, dtype=np.int64), np.full(1, np.nan),
                    np.full(1, -1, dtype=np.int64), work, np.zeros(b),
-                   np.zeros((SLOTS, 2 * b, 2 * b)), float(resolution), np.zeros(1))
+                   np.zeros((SLOTS, 2 * b, 2 * b)), float(resolution), np.zeros(1),
+                   np.zeros((DP_STAGES, STAGE_FORCES, m)))
 
 
 def new_state(x0, v0, tangent, n_interfaces, propagation):

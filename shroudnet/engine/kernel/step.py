@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from .forces import derivative, evaluate_guards
     from .generated import ADAPTIVE, EXPONENTIAL, HAS_SLIDERS, HAS_TANGENT
     from .propagation import exact_step
-    from .tangent import stepwise, tangent_step
+    from .tangent import keep_stage, stepwise, tangent_step
 
 
 @njit_step_merged
@@ -100,6 +100,8 @@ def dp5_step(t, h, state, topology, s, w, controls):
             sv[j, i] = w.vt[i]
         set_powers(sp[j], derivative(t + DP_C[j] * h, w.xt, w.vt, modes, topology, s, w,
                                      sa[j]))
+        if HAS_TANGENT and stepwise(state, controls):
+            keep_stage(j, state.tangent, w)
         if HAS_SLIDERS:
             first_order_stage(s, sv, sa, j)
     for i in range(n):
@@ -111,6 +113,8 @@ def dp5_step(t, h, state, topology, s, w, controls):
     w.e_new[PROJECTION] = energy[PROJECTION]
     set_powers(sp[last], evaluate_guards(t + h, w.x_new, w.v_new, modes, topology, s, w,
                                          w.a_end))
+    if HAS_TANGENT and stepwise(state, controls):
+        keep_stage(last, state.tangent, w)
     for i in range(n):
         sa[last, i] = w.a_end[i]
     if HAS_SLIDERS:

@@ -23,7 +23,7 @@ from shroudnet.engine.saltation import (breakaway_normal, contact_normal, reduce
                                         same_surface, slip_normal)
 from shroudnet.engine.slider_tangent import (first_order_field, leave_out_unresolved,
                                              slider_breakaway_normal)
-from shroudnet.engine.tableau import DP_A, DP_C, DP_STAGES, stage_sum
+from shroudnet.engine.tableau import DP_STAGES
 from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
                                       linearised_acceleration, orthonormalise, stage_tangent,
                                       tangent_error, time_scale)
@@ -66,6 +66,12 @@ def linearise(t, x, v, modes, topology, s, g):
     their own (``structures``), so the slopes are kept apart: ∂N/∂δ and ∂N/∂δ̇, then
     ∂f/∂N = μσ and ∂f/∂w (w the slip velocity), the last two in force_u and force_du."""
     derivative(t, x, v, modes, topology, s, g.work, g.acceleration)
+    slopes(modes, s, g)
+
+
+@njit_step
+def slopes(modes, s, g):
+    """``linearise``'s slopes, from the forces already in g.work."""
     w = g.work
     for e in range(len(modes)):
         g.normal_u[e] = 0.0
@@ -201,23 +207,69 @@ def carry_tangent(t, state, topology, s, controls):
         orthonormalise(g, s)
 
 
+@njit_inlined
+def keep_stage(j, g, w):
+    """The interfaces' kinematics and forces that stage j's ``derivative`` just left in
+    w, into g.stage_forces[j] (``records.STAGE_FORCES``): the slopes of the tangent at
+    that stage are read from them (``stage_slopes``) rather than from the forces
+    evaluated again."""
+    kept = g.stage_forces[j]
+    for e in range(kept.shape[1]):
+        kept[0, e] = w.penetration[e]
+        kept[1, e] = w.rate[e]
+        kept[2, e] = w.slip[e]
+        kept[3, e] = w.normal[e]
+        kept[4, e] = w.friction[e]
+        kept[5, e] = w.friction_second[e]
+        kept[6, e] = w.slider_speed[e]
+
+
+@njit_inlined
+def stage_slopes(j, modes, s, g, w):
+    """``linearise`` at stage j of the Dormand–Prince step just taken, from the forces
+    its ``derivative`` found there (``keep_stage``) and the stage's accelerations in w:
+    the same slopes, without evaluating the forces again. An elastic contact's stretch
+    rate, which ``derivative`` leaves in its acceleration slots, is in the stage's
+    velocities (``sliders.first_order_stage``)."""
+    kept, forces = g.stage_forces[j], g.work
+    for e in range(kept.shape[1]):
+        forces.penetration[e] = kept[0, e]
+        forces.rate[e] = kept[1, e]
+        forces.slip[e] = kept[2, e]
+        forces.normal[e] = kept[3, e]
+        forces.friction[e] = kept[4, e]
+        forces.friction_second[e] = kept[5, e]
+        forces.slider_speed[e] = kept[6, e]
+    for i in range(len(g.acceleration)):
+        g.acceleration[i] = w.stage_a[j, i]
+    if HAS_SLIDERS:
+        for e in range(len(s.slider_index)):
+            k = s.slider_index[e]
+            if k >= 0:
+                g.acceleration[k] = w.stage_v[j, k]
+                g.acceleration[k + 1] = w.stage_v[j, k + 1]
+    slopes(modes, s, g)
+
+
 @njit_step
 def tangent_step(t, h, state, topology, s, w, controls):
     """The tangent through the Dormand–Prince step of size h from t just taken (its stages
-    in w), the exact derivative of the step (``tangent``), into state.tangent.candidate;
-    returns its scaled local error (``tangent.tangent_error``). ``commit_tangent`` makes
-    it the tangent."""
+    in w, the forces at each but the first kept by ``keep_stage``), the exact derivative
+    of the step (``tangent``), into state.tangent.candidate; returns its scaled local
+    error (``tangent.tangent_error``). ``commit_tangent`` makes it the tangent."""
     g = state.tangent
     x = g.work.xt
     v = g.work.vt
-    for j in range(DP_STAGES - 1):
-        for i in range(len(x)):
-            x[i] = state.x[i] + h * stage_sum(DP_A[j], w.stage_v, j, i)
-            v[i] = w.stage_v[j, i]
-        linearise(t + DP_C[j] * h, x, v, state.modes, topology, s, g)
+    for i in range(len(x)):  # the first stage: the step's start, whose forces were not kept
+        x[i] = state.x[i]
+        v[i] = w.stage_v[0, i]
+    linearise(t, x, v, state.modes, topology, s, g)
+    stage_tangent(0, h, s, state.modes, topology, g)
+    for j in range(1, DP_STAGES - 1):
+        stage_slopes(j, state.modes, s, g, w)
         stage_tangent(j, h, s, state.modes, topology, g)
     candidate_tangent(h, g)
-    linearise(t + h, w.x_new, w.v_new, state.modes, topology, s, g)
+    stage_slopes(DP_STAGES - 1, state.modes, s, g, w)
     last_stage_tangent(s, state.modes, topology, g)
     if HAS_SLIDERS:
         leave_out_unresolved(state.modes, s, g)
