@@ -120,6 +120,29 @@ def test_the_maps_products_are_columns_of_its_dense_jacobian():
     np.testing.assert_array_equal(stroboscopic(y), np.concatenate([run.x[-1], run.v[-1]]))
 
 
+def test_products_for_a_loose_solve_are_taken_at_a_looser_tolerance_and_still_columns():
+    """A linear solve to a relative residual r takes its products at rtol 1e-3 r, within
+    [the map's rtol, 1e-8]; the exponential method has no rtol to loosen. The loose
+    products are Φ's columns to their own tolerance, against a dense Φ at rtol 1e-12
+    (measured 7.2e-7 of their scale at rtol 1e-8, 8.2e-9 at the map's 1e-10)."""
+    scene = sn.scenes.three_blade_paper(gamma1=3.5)
+    stroboscopic = StroboscopicMap(scene=scene, periods=3, method=sn.Adaptive(rtol=1e-10))
+    assert stroboscopic.for_solve(1e-3).method.rtol == 1e-8  # capped
+    assert stroboscopic.for_solve(1e-6).method.rtol == pytest.approx(1e-9)
+    assert stroboscopic.for_solve(1e-8) is stroboscopic  # never tighter than the map's
+    exponential = StroboscopicMap(scene=modal_pair(), method=Exponential())
+    assert exponential.for_solve(1e-3) is exponential
+    loose = stroboscopic.for_solve(1e-3)
+    assert loose.work is stroboscopic.work  # counted with the map's runs
+    y = sn.periodic_orbit(scene, 3, stability=False).state
+    vectors = np.random.default_rng(4).standard_normal((6, 2))
+    exact = dataclasses.replace(stroboscopic, method=EXACT, event_tolerance=LOCATED)
+    expected = exact.dense(y).jacobian @ vectors
+    columns = loose.products(y, vectors).columns
+    gap = np.abs(columns - expected).max() / np.abs(expected).max()
+    assert gap <= 1e3 * loose.method.rtol, gap
+
+
 def agreement(dense, other):
     """(state gap over the scale, largest gap of the leading multipliers) of two orbits."""
     gap = np.abs(other.state - dense.state) * orbits_module.state_weights(dense.scene,

@@ -606,15 +606,17 @@ class Solver:
             return w * point_map.products(y, z / w).columns[:, 0] - z
         return apply
 
-    def linear_system(self, point, rows):
+    def linear_system(self, point, rows, relative=None):
         """The scaled Jacobian of the branch's equations at ``point``: (A, b) with
-        A = W (M − I) W⁻¹ (a matrix where the point holds M, else its product) and
-        b = W ∂φ/∂p span, and the pins' ``rows``."""
+        A = W (M − I) W⁻¹ (a matrix where the point holds M, else its product: for a
+        solve to the ``relative`` residual, as loose as that allows,
+        ``StroboscopicMap.for_solve``) and b = W ∂φ/∂p span, and the pins' ``rows``."""
         w = self.weights
         rate = w * point.rate * self.span
         if point.dense:
             return w[:, None] * (point.value.columns - np.eye(len(w))) / w[None, :], rate
-        return self.product(point.map, point.value.start), rate
+        point_map = point.map if relative is None else point.map.for_solve(relative)
+        return self.product(point_map, point.value.start), rate
 
     def solve(self, system, rate, rows, border, right, tolerance=None):
         """Δu of [A, b] Δu = right[:N], ``border`` · Δu = right[N], rows (on the state
@@ -698,11 +700,11 @@ class Solver:
                                found)
             last = size
             rows = self.pins(found, value)
-            system, slope = self.linear_system(linear, rows)
+            relative = forcing(size, self.tolerance)
+            system, slope = self.linear_system(linear, rows, relative)
             right = np.concatenate([residual, [constraint], rows @ (u[:-1] - self.weights
                                                                   * target)])
-            change, _ = self.solve(system, slope, rows, normal, right,
-                                   tolerance=forcing(size, self.tolerance))
+            change, _ = self.solve(system, slope, rows, normal, right, tolerance=relative)
             if np.linalg.norm(change) > reach:
                 raise ConvergenceError(f"a corrector step of {np.linalg.norm(change):.3g} "
                                        f"leaves the prediction's reach {reach:.3g}")

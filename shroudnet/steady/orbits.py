@@ -660,7 +660,8 @@ def newton_step(stroboscopic, linear, value, weights, rows, start, residual, tol
     c · (y + Δy) = c · y_start (``rows`` c, ``start``), in the scaled coordinates
     z = w ⊙ y; M the Jacobian of ``linear`` (dense) or M's products at y (``linear`` is
     None or carries no Jacobian): GMRES on the bordered system [[M − I, Cᵀ], [C, 0]],
-    to a residual ``forcing`` ‖F‖. Returns (Δy, the products GMRES took)."""
+    to a residual ``forcing`` ‖F‖, its products as loose as that allows
+    (``StroboscopicMap.for_solve``). Returns (Δy, the products GMRES took)."""
     y = value.start
     size = len(y)
     right = np.concatenate([-weights * (value.end - y), rows @ (start - y)])
@@ -670,14 +671,15 @@ def newton_step(stroboscopic, linear, value, weights, rows, start, residual, tol
         change = least_squares(np.vstack([matrix, scaled]), right)
         return change / weights, 0
     m = len(rows)
+    relative = forcing(residual, tolerance)
+    loose = stroboscopic.for_solve(relative)
 
     def product(u):
         z, pin = u[:size], u[size:]
-        tangent = stroboscopic.products(y, z / weights).columns[:, 0]
+        tangent = loose.products(y, z / weights).columns[:, 0]
         return np.concatenate([weights * tangent - z + scaled.T @ pin, scaled @ z])
 
-    solved = gmres(product, right, tolerance=forcing(residual, tolerance),
-                   most=size + m)
+    solved = gmres(product, right, tolerance=relative, most=size + m)
     return solved.x[:size] / weights, solved.iterations
 
 
