@@ -124,17 +124,21 @@ NoPropagation = namedtuple("NoPropagation", [])
 #: carried it (``kernel.tangent.carry_tangent``). ``stage_forces``: per Runge–Kutta stage
 #: of the step just taken, the interfaces' kinematics and forces its ``derivative`` found
 #: (``STAGE_FORCES`` rows of n_interfaces), which the tangent's slopes at that stage read
-#: (``kernel.tangent.keep_stage``).
+#: (``kernel.tangent.keep_stage``), and last (``START``) those at the step's start: the
+#: step before's end, where ``stage_keys`` (its time, x, ẋ and modes; a row for the step's
+#: end, one for its start) show the state is the same.
 Tangent = namedtuple("Tangent", [
     "matrix", "log_growth", "history", "normal_u", "normal_du", "force_u", "force_du",
     "stages", "candidate", "direction", "resultant_change", "acceleration_change", "rows",
     "imbalance", "q_rate", "guard_normal", "f_minus", "f_plus", "singular", "singular_time",
     "singular_interface", "work", "acceleration", "phase_work", "resolution", "since",
-    "stage_forces",
+    "stage_forces", "stage_keys",
 ])
 #: The rows of ``Tangent.stage_forces``: penetration, its rate, slip velocity, normal
 #: force, friction, friction along the second tangent, slider speed (``Work``'s fields).
 STAGE_FORCES = 7
+#: The slot of ``Tangent.stage_forces`` that holds the forces at a step's start.
+START = DP_STAGES
 
 #: The tangent of a run that integrates none, in a kernel compiled without the tangent
 #: flow: a matrix with no columns, and nothing else to carry through every call.
@@ -288,7 +292,8 @@ def new_tangent(tangent0, n_interfaces, n_samples, work, resolution=0.0):
                    np.zeros(1, dtype=np.int64), np.full(1, np.nan),
                    np.full(1, -1, dtype=np.int64), work, np.zeros(b),
                    np.zeros((SLOTS, 2 * b, 2 * b)), float(resolution), np.zeros(1),
-                   np.zeros((DP_STAGES, STAGE_FORCES, m)))
+                   np.zeros((DP_STAGES + 1, STAGE_FORCES, m)),
+                   np.full((2, 1 + 2 * b + m), np.nan))
 
 
 def new_state(x0, v0, tangent, n_interfaces, propagation):
@@ -341,13 +346,15 @@ def new_propagation(s, arrays, step: float) -> Propagation:
                        np.zeros(n), np.zeros(n), np.zeros(n))
 
 
-def allocate(s, x0, v0, tangent0, controls, flow, propagation=None):
+def allocate(s, x0, v0, tangent0, controls, flow, propagation=None, times=None):
     """Every record a driver works in, allocated once, here in Python, so that the
     compiled loop allocates nothing and runs without reference counting: (state, work
     arrays, the switches' storage, event log, output), with the tangent from ``tangent0``
     (2 n_nodes × k) for a kernel with the tangent ``flow``, else a ``NoTangent``, and the
     ``propagation`` of a run that propagates its phases exactly (else a
-    ``NoPropagation``)."""
+    ``NoPropagation``). The output lists its sample times (``advance.sample_time``):
+    ``times`` (``controls.n_samples`` of them, the first t0), else the grid
+    t0 + k·sample_step, computed as the loop computed it."""
     n_nodes, n_interfaces, n_prescribed = len(s.mass), len(s.gap), len(s.motion_amplitude)
     tangent = plain(new_tangent)(
         tangent0, n_interfaces, controls.n_samples,
@@ -360,7 +367,14 @@ def allocate(s, x0, v0, tangent0, controls, flow, propagation=None):
             plain(new_work)(n_nodes, n_interfaces, n_prescribed),
             plain(new_switching)(n_nodes, n_interfaces, square_size(s)),
             new_events(controls.event_capacity, controls.zeno_events),
-            new_output(controls.n_samples, n_nodes, n_interfaces))
+            _listing(new_output(controls.n_samples, n_nodes, n_interfaces), controls, times))
+
+
+def _listing(output, controls, times):
+    """``output`` with its sample times listed (``allocate``)."""
+    output.t[:] = controls.t0 + np.arange(controls.n_samples) * controls.sample_step \
+        if times is None else times
+    return output
 
 
 def square_size(s) -> int:

@@ -15,15 +15,17 @@ The tangent is carried through each Dormand–Prince step by differentiating the
 itself (internal differentiation): stage j's tangent is K_j = J_j (Φ + h Σ_l a_jl K_l),
 and Φ ← Φ + h Σ_j b_j K_j, with J_j at the stage's state. Φ is then the exact derivative
 of the computed trajectory, to rounding. J_j's slopes are read from the forces the
-state's own step found at that stage (``kernel.tangent.keep_stage``), every stage but the
-step's start, rather than from the forces evaluated again: the same Φ to the last bit, and
-on the six eight-mode blades with 3-D elastic faces a period with one tangent column in
-0.078 s instead of 0.106 s (``front.bench``, section 11).
+state's own step found at that stage (``kernel.tangent.keep_stage``; at the step's start,
+those of the step before's end where it ended at this very state), rather than from the
+forces evaluated again: the same Φ to the last bit, and on the six eight-mode blades with
+3-D elastic faces a period with one tangent column in 0.066 s instead of 0.106 s
+(``front.bench``, section 11).
 
 The tangent's own local error, from the embedded pair as the state's, takes part in
 accepting a step: where the state stands still (a blade at rest, a stick phase) its error
-alone would let the steps grow past what the tangent's accuracy allows. The rows of a slipping elastic contact's stretch too short for
-the run to resolve its direction take no part (``slider_tangent``).
+alone would let the steps grow past what the tangent's accuracy allows. The rows of a
+slipping elastic contact's stretch too short for the run to resolve its direction take no
+part (``slider_tangent``).
 
 Where the vector field is linear in the state between switches (substructures whose laws
 all have ``constant_slopes``: ``SceneArrays.linear_phases``), J is the same all through a

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from .forces import derivative, evaluate_guards
     from .generated import ADAPTIVE, EXPONENTIAL, HAS_SLIDERS, HAS_TANGENT
     from .propagation import exact_step
-    from .tangent import keep_stage, stepwise, tangent_step
+    from .tangent import keep_end, keep_stage, keep_start, stepwise, tangent_step
 
 
 @njit_step_merged
@@ -88,6 +88,8 @@ def dp5_step(t, h, state, topology, s, w, controls):
     n = len(x)
     last = DP_STAGES - 1
     sv, sa, sp = w.stage_v, w.stage_a, w.stage_p
+    if HAS_TANGENT and stepwise(state, controls):
+        keep_start(state.tangent)
     for i in range(n):
         sv[0, i] = v[i]
         sa[0, i] = w.a_start[i]
@@ -115,6 +117,7 @@ def dp5_step(t, h, state, topology, s, w, controls):
                                          w.a_end))
     if HAS_TANGENT and stepwise(state, controls):
         keep_stage(last, state.tangent, w)
+        keep_end(t + h, state.tangent, w, modes)
     for i in range(n):
         sa[last, i] = w.a_end[i]
     if HAS_SLIDERS:
