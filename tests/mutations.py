@@ -396,7 +396,7 @@ MUTATIONS = (
              "e^{JΔt} spans the run from its start, not the phase",
              (EXPONENTIAL, *SHOOTING_EXPONENTIAL)),
     Mutation("stage-slopes-of-the-last-stage", "tangent",
-             "    kept, forces = g.stage_forces[j], g.work\n",
+             "    kept, forces = g.stage_forces[slot], g.work\n",
              "    kept, forces = g.stage_forces[DP_STAGES - 1], g.work\n",
              "the tangent's slopes at every kept stage of a step are read from the forces at "
              "the step's end: the step's derivative is off wherever the slopes vary",
@@ -451,8 +451,8 @@ MUTATIONS = (
              "a smooth extremum is read at the interpolated time, not at the vertex of the "
              "parabola through the state there", (EXTREMES,)),
     Mutation("extreme-at-a-switch-taken-smooth", "orbits",
-             "    if not np.any((switches >= t[k]) & (switches <= t[k + 1])):",
-             "    if True:",
+             "    if not _has_switch(t, time, switches):\n        h = t[k + 1] - t[k]",
+             "    if True:\n        h = t[k + 1] - t[k]",
              "an extremum at a switch (a friction force reversing) is read off the parabola "
              "of one side", (EXTREMES,)),
     Mutation("extreme-bracket-left-wide", "orbits",

@@ -122,17 +122,17 @@ def test_the_maps_products_are_columns_of_its_dense_jacobian():
 
 def test_products_for_a_loose_solve_are_taken_at_a_looser_tolerance_and_still_columns():
     """A linear solve to a relative residual r takes its products at rtol 1e-3 r, within
-    [the map's rtol, 1e-8]; the exponential method has no rtol to loosen. The loose
+    [the map's rtol, 1e-7]; the exponential method has no rtol to loosen. The loose
     products are Φ's columns to their own tolerance, against a dense Φ at rtol 1e-12
     (measured 7.2e-7 of their scale at rtol 1e-8, 8.2e-9 at the map's 1e-10)."""
     scene = sn.scenes.three_blade_paper(gamma1=3.5)
     stroboscopic = StroboscopicMap(scene=scene, periods=3, method=sn.Adaptive(rtol=1e-10))
-    assert stroboscopic.for_solve(1e-3).method.rtol == 1e-8  # capped
+    assert stroboscopic.for_solve(1e-2).method.rtol == 1e-7  # capped
     assert stroboscopic.for_solve(1e-6).method.rtol == pytest.approx(1e-9)
     assert stroboscopic.for_solve(1e-8) is stroboscopic  # never tighter than the map's
     exponential = StroboscopicMap(scene=modal_pair(), method=Exponential())
     assert exponential.for_solve(1e-3) is exponential
-    loose = stroboscopic.for_solve(1e-3)
+    loose = stroboscopic.for_solve(1e-5)  # rtol 1e-8
     assert loose.work is stroboscopic.work  # counted with the map's runs
     y = sn.periodic_orbit(scene, 3, stability=False).state
     vectors = np.random.default_rng(4).standard_normal((6, 2))

@@ -133,3 +133,22 @@ def reduce_sample(out, k, t, x, v, modes, energy, w):
 #: Sample k of a run: a row of its ``records.Output``, or reduced into its
 #: ``records.Reduction``.
 record = by_record("record", "out", Reduction, record_row, reduce_sample)
+
+
+@njit_inlined
+def listed_time(out, k, controls):
+    """Sample k's time [s], as the run's ``records.Output`` lists it (``records.allocate``:
+    the grid t0 + k·sample_step, or times of the caller's own)."""
+    return out.t[k]
+
+
+@njit_inlined
+def grid_sample_time(out, k, controls):
+    """Sample k's time [s] on the grid t0 + k·sample_step (a reduced run lists none)."""
+    return controls.t0 + k * controls.sample_step
+
+
+#: Sample k's time [s]: listed in the run's ``records.Output``, or on the grid of a run
+#: reduced into a ``records.Reduction``.
+sample_time = by_record("sample_time", "out", Reduction, listed_time,
+                        grid_sample_time)

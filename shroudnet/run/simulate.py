@@ -156,7 +156,8 @@ def integrate(scene: Scene, periods: int, *,
               samples_per_period: int = 100, event_tolerance: float = EVENT_TOLERANCE,
               zeno: ZenoGuard = ZenoGuard(), initial=None, event_capacity: int = 1_000_000,
               tangent: np.ndarray | None = None,
-              orthonormalise: bool = False, until: float | None = None) -> Integration:
+              orthonormalise: bool = False, until: float | None = None,
+              times: np.ndarray | None = None) -> Integration:
     """``simulate``'s checks and run, returning the kernel's raw record: the engine's own,
     whose ``initial``, record and tangent are by its coordinates (``model.lowering``), not the
     nodes' degrees of freedom that ``simulate`` takes and gives.
@@ -170,7 +171,9 @@ def integrate(scene: Scene, periods: int, *,
     re-orthonormalises them after every step (by phases: at every switch and sample). With
     ``until`` [s] in (0, periods T_e], the run stops there instead, with two samples: the
     start and the state at ``until`` (the steps before it are those of the whole run; a
-    fixed-grid method's last step ends at ``until``).
+    fixed-grid method's last step ends at ``until``). With ``times`` [s] (increasing, in
+    (0, periods T_e]; adaptive steps), it samples at 0 and at those times instead of the
+    grid, each from the dense output of the step that holds it, and stops at the last.
     Arguments as ``simulate``; raises what it raises.
     """
     check_instance("simulate", "scene", scene, Scene, expected="a shroudnet.Scene")
@@ -219,11 +222,16 @@ def integrate(scene: Scene, periods: int, *,
     controls, method, zeno_window = run_controls(
         scene, periods, method, samples_per_period, event_tolerance, zeno, event_capacity,
         orthonormalise=orthonormalise, until=until)
+    listed = None
+    if times is not None:
+        listed = _listed_times(times, method, until, periods * period)
+        controls = controls._replace(n_samples=len(listed),
+                                     sample_step=listed[-1] / (len(listed) - 1))
     propagation = new_propagation(arrays, scene.arrays, controls.step) \
         if isinstance(method, Exponential) else None
     state, work, switching, events, output = allocate(arrays, x0, v0, tangent0, controls,
                                                       flow=tangent is not None,
-                                                      propagation=propagation)
+                                                      propagation=propagation, times=listed)
     arguments = (state, arrays, work, switching, events, controls, output)
     driver, compile_seconds = compiled(kernel.run, arguments)
     run = finish(driver(*arguments), output, events, state.tangent)
@@ -237,6 +245,21 @@ def integrate(scene: Scene, periods: int, *,
     return Integration(run=run, method=method, event_tolerance=event_tolerance,
                        zeno_window=zeno_window, compile_seconds=compile_seconds,
                        stretches=stretches)
+
+
+def _listed_times(times, method, until, span: float) -> np.ndarray:
+    """0 and ``times`` [s], checked (``integrate``): increasing, in (0, ``span``], and
+    sampled by adaptive steps' dense output."""
+    if not isinstance(method, Adaptive) or until is not None:
+        raise ValueError("integrate.times: sample times of the caller's own are taken by "
+                         "adaptive steps (method=Adaptive(...) or Accuracy(...)), without "
+                         "until")
+    listed = np.asarray(times, dtype=float).ravel()
+    if not len(listed) or not np.all(np.isfinite(listed)) or listed[0] <= 0.0 \
+            or listed[-1] > span or np.any(np.diff(listed) <= 0.0):
+        raise ValueError(f"integrate.times must be increasing times in (0, {span:.9g}] s "
+                         f"(the run's periods), got {times!r}")
+    return np.concatenate([[0.0], listed])
 
 
 def run_controls(scene: Scene, periods: int, method: FixedStep | Adaptive | Exponential,

@@ -763,7 +763,8 @@ def orbit_at(scene, periods, y, value, residual, scale, iterations, stroboscopic
     run = stroboscopic.sampled(y, samples_per_period)
     state = stroboscopic.state_function(y)
     extremes = orbit_extremes(scene, run.t, run.x, run.v, run.events.time, state,
-                              responses=None if cyclic is None else first_sector(cyclic))
+                              responses=None if cyclic is None else first_sector(cyclic),
+                              states=stroboscopic.states_at(y))
     maximum, minimum = extremes.maximum, extremes.minimum
     if cyclic is not None:
         maximum, minimum = np.tile(maximum, cyclic.sectors), np.tile(minimum, cyclic.sectors)

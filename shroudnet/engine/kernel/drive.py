@@ -14,7 +14,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shroudnet.engine.advance import is_finite, keep_guards, record, take_step
+from shroudnet.engine.advance import (is_finite, keep_guards, record, sample_time,
+                                      take_step)
 from shroudnet.engine.codes import FINISHED, NOT_FINITE, STALLED, STEP_TOO_SMALL
 from shroudnet.engine.compiled import njit_inlined, njit_step_callable, njit_step_merged
 from shroudnet.engine.controller import (accepted, next_step, retry_step, stalling,
@@ -49,7 +50,7 @@ def advance(t, h, k, sample, steps, state, topology, s, w, controls, out):
     """
     error = 0.0
     tiny = 0
-    t_final = last_sample(controls)
+    t_final = sample_time(out, controls.n_samples - 1, controls)
     while sample < controls.n_samples:
         if ADAPTIVE:
             last = h >= t_final - t

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shroudnet.engine.advance import dense_state, move_state, record
+from shroudnet.engine.advance import dense_state, move_state, record, sample_time
 from shroudnet.engine.compiled import njit_step_merged
 from shroudnet.engine.detect import any_crossed, kinematic_guards
 from shroudnet.engine.locate import bracket_after, bracket_start, next_trial
@@ -97,7 +97,7 @@ def record_dense(sample, t, t_to, h, state, topology, s, w, controls, out):
     Returns the index of the next sample. Overwrites the forces in w (``sample_forces``).
     """
     while sample < controls.n_samples:
-        time = controls.t0 + sample * controls.sample_step
+        time = sample_time(out, sample, controls)
         if time > t_to:
             break
         dense_state((time - t) / h, h, state, w, w.xt, w.vt, w.e_sample)
