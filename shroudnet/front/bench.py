@@ -52,9 +52,11 @@
     mode's bound), its switches and the share of it in linear phases; then one orbit from
     a settled guess by dense and by Krylov shooting, with and without its stability, each
     broken down by kind of run (``ShootingWork``: state, products, dense, outputs), with
-    the GMRES and Arnoldi products; and the six eight-mode blades with rigid stick (96
-    state variables, every phase linear) by those and by the exponential method, dense
-    and Krylov. The 24-blade ring's full orbit at default settings;
+    the GMRES and Arnoldi products; the pair of four-mode blades whose faces are 9-point
+    patches (``scenes.faced_group``, 34 state variables) alike; and the six eight-mode
+    blades with rigid stick (96 state variables, every phase linear) by those and by the
+    exponential method, dense and Krylov. The 24-blade ring's full orbit at default
+    settings;
     with ``--fe-curve``, the six blades' forced response over 2400–3800 rpm.
 
 Figures are medians of several runs after one warm-up run (which also compiles or loads
@@ -92,7 +94,8 @@ from ..references.blades import solve_ivp_baseline
 from ..run.methods import EVENT_TOLERANCE, TRANSIENT, Adaptive, Exponential, FixedStep
 from ..run.simulate import integrate, simulate, start_coordinates
 from ..run.simulation import SimulationError
-from ..scenes import beam_pair, bladed_disc_24, modal_packet, three_blade_paper
+from ..scenes import (beam_pair, bladed_disc_24, faced_group, modal_packet,
+                      three_blade_paper)
 from ..steady.continuation import continuation
 from ..steady.orbits import periodic_orbit, state_weights
 from ..steady.stroboscopic import StroboscopicMap
@@ -1111,6 +1114,8 @@ def fe_section(sizes: Sizes) -> None:
         cases += [("packet of examples/fe_packet_elastic.py, three-mode blades",
                    modal_packet(speed_rpm=3000.0, **ELASTIC_PACKET)),
                   ("packet of six eight-mode blades, 3-D elastic faces", fe_packet()),
+                  ("pair of four-mode blades, faces of 9-point patches",
+                   faced_group(blades=2, face_points=9, speed_rpm=3000.0)),
                   ("packet of six eight-mode blades, rigid stick (linear phases)",
                    fe_packet(elastic=False))]
     for label, scene in cases:

@@ -84,13 +84,13 @@ ARNOLDI_TOLERANCE = 1e-11
 #: The jacobian= choices, and the state size from which "krylov" is the default on a
 #: scene of substructures whose phases are not all linear (``front.bench``, section 11,
 #: one core, an orbit with its stability from a settled guess). On the six eight-mode
-#: blades with 3-D elastic faces (106 state variables) a run of all 106 columns took 69
-#: times one column's, GMRES 17 products and Arnoldi 45: 4.4 s by Krylov against 10.0 s
-#: dense. On the six three-mode blades with those faces (46), all columns took 19 times
-#: one: 1.1 s by Krylov against 0.9 s dense; on a pair of eight-mode blades (34), 0.65 s
-#: against 0.70 s. Where every phase is linear the tangent rides each phase's exponential
-#: and a column costs next to nothing (96 columns 0.06 s against one 0.04 s): dense is 4.5
-#: times faster there (0.68 s against 3.0 s), and the default.
+#: blades with 3-D elastic faces (106 state variables) a run of all 106 columns took 71
+#: times one column's, GMRES 17 products and Arnoldi 45: 3.6 s by Krylov against 9.1 s
+#: dense. On the six three-mode blades with those faces (46), all columns took 21 times
+#: one: 0.91 s by Krylov against 0.73 s dense; on a pair of eight-mode blades (34), 0.58 s
+#: against 0.69 s. Where every phase is linear the tangent rides each phase's exponential
+#: and a column costs next to nothing (96 columns 0.06 s against one 0.04 s): dense is 6
+#: times faster there (0.41 s against 2.6 s), and the default.
 JACOBIANS = ("dense", "krylov")
 KRYLOV_SIZE = 80
 
