@@ -270,7 +270,7 @@ def test_the_footprint_is_what_a_run_allocates_to_one_per_cent(n, columns):
                   excitation=Excitation(engine_order=1, amplitudes=(0.0, 1.0),
                                         phases=[0.0] * n))
     controls = SimpleNamespace(n_samples=1001, event_capacity=5000, zeno_events=50,
-                               event_tolerance=1e-10)
+                               event_tolerance=1e-10, t0=0.0, sample_step=1e-4)
     tangent = np.zeros((2 * n, columns or 0))
     allocated = allocated_bytes(allocate(kernel_scene(scene), np.zeros(n), np.zeros(n), tangent,
                                          controls, flow=columns is not None))

@@ -121,12 +121,9 @@ NoPropagation = namedtuple("NoPropagation", [])
 #: resolves, its event tolerance (0 for the exact Jacobian): a slipping elastic contact's
 #: stretch direction that relaxes faster is followed at that pace (``slider_tangent``).
 #: ``since[0]``: the time [s] up to which a run that carries its tangent by phase has
-#: carried it (``kernel.tangent.carry_tangent``). ``stage_forces``: per Runge–Kutta stage
-#: of the step just taken, the interfaces' kinematics and forces its ``derivative`` found
-#: (``STAGE_FORCES`` rows of n_interfaces), which the tangent's slopes at that stage read
-#: (``kernel.tangent.keep_stage``), and last (``START``) those at the step's start: the
-#: step before's end, where ``stage_keys`` (its time, x, ẋ and modes; a row for the step's
-#: end, one for its start) show the state is the same.
+#: carried it (``kernel.tangent.carry_tangent``). ``stage_forces`` and ``stage_keys``: the
+#: forces each stage of the step just taken found, and at its start (``START``) those of
+#: the step before's end, with the states they were found at (``stage_forces``).
 Tangent = namedtuple("Tangent", [
     "matrix", "log_growth", "history", "normal_u", "normal_du", "force_u", "force_du",
     "stages", "candidate", "direction", "resultant_change", "acceleration_change", "rows",
@@ -363,18 +360,13 @@ def allocate(s, x0, v0, tangent0, controls, flow, propagation=None, times=None):
         else NoTangent(tangent0.copy())
     if propagation is None:
         propagation = NoPropagation()
+    output = new_output(controls.n_samples, n_nodes, n_interfaces)
+    output.t[:] = controls.t0 + np.arange(controls.n_samples) * controls.sample_step \
+        if times is None else times
     return (new_state(x0, v0, tangent, n_interfaces, propagation),
             plain(new_work)(n_nodes, n_interfaces, n_prescribed),
             plain(new_switching)(n_nodes, n_interfaces, square_size(s)),
-            new_events(controls.event_capacity, controls.zeno_events),
-            _listing(new_output(controls.n_samples, n_nodes, n_interfaces), controls, times))
-
-
-def _listing(output, controls, times):
-    """``output`` with its sample times listed (``allocate``)."""
-    output.t[:] = controls.t0 + np.arange(controls.n_samples) * controls.sample_step \
-        if times is None else times
-    return output
+            new_events(controls.event_capacity, controls.zeno_events), output)
 
 
 def square_size(s) -> int:

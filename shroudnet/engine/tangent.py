@@ -15,7 +15,7 @@ The tangent is carried through each Dormand–Prince step by differentiating the
 itself (internal differentiation): stage j's tangent is K_j = J_j (Φ + h Σ_l a_jl K_l),
 and Φ ← Φ + h Σ_j b_j K_j, with J_j at the stage's state. Φ is then the exact derivative
 of the computed trajectory, to rounding. J_j's slopes are read from the forces the
-state's own step found at that stage (``kernel.tangent.keep_stage``; at the step's start,
+state's own step found at that stage (``stage_forces``; at the step's start,
 those of the step before's end where it ended at this very state), rather than from the
 forces evaluated again: the same Φ to the last bit, and on the six eight-mode blades with
 3-D elastic faces a period with one tangent column in 0.066 s instead of 0.106 s

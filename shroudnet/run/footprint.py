@@ -13,9 +13,9 @@ matrices     8 (3 m N + 3 q²): the stick clusters' bookkeeping, an m × N and a
              substructures max(N, m))
 vectors      8 (35 N + 24 m): the state, the Runge–Kutta stages and the per-node and
              per-interface work vectors (a bound; the exact count is a few per cent less)
-tangent      8 (28 N² + 32 N k + S k) + 8 (35 N + 24 m), with the tangent flow only: the
-             matrix exponentials' slots, the tangent's stages and history, a second set of
-             work vectors
+tangent      8 (28 N² + 32 N k + S k + 4 N + 58 m) + 8 (35 N + 24 m), with the tangent
+             flow only: the matrix exponentials' slots, the tangent's stages and history,
+             the forces kept at each stage and their keys, a second set of work vectors
 ===========  ==============================================================================
 
 The matrices grow as N² and outweigh the rest from a few thousand blades on: a ring of
@@ -81,7 +81,8 @@ def run_footprint(nodes: int, interfaces: int, samples: int, event_capacity: int
     tangent = 0
     if tangent_columns is not None:
         k = check_int(owner, "tangent_columns", tangent_columns, low=0)
-        tangent = WORD * (4 * TANGENT_SLOTS * n * n + 32 * n * k + s * k) + vectors
+        tangent = WORD * (4 * TANGENT_SLOTS * n * n + 32 * n * k + s * k + 4 * n
+                          + 58 * m) + vectors
     return Footprint(record=record, matrices=WORD * (3 * m * n + 3 * q * q), vectors=vectors,
                      tangent=tangent)
 

@@ -17,13 +17,14 @@ from shroudnet.engine.compiled import njit_step, njit_step_merged
 from shroudnet.engine.controller import accepted, scaled_error
 from shroudnet.engine.propagation import load_state, propagate, store_state
 from shroudnet.engine.sliders import first_order_rk4_end, first_order_rk4_stage, first_order_stage
+from shroudnet.engine.stage_forces import keep_end, keep_stage, keep_start
 from shroudnet.engine.tableau import DP_A, DP_B, DP_C, DP_STAGES, stage_sum
 
 if TYPE_CHECKING:
     from .forces import derivative, evaluate_guards
     from .generated import ADAPTIVE, EXPONENTIAL, HAS_SLIDERS, HAS_TANGENT
     from .propagation import exact_step
-    from .tangent import keep_end, keep_stage, keep_start, stepwise, tangent_step
+    from .tangent import stepwise, tangent_step
 
 
 @njit_step_merged

@@ -17,13 +17,13 @@ from shroudnet.engine.compiled import (njit_inlined, njit_step, njit_step_callab
 from shroudnet.engine.detect import crossed, guard_crossed
 from shroudnet.engine.dynamics import static_friction
 from shroudnet.engine.exponential import exponential
-from shroudnet.engine.records import (START, new_switching, new_tangent, new_work, plain,
-                                      square_size)
+from shroudnet.engine.records import new_switching, new_tangent, new_work, plain, square_size
 from shroudnet.engine.regroup import regroup
 from shroudnet.engine.saltation import (breakaway_normal, contact_normal, reduce_to_clusters,
                                         same_surface, slip_normal)
 from shroudnet.engine.slider_tangent import (first_order_field, leave_out_unresolved,
                                              slider_breakaway_normal)
+from shroudnet.engine.stage_forces import START, start_kept
 from shroudnet.engine.tableau import DP_STAGES
 from shroudnet.engine.tangent import (candidate_tangent, last_stage_tangent,
                                       linearised_acceleration, orthonormalise, stage_tangent,
@@ -209,69 +209,9 @@ def carry_tangent(t, state, topology, s, controls):
 
 
 @njit_inlined
-def keep_stage(j, g, w):
-    """The interfaces' kinematics and forces that stage j's ``derivative`` just left in
-    w, into g.stage_forces[j] (``records.STAGE_FORCES``): the slopes of the tangent at
-    that stage are read from them (``stage_slopes``) rather than from the forces
-    evaluated again."""
-    kept = g.stage_forces[j]
-    for e in range(kept.shape[1]):
-        kept[0, e] = w.penetration[e]
-        kept[1, e] = w.rate[e]
-        kept[2, e] = w.slip[e]
-        kept[3, e] = w.normal[e]
-        kept[4, e] = w.friction[e]
-        kept[5, e] = w.friction_second[e]
-        kept[6, e] = w.slider_speed[e]
-
-
-@njit_inlined
-def keep_end(t, g, w, modes):
-    """The key of the forces kept at the end of the step just taken (``keep_stage``): its
-    time t, state and modes, into g.stage_keys[0]."""
-    key = g.stage_keys[0]
-    n = len(w.x_new)
-    key[0] = t
-    for i in range(n):
-        key[1 + i] = w.x_new[i]
-        key[1 + n + i] = w.v_new[i]
-    for e in range(len(modes)):
-        key[1 + 2 * n + e] = modes[e]
-
-
-@njit_inlined
-def keep_start(g):
-    """Before a step: the forces kept at the end of the step before, with their key, become
-    the start's (slot ``records.START``, g.stage_keys[1])."""
-    for r in range(g.stage_forces.shape[1]):
-        for e in range(g.stage_forces.shape[2]):
-            g.stage_forces[START, r, e] = g.stage_forces[START - 1, r, e]
-    for c in range(g.stage_keys.shape[1]):
-        g.stage_keys[1, c] = g.stage_keys[0, c]
-
-
-@njit_inlined
-def start_kept(t, state, g):
-    """Whether the forces in the start's slot were found at this very state: time, x, ẋ
-    and modes the same to the last bit (after a switch, a rejected step or a state read
-    off a dense output, they are not)."""
-    key = g.stage_keys[1]
-    n = len(state.x)
-    if key[0] != t:
-        return False
-    for i in range(n):
-        if key[1 + i] != state.x[i] or key[1 + n + i] != state.v[i]:
-            return False
-    for e in range(len(state.modes)):
-        if key[1 + 2 * n + e] != state.modes[e]:
-            return False
-    return True
-
-
-@njit_inlined
 def stage_slopes(slot, j, modes, s, g, w):
     """``linearise`` at stage j of the Dormand–Prince step just taken, from the forces
-    its ``derivative`` found there (kept in g.stage_forces[slot]: ``keep_stage``) and the
+    its ``derivative`` found there (kept in g.stage_forces[slot]: ``stage_forces``) and the
     stage's accelerations in w: the same slopes, without evaluating the forces again. An
     elastic contact's stretch rate, which ``derivative`` leaves in its acceleration slots,
     is in the stage's velocities (``sliders.first_order_stage``)."""
@@ -298,8 +238,7 @@ def stage_slopes(slot, j, modes, s, g, w):
 @njit_step
 def tangent_step(t, h, state, topology, s, w, controls):
     """The tangent through the Dormand–Prince step of size h from t just taken (its stages
-    in w, the forces at each kept by ``keep_stage``, at its start by the step before where
-    that ended at this very state: ``start_kept``), the exact derivative of the step
+    in w, the forces at each kept: ``stage_forces``), the exact derivative of the step
     (``tangent``), into state.tangent.candidate; returns its scaled local error
     (``tangent.tangent_error``). ``commit_tangent`` makes it the tangent."""
     g = state.tangent
