@@ -19,8 +19,8 @@ the maximum of −r.
 Every refinement of an orbit advances together: the instants they wait on are read from
 one run of the orbit, sampled there from the dense output of the step that holds each
 (``stroboscopic.StroboscopicMap.states_at``; a run to one instant otherwise, its last
-step cut there). On the six eight-mode blades with 3-D elastic faces the 24 extremes
-took 81 runs one instant at a time, 0.74 s, and take 6 runs in all this way.
+step cut there). On the six eight-mode blades with 3-D elastic faces the extremes of 24
+responses took 81 runs one instant at a time, 0.74 s, and take 6 runs in all this way.
 """
 
 from __future__ import annotations
