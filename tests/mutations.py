@@ -451,7 +451,7 @@ MUTATIONS = (
              "a smooth extremum is read at the interpolated time, not at the vertex of the "
              "parabola through the state there", (EXTREMES,)),
     Mutation("extreme-at-a-switch-taken-smooth", "orbits",
-             "    if not _has_switch(t, time, switches):\n        h = t[k + 1] - t[k]",
+             "    if not _has_switch(t, k, switches):\n        h = t[k + 1] - t[k]",
              "    if True:\n        h = t[k + 1] - t[k]",
              "an extremum at a switch (a friction force reversing) is read off the parabola "
              "of one side", (EXTREMES,)),

@@ -81,9 +81,8 @@ def orbit_extremes(scene, t, x, v, switches, state, *, responses=None,
         time_of_minimum=np.array([time for _, time in best[-1.0]]))
 
 
-def _has_switch(t, time, switches) -> bool:
-    """Whether a switch lies in the sample interval that holds ``time``."""
-    k = _interval(t, time)
+def _has_switch(t, k, switches) -> bool:
+    """Whether a switch lies in the sample interval [t_k, t_k+1]."""
     return bool(np.any((switches >= t[k]) & (switches <= t[k + 1])))
 
 
@@ -168,7 +167,7 @@ def _refinement(scene, time, row, sign, t, r, rate, switches):
     the Illinois method on the states at its trial times, from the Hermite estimate
     ``time``."""
     k = _interval(t, time)
-    if not _has_switch(t, time, switches):
+    if not _has_switch(t, k, switches):
         h = t[k + 1] - t[k]
         curvature = sign * _hermite_slopes(r[k], r[k + 1], h * rate[k], h * rate[k + 1],
                                            (time - t[k]) / h)[1] / (h * h)
