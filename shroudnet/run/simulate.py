@@ -254,11 +254,14 @@ def _listed_times(times, method, until, span: float) -> np.ndarray:
         raise ValueError("integrate.times: sample times of the caller's own are taken by "
                          "adaptive steps (method=Adaptive(...) or Accuracy(...)), without "
                          "until")
-    listed = np.asarray(times, dtype=float).ravel()
-    if not len(listed) or not np.all(np.isfinite(listed)) or listed[0] <= 0.0 \
-            or listed[-1] > span or np.any(np.diff(listed) <= 0.0):
-        raise ValueError(f"integrate.times must be increasing times in (0, {span:.9g}] s "
-                         f"(the run's periods), got {times!r}")
+    try:
+        listed = np.asarray(times, dtype=float)
+    except (TypeError, ValueError):
+        listed = np.zeros((0, 0))
+    if listed.ndim != 1 or not len(listed) or not np.all(np.isfinite(listed)) \
+            or listed[0] <= 0.0 or listed[-1] > span or np.any(np.diff(listed) <= 0.0):
+        raise ValueError(f"integrate.times must be a 1-D array of increasing times in "
+                         f"(0, {span:.9g}] s (the run's periods), got {times!r}")
     return np.concatenate([[0.0], listed])
 
 
